@@ -1,0 +1,279 @@
+"""From a validated case to its result: one function per analytic case kind.
+
+Each returns a `Result`: named sections of numbers (keys carry their unit), the checks a
+reviewer must see (edge loading, stress over a limit, a source's inconsistency) and notes.
+Pure functions: nothing here reads or writes files.
+"""
+
+from __future__ import annotations
+
+import math
+import warnings
+from dataclasses import dataclass, field
+
+from . import case as schema
+from .analytic import agma, crown, hertz, spline, worm_efficiency
+from .analytic.spur_mesh import SpurMesh
+from .case import CaseError
+
+
+@dataclass
+class Check:
+    """A pass/fail statement about the result, shown at the top of the report when failed."""
+
+    name: str
+    ok: bool
+    detail: str
+
+    def as_dict(self) -> dict:
+        return {"name": self.name, "ok": bool(self.ok), "detail": self.detail}
+
+
+@dataclass
+class Result:
+    sections: dict = field(default_factory=dict)
+    checks: list[Check] = field(default_factory=list)
+    notes: list[str] = field(default_factory=list)
+
+    def as_dict(self) -> dict:
+        return {**self.sections, "checks": [c.as_dict() for c in self.checks],
+                "notes": self.notes}
+
+
+def analyse(case: schema.CaseInfo) -> Result:
+    """Run the analysis of the case's kind; bad geometry becomes a CaseError."""
+    runner = {
+        "hertz": hertz_case,
+        "crown_design": crown_design_case,
+        "worm_efficiency": worm_efficiency_case,
+        "spline_crown": spline_crown_case,
+    }[case.kind]
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always")
+        result = runner(case)
+    result.notes.extend(str(w.message) for w in caught)
+    return result
+
+
+def _ellipse(contact: hertz.PointContact) -> dict:
+    return {"a_mm": contact.a, "b_mm": contact.b, "p_max_MPa": contact.p0,
+            "approach_mm": contact.approach, "A_per_mm": contact.A, "B_per_mm": contact.B}
+
+
+def hertz_case(case: schema.HertzCase) -> Result:
+    """General two-body point contact: exact Hertz, with Roark's form beside it."""
+    C_E = hertz.compliance(case.body1.E, case.body1.nu, case.body2.E, case.body2.nu)
+    k1 = hertz.curvatures_from_radii(case.body1.radii)
+    k2 = hertz.curvatures_from_radii(case.body2.radii)
+    try:
+        rc = hertz.relative_curvature(k1, k2, case.angle)
+    except ValueError as exc:
+        raise CaseError(f"body1.radii / body2.radii: {exc}") from None
+    exact = hertz.hertz_point(rc.A, rc.B, case.load, C_E)
+    total = 2.0 * (rc.A + rc.B)
+    roark = hertz.roark_point(total, 2.0 * (rc.B - rc.A), case.load, C_E)
+    alpha, beta, lam = hertz.roark_coefficients((rc.B - rc.A) / (rc.A + rc.B))
+    agree = max(abs(roark.a / exact.a - 1), abs(roark.b / exact.b - 1), abs(roark.p0 / exact.p0 - 1))
+    return Result(
+        sections={
+            "hertz": {**_ellipse(exact), "mean_pressure_MPa": exact.mean_pressure,
+                      "a_direction_deg": math.degrees(rc.angle), "E_star_MPa": 1.0 / C_E},
+            "roark": {"cos_theta": (rc.B - rc.A) / (rc.A + rc.B), "alpha": alpha, "beta": beta,
+                      "lambda": lam, "K_D_mm": 1.5 / total, "a_mm": roark.a, "b_mm": roark.b,
+                      "stress_MPa": roark.p0, "approach_mm": roark.approach},
+        },
+        checks=[Check("Roark's alpha/beta form equals the exact Hertz solution", agree < 1e-6,
+                      f"largest relative difference {agree:.1e} (limit 1e-6)")],
+    )
+
+
+def spur_mesh(case: schema.CrownDesignCase) -> SpurMesh:
+    """The spur pair of a crown-design case, with the defaults stated in the README."""
+    m = case.module_mm
+    z1, z2 = case.teeth
+    r1, r2 = 0.5 * m * z1, 0.5 * m * abs(z2)
+    internal = z2 < 0
+    mesh = SpurMesh(
+        z1=z1, z2=z2, module=m, pressure_angle=case.pressure_angle,
+        center_distance=case.center_distance or (r2 - r1 if internal else r2 + r1),
+        outside_radius_pinion=case.outside_radius_pinion or r1 + m,
+        outside_radius_gear=case.outside_radius_gear or (r2 - m if internal else r2 + m))
+    try:
+        mesh.check()
+    except ValueError as exc:
+        raise CaseError(f"teeth / module / outside radii: {exc}") from None
+    return mesh
+
+
+def crown_design_case(case: schema.CrownDesignCase) -> Result:
+    """Wang & El-Bayoumy's crown design (seed 003): full or bias crown, or check a given one."""
+    mesh = spur_mesh(case)
+    gear_material = case.gear_material or case.material
+    C_E = hertz.compliance(case.material.E, case.material.nu, gear_material.E, gear_material.nu)
+    if case.profile_radii is not None:
+        rho1, rho2 = case.profile_radii
+    else:
+        rho1 = mesh.lpstc()
+        rho2 = mesh.gear_radius_of_curvature(rho1)
+    if mesh.internal and rho2 <= rho1:
+        raise CaseError(f"profile_radii: the internal gear's concave radius {rho2:.4g} mm must "
+                        f"exceed the pinion's {rho1:.4g} mm")
+    profile_curvature = 1.0 / rho1 + (-1.0 if mesh.internal else 1.0) / rho2
+    load = crown.normal_load(case.tangential_load, case.pressure_angle)
+    slope_B = case.slope_A if case.crown == "full" else case.slope_B
+    if case.radius is None:
+        if case.slope_A + slope_B <= 0:
+            raise CaseError(f"slope_A + slope_B: {case.slope_A + slope_B:.4g} rad must be > 0 "
+                            "for the contact to move; the crown would be flat")
+        try:
+            design = crown.design_crown(case.face_width, case.slope_A, slope_B,
+                                        profile_curvature, load, C_E, case.edge_clearance)
+        except ValueError as exc:
+            raise CaseError(f"face_width: {exc}") from None
+    else:
+        center = case.center_from_B if case.center_from_B is not None else 0.5 * case.face_width
+        if case.crown == "bias" and case.center_from_B is None:
+            raise CaseError("center_from_B: missing; checking a bias crown needs its centre")
+        design = crown.check_crown(case.radius, center, case.face_width, case.slope_A, slope_B,
+                                   profile_curvature, load, C_E)
+    ellipse = design.contact.ellipse
+    d = mesh.operating_pitch_diameter
+    I = agma.geometry_factor(rho1, rho2, case.pressure_angle, d, mesh.internal)
+    Cp = agma.elastic_coefficient(C_E)
+    result = Result(sections={
+        "crown": {"mode": "design" if case.radius is None else "check",
+                  "radius_mm": design.radius, "center_from_B_mm": design.center_from_B,
+                  "drop_A_mm": design.drop_A, "drop_B_mm": design.drop_B},
+        "contact": {"a_mm": ellipse.a, "b_mm": ellipse.b, "stress_MPa": ellipse.p0,
+                    "semi_axis_along_face_mm": design.contact.semi_axis_face,
+                    "rho1_mm": rho1, "rho2_mm": rho2, "normal_load_N": load,
+                    "approach_mm": ellipse.approach,
+                    "edge_margin_A_mm": design.edge_margin_A,
+                    "edge_margin_B_mm": design.edge_margin_B},
+        "mesh": {"pitch_diameter_mm": d, "center_distance_mm": mesh.center_distance,
+                 "base_pitch_mm": mesh.base_pitch, "contact_ratio": mesh.contact_ratio},
+        "uncrowned": {"agma_stress_MPa": agma.contact_stress(Cp, case.tangential_load, d,
+                                                             case.face_width, I),
+                      "I": I, "Cp_sqrt_MPa": Cp},
+    })
+    for end, margin in (("A", design.edge_margin_A), ("B", design.edge_margin_B)):
+        result.checks.append(Check(f"contact ellipse inside the face at end {end}",
+                                   margin >= -1e-9 * case.face_width,
+                                   f"edge margin {margin:.4f} mm (negative = edge loading)"))
+    if case.allowable_stress is not None:
+        result.checks.append(Check("contact stress within the allowable",
+                                   ellipse.p0 <= case.allowable_stress,
+                                   f"{ellipse.p0:.1f} MPa against {case.allowable_stress:.1f} MPa"))
+    return result
+
+
+def worm_efficiency_case(case: schema.WormEfficiencyCase) -> Result:
+    """Tooth efficiency of a worm set over lubricant conditions (seeds 000 and 001)."""
+    if case.lead_angle is not None:
+        gamma = case.lead_angle
+    else:
+        try:
+            gamma = worm_efficiency.lead_angle_from_pitch_diameter(
+                case.starts, case.normal_module, case.worm_pitch_diameter)
+        except ValueError as exc:
+            raise CaseError(f"worm_pitch_diameter: {exc}") from None
+    alpha_n = case.normal_pressure_angle
+    result = Result()
+    rows = []
+    for i, cond in enumerate(case.conditions or [None]):
+        if cond is None:
+            Y_VISC, mu = 1.0, case.mu_zm if case.mu_zm is not None else worm_efficiency.mean_friction(
+                **case.din3996.model_dump())
+        else:
+            Y_VISC = worm_efficiency.viscosity_factor(cond.viscosity)
+            mu = worm_efficiency.mean_friction(**case.din3996.model_dump(), Y_VISC=Y_VISC)
+        eta_z = worm_efficiency.efficiency_worm_driving(gamma, mu)
+        eta_back = worm_efficiency.efficiency_wheel_driving(gamma, mu)
+        row = {"temperature_C": cond.temperature if cond else None,
+               "viscosity_mm2_s": cond.viscosity if cond else None,
+               "Y_VISC": Y_VISC, "mu_zm": mu, "eta_z": eta_z,
+               "eta_wheel_driving": max(eta_back, 0.0), "self_locking": eta_back <= 0.0,
+               "eta_kim": worm_efficiency.efficiency_kim(gamma, alpha_n, mu)}
+        if cond is not None:
+            if cond.eta_spindle is not None:
+                row["eta_total"] = eta_z * cond.eta_spindle
+            result.checks.extend(_published_checks(cond, eta_z, gamma))
+        rows.append(row)
+    result.sections["efficiency"] = rows
+    result.sections["worm"] = {"lead_angle_deg": math.degrees(gamma),
+                               "axial_module_mm": case.normal_module / math.cos(gamma),
+                               "wheel_pitch_radius_mm": _wheel_pitch_radius(case, gamma)}
+    if case.anti_rattle_spring is not None:
+        result.sections["misalignment"] = _anti_rattle_rows(case, gamma)
+    return result
+
+
+def _wheel_pitch_radius(case: schema.WormEfficiencyCase, gamma: float) -> float:
+    return 0.5 * case.teeth * case.normal_module / math.cos(gamma)
+
+
+def _published_checks(cond: schema.Condition, eta_z: float, gamma: float) -> list[Check]:
+    """Compare a condition with the values its source prints (seed 000 Table 3.5-1 style)."""
+    at = f"at {cond.temperature:g} °C"
+    checks = []
+    if cond.published_eta_z is not None:
+        checks.append(Check(f"eta_z {at} matches the published value", abs(eta_z - cond.published_eta_z) <= 0.01,
+                            f"computed {eta_z:.3f}, published {cond.published_eta_z:.3f} (tolerance 0.01)"))
+        if cond.published_mu_zm is not None:
+            own = worm_efficiency.efficiency_worm_driving(gamma, cond.published_mu_zm)
+            checks.append(Check(f"published eta_z {at} follows from the published mu_zm",
+                                abs(own - cond.published_eta_z) <= 0.005,
+                                f"eta_z(mu_zm={cond.published_mu_zm}) = {own:.4f}, published "
+                                f"{cond.published_eta_z:.3f} (tolerance 0.005)"))
+    if None not in (cond.published_eta_total, cond.published_eta_z, cond.eta_spindle):
+        product = cond.published_eta_z * cond.eta_spindle
+        checks.append(Check(f"published eta_tot {at} equals eta_z·eta_spindle",
+                            abs(product - cond.published_eta_total) <= 0.01,
+                            f"{cond.published_eta_z:.3f} × {cond.eta_spindle:.3f} = {product:.3f}, "
+                            f"published {cond.published_eta_total:.3f} (tolerance 0.01): "
+                            + ("consistent" if abs(product - cond.published_eta_total) <= 0.01
+                               else "the source's column is inconsistent")))
+    return checks
+
+
+def _anti_rattle_rows(case: schema.WormEfficiencyCase, gamma: float) -> list[dict]:
+    spring = case.anti_rattle_spring
+    Rp = _wheel_pitch_radius(case, gamma)
+    rows = []
+    for torque in spring.output_torques:
+        force = worm_efficiency.anti_rattle_spring_force(
+            torque, spring.mount_moment, spring.d1, spring.d2, Rp, case.normal_pressure_angle, gamma)
+        rows.append({"output_torque_Nm": torque / 1000.0,
+                     "normal_load_N": worm_efficiency.normal_tooth_load(torque, Rp, gamma,
+                                                                        case.normal_pressure_angle),
+                     "spring_force_N": force,
+                     "misalignment_mm": worm_efficiency.anti_rattle_misalignment(force, spring.stiffness)})
+    return rows
+
+
+def spline_crown_case(case: schema.SplineCrownCase) -> Result:
+    """Dudley's crowned spline with seed 003's fit limit (eq 19)."""
+    theta = case.misalignment
+    height, radius = spline.dudley_crown(case.engaged_length, theta)
+    sleeve = case.sleeve_material or case.material
+    C_E = hertz.compliance(case.material.E, case.material.nu, sleeve.E, sleeve.nu)
+    D = case.pitch_diameter_mm
+    stress = spline.dudley_contact_stress(case.torque, D, case.teeth, case.working_depth, radius, C_E)
+    r_max = spline.max_crown_radius_for_fit(case.tooth_thickness, case.clearance, theta)
+    clearance = spline.tilted_tooth_clearance(radius, case.tooth_thickness, case.clearance, theta,
+                                              0.5 * case.engaged_length)
+    result = Result(sections={"spline": {
+        "crown_radius_mm": radius, "crown_height_mm": height, "contact_stress_MPa": stress,
+        "crown_radius_fit_max_mm": r_max, "tooth_load_N": 2.0 * case.torque / (D * case.teeth),
+        "fit_clearance_mm": clearance, "pitch_diameter_mm": D,
+        "fit_max_touch_from_center_mm": r_max * math.sin(theta)}})
+    result.checks.append(Check("the tilted crowned tooth fits the space (crown radius <= eq 19 limit)",
+                               radius <= r_max and clearance >= 0,
+                               f"crown radius {radius:.1f} mm, eq 19 limit {r_max:.1f} mm, "
+                               f"clearance left {clearance * 1000:.2f} µm"))
+    if r_max * math.sin(theta) > 0.5 * case.engaged_length:
+        result.notes.append("eq 19 assumes the tilted tooth touches at R·sin(theta) = "
+                            f"{r_max * math.sin(theta):.3f} mm from the crown centre, beyond half "
+                            f"the engaged length ({0.5 * case.engaged_length:.3f} mm); on this "
+                            "length a larger radius would still fit")
+    return result

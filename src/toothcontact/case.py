@@ -1,0 +1,311 @@
+"""Case files: TOML in, validated models out. The only module that reads input.
+
+Every quantity is text with a unit ("1.44 in", "3600 lbf", "-50 degC"); it is converted to
+the core units (mm, N, MPa, N·mm, rad) by `units.parse` as the model is validated. Any
+problem becomes one `CaseError` whose message names the field, the value and what is allowed.
+"""
+
+from __future__ import annotations
+
+import math
+import tomllib
+from pathlib import Path
+from typing import Annotated, Any, Literal
+
+from pydantic import (BaseModel, BeforeValidator, ConfigDict, Field, ValidationError,
+                      model_validator)
+
+from . import units
+
+
+class CaseError(Exception):
+    """Bad input: the message names the field, the value and what is allowed."""
+
+
+def quantity(kind: str, *, positive: bool = False, allow_inf: bool = False):
+    """A float field given as text with a unit of `kind` (see units.KINDS)."""
+
+    def convert(value: Any) -> float:
+        number = units.parse(value, kind)
+        if math.isinf(number) and not allow_inf:
+            raise ValueError(f"{value!r} must be finite")
+        if positive and not number > 0:
+            raise ValueError(f"{value!r} must be greater than zero")
+        return number
+
+    return Annotated[float, BeforeValidator(convert)]
+
+
+Length = quantity("length", positive=True)
+Radius = quantity("length", allow_inf=True)
+Force = quantity("force", positive=True)
+Modulus = quantity("stress", positive=True)
+Torque = quantity("torque", positive=True)
+Angle = quantity("angle")
+Slope = quantity("slope")
+InverseLength = quantity("inverse_length", positive=True)
+Viscosity = quantity("viscosity", positive=True)
+Temperature = quantity("temperature")
+Stiffness = quantity("stiffness", positive=True)
+Poisson = Annotated[float, Field(gt=-1.0, lt=0.5, description="Poisson's ratio in (-1, 0.5)")]
+Factor = Annotated[float, Field(gt=0.0, description="a positive number")]
+
+
+class Model(BaseModel):
+    model_config = ConfigDict(extra="forbid", frozen=True)
+
+
+class CaseInfo(Model):
+    """Fields every case may carry: where it comes from and what had to be assumed."""
+
+    kind: str
+    title: str = ""
+    source: str = ""
+    assumptions: list[str] = []
+
+
+class Material(Model):
+    E: Modulus = Field(description="Young's modulus, e.g. '206 GPa'")
+    nu: Poisson = Field(description="Poisson's ratio, e.g. 0.3")
+
+
+class Body(Material):
+    radii: tuple[Radius, Radius] = Field(
+        description="two principal radii, e.g. ['12.7 mm', 'inf']; negative = concave")
+
+
+class HertzCase(CaseInfo):
+    kind: Literal["hertz"]
+    load: Force = Field(description="normal load, e.g. '1000 N'")
+    angle: Angle = Field(0.0, description="angle between the bodies' first principal planes")
+    body1: Body
+    body2: Body
+
+
+class GearPairGeometry(CaseInfo):
+    """Teeth and module of a spur pair; the gear's count is negative for an internal gear."""
+
+    teeth: tuple[int, int] = Field(description="[pinion, gear] teeth, gear < 0 = internal")
+    module: Length | None = Field(None, description="module, e.g. '3 mm'")
+    diametral_pitch: InverseLength | None = Field(None, description="e.g. '10 1/in'")
+    pressure_angle: Angle = Field(description="operating pressure angle, e.g. '20 deg'")
+
+    @model_validator(mode="after")
+    def _one_size(self):
+        if (self.module is None) == (self.diametral_pitch is None):
+            raise ValueError("module / diametral_pitch: give exactly one of them")
+        z1, z2 = self.teeth
+        if z1 < 5 or abs(z2) < 5:
+            raise ValueError(f"teeth: {list(self.teeth)} needs at least 5 teeth on each member")
+        if z2 < 0 and abs(z2) <= z1:
+            raise ValueError(f"teeth: internal gear {z2} must have more teeth than the pinion {z1}")
+        if not 0 < self.pressure_angle < math.radians(45):
+            raise ValueError(f"pressure_angle: {math.degrees(self.pressure_angle):.4g} deg "
+                             "must lie between 0 and 45 deg")
+        return self
+
+    @property
+    def module_mm(self) -> float:
+        return self.module if self.module is not None else 1.0 / self.diametral_pitch
+
+
+class CrownDesignCase(GearPairGeometry):
+    kind: Literal["crown_design"]
+    crown: Literal["full", "bias"]
+    face_width: Length = Field(description="face width, e.g. '30 mm'")
+    outside_radius_pinion: Length | None = None
+    outside_radius_gear: Length | None = Field(
+        None, description="gear tip radius (inside radius for an internal gear)")
+    center_distance: Length | None = None
+    profile_radii: tuple[Length, Length] | None = Field(
+        None, description="[rho1, rho2] at the contact, overriding the LPSTC; rho2 > 0 also "
+                          "for an internal gear's concave flank")
+    tangential_load: Force = Field(description="e.g. '8000 N'")
+    slope_A: Slope = Field(description="total slope at end A in rad, e.g. '0.0015'")
+    slope_B: Slope | None = Field(None, description="total slope at end B (bias crown only)")
+    radius: Length | None = Field(None, description="check this crown radius instead of designing")
+    center_from_B: Length | None = Field(None, description="crown centre of a checked crown")
+    edge_clearance: quantity("length") = Field(0.0, description="margin kept to each end")
+    allowable_stress: Modulus | None = None
+    material: Material
+    gear_material: Material | None = None
+
+    @model_validator(mode="after")
+    def _slopes(self):
+        if self.crown == "full" and self.slope_B is not None:
+            raise ValueError("slope_B: a full crown takes one slope (slope_A); "
+                             "use crown = 'bias' for two")
+        if self.crown == "bias" and self.slope_B is None:
+            raise ValueError("slope_B: missing; a bias crown needs the slope at end B")
+        if self.center_from_B is not None and self.radius is None:
+            raise ValueError("center_from_B: only with radius (checking a given crown)")
+        return self
+
+
+class Condition(Model):
+    temperature: Temperature = Field(description="e.g. '-50 degC'")
+    viscosity: Viscosity = Field(description="kinematic viscosity, e.g. '30000 mm^2/s'")
+    eta_spindle: Factor | None = Field(None, description="efficiency of what follows the worm set")
+    published_eta_total: Factor | None = None
+    published_eta_z: Factor | None = None
+    published_mu_zm: Factor | None = None
+
+
+class Din3996(Model):
+    mu_0T: Factor = Field(description="base friction of DIN 3996, e.g. 0.047")
+    Y_S: Factor = 1.0
+    Y_G: Factor = 1.0
+    Y_W: Factor = 1.0
+    Y_R: Factor = 1.0
+
+
+class AntiRattleSpring(Model):
+    """Seed 001 Fig. 6: the worm shaft pivots at its mount, meshes at d2 and is held by a
+    spring of stiffness k at d1 + d2."""
+
+    stiffness: Stiffness = Field(description="spring rate, e.g. '30 N/mm'")
+    d1: Length = Field(description="mesh to spring, along the worm shaft")
+    d2: Length = Field(description="mount to mesh, along the worm shaft")
+    mount_moment: quantity("torque") = Field(description="moment held at the mount, e.g. '3.3 N*m'")
+    output_torques: list[quantity("torque")] = Field(min_length=1,
+                                                     description="wheel torques, e.g. ['0 N*m']")
+
+
+class WormEfficiencyCase(CaseInfo):
+    kind: Literal["worm_efficiency"]
+    starts: int = Field(ge=1, le=12, description="worm starts z1 (1..12)")
+    teeth: int = Field(ge=10, description="wheel teeth z2 (>= 10)")
+    normal_module: Length
+    lead_angle: Angle | None = None
+    worm_pitch_diameter: Length | None = None
+    normal_pressure_angle: Angle = Field(description="e.g. '20 deg'")
+    mu_zm: Factor | None = Field(None, description="mean tooth friction, e.g. 0.061")
+    din3996: Din3996 | None = None
+    conditions: list[Condition] = []
+    anti_rattle_spring: AntiRattleSpring | None = None
+
+    @model_validator(mode="after")
+    def _choices(self):
+        if (self.lead_angle is None) == (self.worm_pitch_diameter is None):
+            raise ValueError("lead_angle / worm_pitch_diameter: give exactly one of them")
+        if self.lead_angle is not None and not 0 < self.lead_angle < math.radians(45):
+            raise ValueError(f"lead_angle: {math.degrees(self.lead_angle):.4g} deg must lie "
+                             "between 0 and 45 deg")
+        if (self.mu_zm is None) == (self.din3996 is None):
+            raise ValueError("mu_zm / din3996: give either mu_zm or a [din3996] table")
+        if self.conditions and self.din3996 is None:
+            raise ValueError("conditions: need the [din3996] chain (mu_zm is fixed)")
+        if not 0 < self.normal_pressure_angle < math.radians(45):
+            raise ValueError("normal_pressure_angle: must lie between 0 and 45 deg")
+        return self
+
+
+class SplineCrownCase(CaseInfo):
+    kind: Literal["spline_crown"]
+    teeth: int = Field(ge=6, description="spline teeth (>= 6)")
+    pitch_diameter: Length | None = None
+    module: Length | None = None
+    diametral_pitch: InverseLength | None = None
+    pressure_angle: Angle = Field(description="30, 37.5 or 45 deg")
+    torque: Torque
+    misalignment: Angle = Field(description="angular misalignment, e.g. '0.1 deg'")
+    engaged_length: Length
+    working_depth: Length
+    tooth_thickness: Length = Field(description="T_mod at the crown centre")
+    clearance: Length = Field(description="dT, space width minus tooth thickness")
+    material: Material
+    sleeve_material: Material | None = None
+
+    @model_validator(mode="after")
+    def _size(self):
+        given = [n for n in ("pitch_diameter", "module", "diametral_pitch")
+                 if getattr(self, n) is not None]
+        if len(given) != 1:
+            raise ValueError("pitch_diameter / module / diametral_pitch: give exactly one")
+        if not 0 < self.misalignment < math.radians(10):
+            raise ValueError(f"misalignment: {math.degrees(self.misalignment):.4g} deg must "
+                             "lie between 0 and 10 deg")
+        return self
+
+    @property
+    def pitch_diameter_mm(self) -> float:
+        if self.pitch_diameter is not None:
+            return self.pitch_diameter
+        module = self.module if self.module is not None else 1.0 / self.diametral_pitch
+        return module * self.teeth
+
+
+KINDS: dict[str, type[CaseInfo]] = {
+    "hertz": HertzCase,
+    "crown_design": CrownDesignCase,
+    "worm_efficiency": WormEfficiencyCase,
+    "spline_crown": SplineCrownCase,
+}
+
+
+def load_case(path: str | Path) -> tuple[CaseInfo, dict]:
+    """Read and validate a case file; returns the model and the raw table (units as given)."""
+    path = Path(path)
+    try:
+        raw = tomllib.loads(path.read_text(encoding="utf-8"))
+    except FileNotFoundError:
+        raise CaseError(f"{path}: no such case file") from None
+    except (OSError, UnicodeDecodeError) as exc:
+        raise CaseError(f"{path}: cannot read it ({exc})") from None
+    except tomllib.TOMLDecodeError as exc:
+        raise CaseError(f"{path}: not valid TOML ({exc})") from None
+    return parse_case(raw, source=str(path)), raw
+
+
+def parse_case(raw: dict, source: str = "case") -> CaseInfo:
+    """Validate a case table (as read from TOML) into its kind's model."""
+    kind = raw.get("kind")
+    allowed = ", ".join(KINDS)
+    if kind is None:
+        raise CaseError(f"{source}: kind: missing; allowed: {allowed}")
+    if kind not in KINDS:
+        raise CaseError(f"{source}: kind: {kind!r} is not a known kind; allowed: {allowed}")
+    model = KINDS[kind]
+    try:
+        return model.model_validate(raw)
+    except ValidationError as exc:
+        raise CaseError(f"{source}: {_describe(exc, model)}") from None
+
+
+def _describe(exc: ValidationError, model: type[BaseModel]) -> str:
+    """One line for the first validation error: field, value, what is allowed."""
+    error = exc.errors(include_url=False)[0]
+    field = _dotted(error["loc"])
+    message = error["msg"].removeprefix("Value error, ")
+    if error["type"] == "missing":
+        hint = _field_description(model, error["loc"])
+        return f"{field}: missing" + (f"; expected {hint}" if hint else "")
+    if error["type"] == "extra_forbidden":
+        return f"{field}: unknown field (check the spelling; see the README for each kind)"
+    if not field:
+        return message
+    if error["type"] in ("value_error", "assertion_error") and repr(error["input"]) in message:
+        return f"{field}: {message}"
+    return f"{field}: {error['input']!r}: {message}"
+
+
+def _dotted(loc: tuple) -> str:
+    out = ""
+    for part in loc:
+        out += f"[{part}]" if isinstance(part, int) else (f".{part}" if out else str(part))
+    return out
+
+
+def _field_description(model: type[BaseModel], loc: tuple) -> str:
+    current: Any = model
+    info = None
+    for part in loc:
+        if isinstance(part, int) or not (isinstance(current, type) and issubclass(current, BaseModel)):
+            continue
+        info = current.model_fields.get(part)
+        if info is None:
+            return ""
+        current = info.annotation
+        args = getattr(current, "__args__", ())
+        current = next((a for a in args if isinstance(a, type) and issubclass(a, BaseModel)), current)
+    return (info.description or "") if info else ""

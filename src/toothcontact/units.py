@@ -1,0 +1,109 @@
+"""Quantities in, plain floats out.
+
+Case files carry quantities as text with units ("1.44 in", "3600 lbf", "-50 degC"). This
+module is the only place that knows about units: it turns such text into a float in the
+core unit of its kind, and says clearly when the text is not a quantity of that kind.
+
+Core units: mm, N, MPa, N*mm, N/mm, rad, 1/mm, mm^2/s, degC.
+"""
+
+from __future__ import annotations
+
+import math
+import re
+from dataclasses import dataclass
+from functools import lru_cache
+
+
+class UnitError(ValueError):
+    """A text that is not a quantity of the expected kind (message has no field name)."""
+
+
+@dataclass(frozen=True)
+class Kind:
+    """A kind of quantity: its core unit, its pint dimensionality and an example."""
+
+    name: str
+    core_unit: str
+    dimensionality: str
+    example: str
+    bare_number_allowed: bool = False
+
+
+KINDS: dict[str, Kind] = {
+    k.name: k
+    for k in (
+        Kind("length", "mm", "[length]", "'3 mm' or '0.125 in'"),
+        Kind("force", "N", "[force]", "'8000 N' or '3600 lbf'"),
+        Kind("stress", "MPa", "[pressure]", "'206 GPa' or '30000 ksi'"),
+        Kind("torque", "N*mm", "[force]*[length]", "'40 N*m' or '478 lbf*in'"),
+        Kind("stiffness", "N/mm", "[force]/[length]", "'30 N/mm'"),
+        Kind("angle", "rad", "", "'20 deg' or '0.35 rad'"),
+        Kind("slope", "rad", "", "'0.0015' (rad), '0.0015 in/in' or '0.1 deg'", True),
+        Kind("inverse_length", "1/mm", "1/[length]", "'10 1/in'"),
+        Kind("viscosity", "mm**2/s", "[length]**2/[time]", "'220 mm^2/s' or '220 cSt'"),
+        Kind("temperature", "degC", "[temperature]", "'-50 degC' or '176 degF'"),
+    )
+}
+
+_NUMBER = re.compile(r"^\s*([+-]?(?:inf(?:inity)?|(?:\d+\.?\d*|\.\d+)(?:[eE][+-]?\d+)?))\s*(.*?)\s*$",
+                     re.IGNORECASE)
+_ANGLE_UNITS = {"radian", "degree", "arcminute", "arcsecond", "milliradian", "microradian",
+                "turn", "gradian"}
+
+
+@lru_cache(maxsize=1)
+def registry():
+    """The shared pint registry (built on first use: pint is slow to import)."""
+    import pint
+
+    return pint.UnitRegistry()
+
+
+def parse(text: str | float | int, kind: str) -> float:
+    """Convert `text` to a float in the core unit of `kind` (see KINDS).
+
+    A bare number is accepted only where its unit is unambiguous (slopes, in rad).
+    "inf" (with or without a unit) is accepted for lengths: a flat body's radius.
+    """
+    spec = KINDS[kind]
+    if isinstance(text, bool) or not isinstance(text, (str, int, float)):
+        raise UnitError(f"{text!r} is not a quantity; expected {_expected(spec)}")
+    if isinstance(text, (int, float)):
+        if not spec.bare_number_allowed:
+            raise UnitError(f"{text!r} has no unit; expected {_expected(spec)}")
+        return float(text)
+    match = _NUMBER.match(text)
+    if not match:
+        raise UnitError(f"{text!r} does not start with a number; expected {_expected(spec)}")
+    magnitude, unit_text = float(match.group(1)), match.group(2)
+    if math.isinf(magnitude) and kind != "length":
+        raise UnitError(f"{text!r} is infinite; expected a finite {_expected(spec)}")
+    if not unit_text:
+        if spec.bare_number_allowed or math.isinf(magnitude):
+            return magnitude
+        raise UnitError(f"{text!r} has no unit; expected {_expected(spec)}")
+    ureg = registry()
+    try:
+        unit = ureg.Unit(unit_text.replace("^", "**"))
+    except Exception:
+        raise UnitError(f"{text!r}: unknown unit {unit_text!r}; expected {_expected(spec)}") from None
+    if not _has_dimension(unit, spec):
+        raise UnitError(f"{text!r} is not {_expected(spec)}")
+    return float(ureg.Quantity(magnitude, unit).to(spec.core_unit).magnitude)
+
+
+def _has_dimension(unit, spec: Kind) -> bool:
+    ureg = registry()
+    if spec.dimensionality:
+        return unit.dimensionality == ureg.get_dimensionality(spec.dimensionality)
+    if not unit.dimensionless:
+        return False
+    if spec.name == "angle":
+        return any(ureg.get_name(str(u)) in _ANGLE_UNITS for u in unit._units)
+    return True
+
+
+def _expected(spec: Kind) -> str:
+    article = "an" if spec.name[0] in "aeiou" else "a"
+    return f"{article} {spec.name.replace('_', ' ')} such as {spec.example}"
