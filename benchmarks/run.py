@@ -1,0 +1,75 @@
+"""Benchmarks: prints a table and writes benchmarks/results.json.
+
+    .venv/bin/python benchmarks/run.py
+
+Times the analytic building blocks (an exact Hertz solve, a crown design), every bundled
+analytic case end to end (load, validate, analyse), and the CLI start-up, which must not
+import the heavy 3D stack.
+"""
+
+from __future__ import annotations
+
+import json
+import math
+import platform
+import subprocess
+import sys
+import time
+from pathlib import Path
+
+HERE = Path(__file__).resolve().parent
+
+
+def best_of(fn, repeat: int = 5, number: int = 1) -> float:
+    """Best wall time of `number` calls, over `repeat` tries (seconds per call)."""
+    best = math.inf
+    for _ in range(repeat):
+        start = time.perf_counter()
+        for _ in range(number):
+            fn()
+        best = min(best, (time.perf_counter() - start) / number)
+    return best
+
+
+def main() -> None:
+    from toothcontact.analytic import crown, hertz
+    from toothcontact.runner import analyse_file, bundled_cases
+
+    C_E = hertz.compliance(206e3, 0.3, 206e3, 0.3)
+    rows = []
+    rows.append(("hertz_point B/A=400", best_of(lambda: hertz.hertz_point(0.01, 4.0, 1000.0, C_E),
+                                                number=200), "exact ellipse"))
+    profile = 1 / 8.3 + 1 / 32.7
+    load = crown.normal_load(8000.0, math.radians(20))
+    rows.append(("design_crown bias", best_of(lambda: crown.design_crown(
+        30.0, 0.0015, 0.0003, profile, load, C_E), number=20), "R and c, Hertz inside"))
+    analyse_file(bundled_cases()[0])  # warm up pint's registry once
+    for path in bundled_cases():
+        rows.append((f"case {path.stem}", best_of(lambda: analyse_file(path), number=3),
+                     "load + validate + analyse"))
+
+    probe = ("import sys, time; t = time.perf_counter(); from toothcontact.cli import app\n"
+             "try:\n    app(['--help'])\nexcept SystemExit:\n    pass\n"
+             "print(time.perf_counter() - t); print(sorted({'cadquery', 'pyvista', 'vtk', 'OCP'}"
+             " & set(sys.modules)))")
+    startup, heavy = math.inf, None
+    for _ in range(5):
+        t0 = time.perf_counter()
+        out = subprocess.run([sys.executable, "-c", probe], capture_output=True, text=True, check=True)
+        startup = min(startup, time.perf_counter() - t0)
+        heavy = out.stdout.strip().splitlines()[-1]
+    rows.append(("toothcontact --help (process)", startup, f"heavy modules imported: {heavy}"))
+
+    width = max(len(r[0]) for r in rows)
+    print(f"{'benchmark':{width}s}  {'time':>10s}  note")
+    for name, seconds, note in rows:
+        print(f"{name:{width}s}  {seconds * 1e3:8.3f} ms  {note}")
+    record = {"python": platform.python_version(), "machine": platform.machine(),
+              "cpus": __import__("os").cpu_count(),
+              "results": [{"name": n, "seconds": s, "note": note} for n, s, note in rows]}
+    (HERE / "results.json").write_text(json.dumps(record, indent=2) + "\n")
+    print(f"wrote {HERE / 'results.json'}")
+
+
+if __name__ == "__main__":
+    main()
