@@ -85,6 +85,16 @@ def test_missing_case_file(tmp_path):
     assert result.exit_code == 2 and "no such case file" in result.output
 
 
+def test_impossible_geometry_names_the_file_and_fields(tmp_path):
+    case = tmp_path / "crown.toml"
+    source = (Path(__file__).parents[1] / "cases" / "crown_spur_metric_bias.toml").read_text()
+    case.write_text(source.replace("teeth = [20, 60]", "teeth = [12, 120]"))
+    result = runner.invoke(app, ["run", str(case), "--out", str(tmp_path / "o")])
+    assert result.exit_code == 2
+    assert "crown.toml: teeth / module / outside radii:" in result.output
+    assert "interference" in result.output
+
+
 def test_help_does_not_import_the_heavy_stack():
     code = ("import sys; from toothcontact.cli import app\n"
             "try:\n    app(['--help'])\nexcept SystemExit:\n    pass\n"

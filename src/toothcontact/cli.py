@@ -63,11 +63,10 @@ def demo(out: Path = typer.Option(Path("out"), "--out", help="output folder")):
 
     from . import runner
 
-    table = Table("case", "kind", "checks", "output")
+    table = Table("case", "kind", "checks", title=f"bundled cases -> {out}/<case>/")
     for path in _guarded(runner.bundled_cases):
-        document, written = _guarded(lambda: runner.run_case(path, out / path.stem))
+        document, _ = _guarded(lambda: runner.run_case(path, out / path.stem))
         failed = sum(not c["ok"] for c in document["checks"])
         table.add_row(path.stem, document["kind"],
-                      f"{len(document['checks']) - failed} pass, {failed} flagged",
-                      str(written[0].parent))
-    Console().print(table)
+                      f"{len(document['checks']) - failed} pass, {failed} flagged")
+    Console(width=100).print(table)

@@ -25,7 +25,10 @@ def analyse_file(path: str | Path) -> dict:
     """Load and analyse a case file; returns the result document (raises CaseError)."""
     path = Path(path)
     case, raw = schema.load_case(path)
-    result = analyses.analyse(case)
+    try:
+        result = analyses.analyse(case)
+    except schema.CaseError as exc:
+        raise schema.CaseError(f"{path}: {exc}") from None
     return report.result_document(path.stem, case, raw, result)
 
 
