@@ -1,0 +1,105 @@
+"""What every flank offers: points, normals, derivatives and curvature at any (u, v).
+
+A flank is a parametric surface r(u, v) over a rectangular parameter domain, written once as
+plain numpy code in `point`; evaluating it on jets (see `jet`) gives the exact first and
+second derivatives. Differential geometry (normals, fundamental forms, principal curvatures)
+is computed here once for all flanks. Units: mm, rad; curvature in 1/mm, positive where the
+flank is convex (bulges out of the material), the convention of `analytic.hertz`.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+
+from .jet import Jet
+
+
+class Flank:
+    """Base class of the exact flanks.
+
+    Subclasses set `domain` = ((u0, u1), (v0, v1)), `edges` (names of the four sides of the
+    domain, keys "u0", "u1", "v0", "v1") and `orientation` (+1 or -1, so that
+    orientation·(r_u × r_v) points out of the material), and implement `point(u, v)`
+    returning (x, y, z) with numpy functions only, so that it runs on jets as well.
+    """
+
+    domain: tuple[tuple[float, float], tuple[float, float]]
+    edges: dict[str, str]
+    orientation: float = 1.0
+
+    def point(self, u, v):  # pragma: no cover - interface
+        raise NotImplementedError
+
+    def evaluate(self, u, v) -> "FlankSample":
+        """Points and exact derivatives at arrays of (u, v) (broadcast together)."""
+        U, V = Jet.variables(u, v)
+        x, y, z = self.point(U, V)
+        comps = [x if isinstance(x, Jet) else Jet(np.broadcast_to(x, U.f.shape)) for x in (x, y, z)]
+
+        def stack(field):
+            return np.stack([np.broadcast_to(getattr(c, field), U.f.shape) for c in comps], axis=-1)
+
+        return FlankSample(stack("f"), stack("u"), stack("v"), stack("uu"), stack("uv"),
+                           stack("vv"), self.orientation)
+
+    def grid(self, nu: int, nv: int):
+        """A regular (nu × nv) grid over the domain: arrays u, v of shape (nu, nv)."""
+        (u0, u1), (v0, v1) = self.domain
+        return np.meshgrid(np.linspace(u0, u1, nu), np.linspace(v0, v1, nv), indexing="ij")
+
+
+@dataclass(frozen=True)
+class FlankSample:
+    """A flank evaluated at arrays of parameters; vectors have a trailing axis of 3."""
+
+    points: np.ndarray
+    r_u: np.ndarray
+    r_v: np.ndarray
+    r_uu: np.ndarray
+    r_uv: np.ndarray
+    r_vv: np.ndarray
+    orientation: float = 1.0
+
+    @property
+    def normals(self) -> np.ndarray:
+        """Unit normals out of the material."""
+        n = self.orientation * np.cross(self.r_u, self.r_v)
+        return n / np.linalg.norm(n, axis=-1, keepdims=True)
+
+    def fundamental_forms(self):
+        """(E, F, G) and (L, M, N), with L = -r_uu·n etc. (convex positive)."""
+        n = self.normals
+        dot = lambda a, b: np.einsum("...i,...i->...", a, b)  # noqa: E731
+        first = (dot(self.r_u, self.r_u), dot(self.r_u, self.r_v), dot(self.r_v, self.r_v))
+        second = (-dot(self.r_uu, n), -dot(self.r_uv, n), -dot(self.r_vv, n))
+        return first, second
+
+    def principal_curvatures(self):
+        """(k1, k2, d1, d2): principal curvatures k1 <= k2 (1/mm) and unit directions (3D)."""
+        (E, F, G), (L, M, N) = self.fundamental_forms()
+        det = E * G - F * F
+        mean = (E * N - 2 * F * M + G * L) / (2 * det)
+        gauss = (L * N - M * M) / det
+        root = np.sqrt(np.maximum(mean * mean - gauss, 0.0))
+        k1, k2 = mean - root, mean + root
+
+        def direction(k):
+            # (L - kE) du + (M - kF) dv = 0, or the second row when the first vanishes
+            a, b = L - k * E, M - k * F
+            c, d = M - k * F, N - k * G
+            use_first = np.abs(a) + np.abs(b) >= np.abs(c) + np.abs(d)
+            du = np.where(use_first, -b, -d)
+            dv = np.where(use_first, a, c)
+            degenerate = (np.abs(du) + np.abs(dv)) == 0  # umbilic: any direction
+            du = np.where(degenerate, 1.0, du)
+            vec = du[..., None] * self.r_u + dv[..., None] * self.r_v
+            return vec / np.linalg.norm(vec, axis=-1, keepdims=True)
+
+        return k1, k2, direction(k1), direction(k2)
+
+    def normal_curvature(self, du, dv) -> np.ndarray:
+        """Curvature (1/mm, convex positive) of the flank along the tangent du·r_u + dv·r_v."""
+        (E, F, G), (L, M, N) = self.fundamental_forms()
+        return (L * du * du + 2 * M * du * dv + N * dv * dv) / (E * du * du + 2 * F * du * dv + G * dv * dv)

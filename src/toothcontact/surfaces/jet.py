@@ -1,0 +1,136 @@
+"""Second-order jets in two variables: exact first and second derivatives of surface code.
+
+A `Jet` carries a value and its derivatives with respect to the surface parameters (u, v):
+f, f_u, f_v, f_uu, f_uv, f_vv, each a numpy array. Surface formulas are written once with
+plain numpy functions (np.sin, np.sqrt, np.arctan2, ...); evaluated on jets they return the
+point together with its exact derivatives (forward-mode automatic differentiation, truncated
+after the second order), so no derivative is ever typed twice or approximated by differences.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+_FIELDS = ("f", "u", "v", "uu", "uv", "vv")
+
+
+class Jet:
+    """f(u, v) with its first and second partial derivatives (numpy arrays, broadcastable)."""
+
+    __slots__ = _FIELDS
+    __array_priority__ = 100
+
+    def __init__(self, f, u=0.0, v=0.0, uu=0.0, uv=0.0, vv=0.0):
+        self.f, self.u, self.v, self.uu, self.uv, self.vv = (
+            np.asarray(x, dtype=float) for x in (f, u, v, uu, uv, vv))
+
+    @classmethod
+    def variables(cls, u, v) -> tuple["Jet", "Jet"]:
+        """The surface parameters themselves: u (du/du = 1) and v (dv/dv = 1)."""
+        u, v = np.broadcast_arrays(np.asarray(u, float), np.asarray(v, float))
+        zero, one = np.zeros_like(u), np.ones_like(u)
+        return cls(u, one, zero, zero, zero, zero), cls(v, zero, one, zero, zero, zero)
+
+    # --- composition with a scalar function: phi(f) given phi, phi', phi'' at f ---------
+    def _chain(self, p0, p1, p2) -> "Jet":
+        return Jet(p0, p1 * self.u, p1 * self.v, p2 * self.u * self.u + p1 * self.uu,
+                   p2 * self.u * self.v + p1 * self.uv, p2 * self.v * self.v + p1 * self.vv)
+
+    # --- arithmetic -----------------------------------------------------------------------
+    def __add__(self, other):
+        o = _lift(other)
+        return Jet(self.f + o.f, self.u + o.u, self.v + o.v, self.uu + o.uu, self.uv + o.uv,
+                   self.vv + o.vv)
+
+    __radd__ = __add__
+
+    def __neg__(self):
+        return Jet(-self.f, -self.u, -self.v, -self.uu, -self.uv, -self.vv)
+
+    def __sub__(self, other):
+        return self + (-_lift(other))
+
+    def __rsub__(self, other):
+        return _lift(other) + (-self)
+
+    def __mul__(self, other):
+        o = _lift(other)
+        return Jet(self.f * o.f, self.u * o.f + self.f * o.u, self.v * o.f + self.f * o.v,
+                   self.uu * o.f + 2 * self.u * o.u + self.f * o.uu,
+                   self.uv * o.f + self.u * o.v + self.v * o.u + self.f * o.uv,
+                   self.vv * o.f + 2 * self.v * o.v + self.f * o.vv)
+
+    __rmul__ = __mul__
+
+    def reciprocal(self) -> "Jet":
+        r = 1.0 / self.f
+        return self._chain(r, -r * r, 2 * r * r * r)
+
+    def __truediv__(self, other):
+        return self * _lift(other).reciprocal()
+
+    def __rtruediv__(self, other):
+        return _lift(other) * self.reciprocal()
+
+    def __pow__(self, exponent: float):
+        if isinstance(exponent, Jet):
+            return np.exp(exponent * np.log(self))
+        p = float(exponent)
+        return self._chain(self.f**p, p * self.f ** (p - 1), p * (p - 1) * self.f ** (p - 2))
+
+    # --- numpy functions on jets ----------------------------------------------------------
+    def __array_ufunc__(self, ufunc, method, *inputs, **kwargs):
+        if method != "__call__" or kwargs:
+            return NotImplemented
+        if ufunc in _BINARY:
+            return _BINARY[ufunc](*(_lift(x) for x in inputs))
+        if ufunc in _UNARY:
+            return _UNARY[ufunc](_lift(inputs[0]))
+        return NotImplemented
+
+
+def _lift(x) -> Jet:
+    return x if isinstance(x, Jet) else Jet(x)
+
+
+def _arctan2(y: Jet, x: Jet) -> Jet:
+    r2 = x * x + y * y
+    # d atan2 = (x dy - y dx)/r², built from jets so the second derivatives follow
+    du = (x * Jet(y.u, y.uu, y.uv) - y * Jet(x.u, x.uu, x.uv)) / r2
+    dv = (x * Jet(y.v, y.uv, y.vv) - y * Jet(x.v, x.uv, x.vv)) / r2
+    return Jet(np.arctan2(y.f, x.f), du.f, dv.f, du.u, du.v, dv.v)
+
+
+_UNARY = {
+    np.negative: lambda a: -a,
+    np.sin: lambda a: a._chain(np.sin(a.f), np.cos(a.f), -np.sin(a.f)),
+    np.cos: lambda a: a._chain(np.cos(a.f), -np.sin(a.f), -np.cos(a.f)),
+    np.tan: lambda a: a._chain(np.tan(a.f), 1 + np.tan(a.f) ** 2,
+                               2 * np.tan(a.f) * (1 + np.tan(a.f) ** 2)),
+    np.arctan: lambda a: a._chain(np.arctan(a.f), 1 / (1 + a.f**2), -2 * a.f / (1 + a.f**2) ** 2),
+    np.arcsin: lambda a: a._chain(np.arcsin(a.f), (1 - a.f**2) ** -0.5, a.f * (1 - a.f**2) ** -1.5),
+    np.arccos: lambda a: a._chain(np.arccos(a.f), -(1 - a.f**2) ** -0.5, -a.f * (1 - a.f**2) ** -1.5),
+    np.sqrt: lambda a: a._chain(np.sqrt(a.f), 0.5 / np.sqrt(a.f), -0.25 * a.f ** -1.5),
+    np.exp: lambda a: a._chain(np.exp(a.f), np.exp(a.f), np.exp(a.f)),
+    np.log: lambda a: a._chain(np.log(a.f), 1 / a.f, -1 / a.f**2),
+    np.square: lambda a: a * a,
+}
+
+_BINARY = {
+    np.add: lambda a, b: a + b,
+    np.subtract: lambda a, b: a - b,
+    np.multiply: lambda a, b: a * b,
+    np.true_divide: lambda a, b: a / b,
+    np.arctan2: _arctan2,
+}
+
+
+def value(x):
+    """The plain value of a jet, or x itself."""
+    return x.f if isinstance(x, Jet) else np.asarray(x, float)
+
+
+def where(condition, a, b):
+    """np.where for jets: picks value and derivatives together."""
+    a, b = _lift(a), _lift(b)
+    return Jet(*(np.where(condition, getattr(a, k), getattr(b, k)) for k in _FIELDS))
