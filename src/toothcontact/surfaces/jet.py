@@ -131,6 +131,8 @@ def value(x):
 
 
 def where(condition, a, b):
-    """np.where for jets: picks value and derivatives together."""
+    """np.where for jets: picks value and derivatives together (plain arrays stay plain)."""
+    if not isinstance(a, Jet) and not isinstance(b, Jet):
+        return np.where(condition, a, b)
     a, b = _lift(a), _lift(b)
     return Jet(*(np.where(condition, getattr(a, k), getattr(b, k)) for k in _FIELDS))

@@ -1,0 +1,139 @@
+"""Flank modifications as normal displacements (DESIGN.md principle 2).
+
+Each modification is a drop (material removed, mm) as a function of the face position w
+(mm from mid-face, positive toward end B) and the roll length s = rb·t (mm along the
+transverse line of action). Amounts are measured along the flank normal in the transverse
+plane, the ISO 21771 convention; on a helical flank the normal displacement is the
+transverse amount times cos(beta_b). Functions use numpy only, so they run on jets and the
+curvature change of a modification is exactly its second derivative.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+
+from .surfaces.jet import value, where
+
+SHAPES = ("circular", "parabolic")
+
+
+def _arc_drop(offset, radius: float, shape: str):
+    """Drop of a crown of `radius` at `offset` from its centre: circular R - sqrt(R² - d²),
+    parabolic d²/(2R); both have curvature 1/R at the centre."""
+    if shape == "circular":
+        return radius - np.sqrt(radius * radius - offset * offset)
+    return offset * offset / (2.0 * radius)
+
+
+def crown_radius_from_height(height: float, half_length: float, shape: str) -> float:
+    """Radius of a crown that drops `height` over `half_length` from its centre:
+    circular (seed 003 eq 12) R = (h² + L²)/(2h), parabolic R = L²/(2h) (mm)."""
+    if not (height > 0 and half_length > 0):
+        raise ValueError("crown height and half length must be > 0")
+    if shape == "circular":
+        return (height**2 + half_length**2) / (2.0 * height)
+    return half_length**2 / (2.0 * height)
+
+
+@dataclass(frozen=True)
+class LeadCrown:
+    """Lead crowning: a crown along the face centred `center` mm from mid-face toward end B
+    (non-zero = bias crown), given by radius or by height (the drop at the face ends of the
+    same crown centred mid-face)."""
+
+    radius: float | None = None
+    height: float | None = None
+    shape: str = "circular"
+    center: float = 0.0
+
+    def radius_for(self, face_width: float) -> float:
+        if (self.radius is None) == (self.height is None):
+            raise ValueError("lead crown: give exactly one of radius and height")
+        if self.shape not in SHAPES:
+            raise ValueError(f"lead crown shape {self.shape!r} must be one of {SHAPES}")
+        if self.radius is not None:
+            if not self.radius > 0.5 * face_width:
+                raise ValueError("lead crown radius must exceed half the face width")
+            return self.radius
+        return crown_radius_from_height(self.height, 0.5 * face_width, self.shape)
+
+    def drop(self, w, face_width: float):
+        return _arc_drop(w - self.center, self.radius_for(face_width), self.shape)
+
+
+@dataclass(frozen=True)
+class ProfileCrown:
+    """Profile crowning: drop `height` at both ends of the active profile, centred mid-profile."""
+
+    height: float
+    shape: str = "parabolic"
+
+    def drop(self, s, s_start: float, s_end: float):
+        half = 0.5 * abs(s_end - s_start)
+        return _arc_drop(s - 0.5 * (s_start + s_end),
+                         crown_radius_from_height(self.height, half, self.shape), self.shape)
+
+
+@dataclass(frozen=True)
+class TipRelief:
+    """Tip relief of `amount` at the tip, starting at roll length `start` (mm) and growing
+    linearly or parabolically toward the tip."""
+
+    amount: float
+    start: float
+    shape: str = "linear"
+
+    def drop(self, s, s_tip: float):
+        length = s_tip - self.start
+        if abs(length) < 1e-12:
+            raise ValueError("tip relief starts at the tip")
+        x = (s - self.start) / length
+        ramp = x if self.shape == "linear" else x * x
+        return where(value(x) > 0, self.amount * ramp, 0.0)
+
+
+@dataclass(frozen=True)
+class EndRelief:
+    """End relief of `amount` at both face ends over `length` (mm) from each end."""
+
+    amount: float
+    length: float
+    shape: str = "linear"
+
+    def drop(self, w, face_width: float):
+        if not 0 < self.length <= 0.5 * face_width:
+            raise ValueError("end relief length must lie in (0, half the face width]")
+        inner = 0.5 * face_width - self.length
+        x = (where(value(w) > 0, w, -w) - inner) / self.length
+        ramp = x if self.shape == "linear" else x * x
+        return where(value(x) > 0, self.amount * ramp, 0.0)
+
+
+@dataclass(frozen=True)
+class FlankModifications:
+    """All modifications of one flank; `drop` is their sum (transverse amount, mm)."""
+
+    lead_crown: LeadCrown | None = None
+    profile_crown: ProfileCrown | None = None
+    tip_relief: TipRelief | None = None
+    end_relief: EndRelief | None = None
+
+    def drop(self, w, s, face_width: float, s_form: float, s_tip: float):
+        total = 0.0 * w + 0.0 * s
+        if self.lead_crown is not None:
+            total = total + self.lead_crown.drop(w, face_width)
+        if self.end_relief is not None:
+            total = total + self.end_relief.drop(w, face_width)
+        if self.profile_crown is not None:
+            total = total + self.profile_crown.drop(s, s_form, s_tip)
+        if self.tip_relief is not None:
+            total = total + self.tip_relief.drop(s, s_tip)
+        return total
+
+    @property
+    def empty(self) -> bool:
+        return all(m is None for m in (self.lead_crown, self.profile_crown, self.tip_relief,
+                                       self.end_relief))

@@ -1,0 +1,30 @@
+"""A flank with its modifications applied along the normal: r = r0 - cos(beta_b)·drop·n."""
+
+from __future__ import annotations
+
+import math
+
+from ..modify import FlankModifications
+from .base import Flank
+from .involute import InvoluteFlank
+
+
+class ModifiedFlank(Flank):
+    """An involute flank displaced by `FlankModifications` (same parameters and domain)."""
+
+    def __init__(self, base: InvoluteFlank, modifications: FlankModifications):
+        self.base, self.modifications = base, modifications
+        self.domain, self.edges, self.orientation = base.domain, base.edges, base.orientation
+        self._normal_factor = math.cos(base.gear.base_helix_angle)
+
+    def drop(self, u, v):
+        """Transverse drop (mm) at (u, v): the sum of the modifications."""
+        b = self.base
+        return self.modifications.drop(v, b.gear.base_radius * u, b.gear.face_width,
+                                       b.form_roll, b.tip_roll)
+
+    def point(self, u, v):
+        x, y, z = self.base.point(u, v)
+        nx, ny, nz = self.base.unit_normal(u, v)
+        d = -self._normal_factor * self.drop(u, v)
+        return x + d * nx, y + d * ny, z + d * nz

@@ -1,0 +1,185 @@
+"""Involute flanks and their modifications against closed forms."""
+
+import math
+
+import numpy as np
+import pytest
+from scipy.optimize import brentq
+
+from toothcontact.modify import EndRelief, FlankModifications, LeadCrown, ProfileCrown, TipRelief
+from toothcontact.surfaces.generation import generate_side
+from toothcontact.surfaces.involute import CylindricalGear
+from toothcontact.surfaces.modified import ModifiedFlank
+
+GEARS = {
+    "spur": CylindricalGear(20, 3.0, math.radians(20), 30.0),
+    "helical RH": CylindricalGear(23, 2.5, math.radians(20), 25.0, helix_angle=math.radians(20)),
+    "helical LH shifted": CylindricalGear(31, 2.0, math.radians(25), 20.0,
+                                          helix_angle=math.radians(12), hand="left", profile_shift=0.3),
+    "ring": CylindricalGear(60, 3.0, math.radians(20), 30.0, internal=True),
+    "helical ring": CylindricalGear(71, 2.0, math.radians(20), 20.0, helix_angle=math.radians(15),
+                                    internal=True),
+}
+
+
+def active_grid(flank, nu=9, nv=5):
+    (u0, u1), (v0, v1) = flank.domain
+    return np.meshgrid(np.linspace(u0 + 0.02 * (u1 - u0), u1, nu), np.linspace(v0, v1, nv), indexing="ij")
+
+
+@pytest.mark.parametrize("name", GEARS)
+@pytest.mark.parametrize("side", [1, -1])
+def test_profile_radius_of_curvature_is_sqrt_r2_minus_rb2(name, side):
+    """Transverse radius of curvature of an involute = sqrt(r² - rb²); on the helicoid the
+    profile-normal principal curvature is cos(beta_b)/sqrt(r² - rb²), the other zero
+    (Litvin & Fuentes §14.3). Sign: convex (+) outside, concave (-) on a ring gear."""
+    gear = GEARS[name]
+    flank = gear.flank(side)
+    s = flank.evaluate(*active_grid(flank))
+    rho = np.sqrt(np.sum(s.points[..., :2] ** 2, axis=-1) - gear.base_radius**2)
+    k1, k2, _, _ = s.principal_curvatures()
+    curved, straight = (k1, k2) if gear.internal else (k2, k1)
+    sign = -1.0 if gear.internal else 1.0
+    np.testing.assert_allclose(curved * rho, sign * math.cos(gear.base_helix_angle), rtol=1e-9)
+    np.testing.assert_allclose(straight, 0.0, atol=1e-12)
+    # transverse section: curvature of the z = const curve is 1/rho (planar curve in z)
+    transverse = s.r_u[..., 0] * s.r_uu[..., 1] - s.r_u[..., 1] * s.r_uu[..., 0]
+    speed = np.linalg.norm(s.r_u[..., :2], axis=-1)
+    np.testing.assert_allclose(np.abs(transverse) / speed**3 * rho, 1.0, rtol=1e-9)
+
+
+@pytest.mark.parametrize("name", GEARS)
+def test_closed_form_normal_matches_cross_product(name):
+    flank = GEARS[name].flank(1)
+    u, v = active_grid(flank)
+    n = np.stack(flank.unit_normal(u, v), axis=-1)
+    np.testing.assert_allclose(n, flank.evaluate(u, v).normals, atol=1e-13)
+
+
+@pytest.mark.parametrize("name", GEARS)
+def test_normals_leave_the_tooth(name):
+    """Both flank normals point away from tooth 0's centre line (angularly)."""
+    for side in (1, -1):
+        flank = GEARS[name].flank(side)
+        s = flank.evaluate(*active_grid(flank, 3, 3))
+        angular = np.stack([-s.points[..., 1], s.points[..., 0]], axis=-1)
+        assert np.all(side * np.einsum("...i,...i", s.normals[..., :2], angular) > 0)
+
+
+@pytest.mark.parametrize("name", GEARS)
+def test_base_pitch_between_adjacent_teeth(name):
+    """The normal line of a flank point meets the same-side flank of the next tooth one
+    transverse base pitch further on (measured in the transverse plane), to 1e-9 mm."""
+    gear = GEARS[name]
+    flank = gear.flank(1)
+    (u0, u1), _ = flank.domain
+    t0 = u0 + 0.3 * (u1 - u0)
+    p = np.array(flank.transverse_point(t0))
+    nx, ny, _ = flank.unit_normal(t0, 0.0)
+    n = np.array([nx, ny]) / math.hypot(nx, ny)
+    found = []
+    for step in (2 * math.pi / gear.teeth, -2 * math.pi / gear.teeth):
+        rot = np.array([[math.cos(step), -math.sin(step)], [math.sin(step), math.cos(step)]])
+
+        def off_line(t, rot=rot):  # signed distance of the other tooth's point from the line
+            d = rot @ np.array(flank.transverse_point(t)) - p
+            return d[0] * n[1] - d[1] * n[0]
+
+        ts = np.linspace(0.0, u1 + 1.0, 400)
+        vals = np.array([off_line(t) for t in ts])
+        for i in np.flatnonzero(np.sign(vals[:-1]) != np.sign(vals[1:])):
+            t1 = brentq(off_line, ts[i], ts[i + 1], xtol=1e-15)
+            found.append(np.linalg.norm(rot @ np.array(flank.transverse_point(t1)) - p))
+    # the nearest same-side flank along the normal lies one base pitch away
+    assert min(found) == pytest.approx(gear.base_pitch, abs=1e-9)
+
+
+def test_rack_generated_involute_and_fillet_join():
+    """The rack's straight flank generates the exact involute; the generated fillet ends on
+    the root circle and meets the involute at the form circle (continuous, tangent)."""
+    gear = GEARS["helical RH"]
+    side = generate_side(gear)
+    assert not side.undercut
+    r_end = np.hypot(*side.fillet[-1])
+    assert r_end == pytest.approx(side.form_radius, rel=1e-12)
+    assert np.hypot(*side.fillet[0]) == pytest.approx(gear.root_radius_value, rel=1e-12)
+    flank = gear.flank(1, side.form_radius)
+    start = np.array(flank.transverse_point(flank.domain[0][0]))
+    np.testing.assert_allclose(side.fillet[-1], start, atol=1e-9)
+    fillet_dir = side.fillet[-1] - side.fillet[-2]
+    fillet_dir /= np.linalg.norm(fillet_dir)
+    flank_dir = np.array(flank.transverse_point(flank.domain[0][0] + 1e-6)) - start
+    flank_dir /= np.linalg.norm(flank_dir)
+    assert np.dot(fillet_dir, flank_dir) > 0.999
+
+
+@pytest.mark.parametrize("z,x,expected", [(12, 0.0, True), (12, 0.3, False), (17, 0.0, True),
+                                          (18, 0.0, False), (14, 0.2, False)])
+def test_undercut_limit(z, x, expected):
+    """Classical limit: no undercut while x >= x_min = h* - z·sin²(alpha)/2, with h* the
+    depth of the rack's straight flank below its reference line, h_fP* - rho_fP*(1 - sin a)."""
+    gear = CylindricalGear(z, 2.0, math.radians(20), 10.0, profile_shift=x)
+    h_rack = gear.dedendum - gear.root_radius * (1 - math.sin(math.radians(20)))
+    x_min = h_rack - z * math.sin(math.radians(20)) ** 2 / 2
+    assert (x < x_min) == expected
+    assert generate_side(gear).undercut == expected
+
+
+# --- modifications -----------------------------------------------------------------------
+
+SPUR = GEARS["spur"]
+
+
+@pytest.mark.parametrize("shape", ["circular", "parabolic"])
+@pytest.mark.parametrize("name", ["spur", "helical RH"])
+def test_lead_crown_drop_at_face_ends_equals_height(shape, name):
+    """Measured independently: the distance from the crowned end point to the unmodified
+    flank along its normal, in the transverse plane (ISO 21771)."""
+    gear = GEARS[name]
+    base = gear.flank(1, generate_side(gear).form_radius)
+    crowned = ModifiedFlank(base, FlankModifications(lead_crown=LeadCrown(height=0.012, shape=shape)))
+    (u0, u1), (v0, v1) = base.domain
+    u = np.array([0.5 * (u0 + u1)] * 3)
+    v = np.array([v0, 0.0, v1])
+    moved = crowned.evaluate(u, v).points - base.evaluate(u, v).points
+    n = base.evaluate(u, v).normals
+    # transverse amount: component along the transverse projection of the normal
+    nt = n[:, :2] / np.linalg.norm(n[:, :2], axis=-1, keepdims=True)
+    transverse_drop = -np.einsum("ij,ij->i", moved[:, :2], nt)
+    np.testing.assert_allclose(transverse_drop, [0.012 * math.cos(gear.base_helix_angle) ** 2, 0.0,
+                                                 0.012 * math.cos(gear.base_helix_angle) ** 2],
+                               atol=1e-12)
+
+
+@pytest.mark.parametrize("shape", ["circular", "parabolic"])
+@pytest.mark.parametrize("center", [0.0, 6.0])
+def test_lead_crown_curvature_at_its_centre_is_one_over_R(shape, center):
+    base = SPUR.flank(1, generate_side(SPUR).form_radius)
+    crown = LeadCrown(radius=4000.0, shape=shape, center=center)
+    crowned = ModifiedFlank(base, FlankModifications(lead_crown=crown))
+    (u0, u1), _ = base.domain
+    s = crowned.evaluate(np.array([0.5 * (u0 + u1)]), np.array([center]))
+    assert s.normal_curvature(0.0, 1.0)[0] == pytest.approx(1 / 4000.0, rel=1e-9)
+    assert crowned.drop(np.array([0.5 * (u0 + u1)]), np.array([center]))[0] == pytest.approx(0.0, abs=1e-15)
+
+
+def test_crown_height_and_radius_agree_with_seed_eq12():
+    L, h = 15.0, 0.012
+    assert LeadCrown(height=h).radius_for(2 * L) == pytest.approx((h * h + L * L) / (2 * h), rel=1e-15)
+    c = LeadCrown(radius=(h * h + L * L) / (2 * h))
+    assert c.drop(np.array([L]), 2 * L)[0] == pytest.approx(h, rel=1e-9)
+
+
+def test_profile_crown_tip_relief_and_end_relief_amounts():
+    base = SPUR.flank(1, generate_side(SPUR).form_radius)
+    s_form, s_tip = base.form_roll, base.tip_roll
+    start = s_form + 0.7 * (s_tip - s_form)
+    mods = FlankModifications(profile_crown=ProfileCrown(0.004),
+                              tip_relief=TipRelief(0.010, start, "parabolic"),
+                              end_relief=EndRelief(0.008, 3.0, "linear"))
+    F = SPUR.face_width
+    w = np.array([0.0, 0.0, 0.0, 0.5 * F, 0.5 * F - 1.5, 0.5 * F - 3.0])
+    s = np.array([s_form, 0.5 * (s_form + s_tip), s_tip, 0.5 * (s_form + s_tip),
+                  0.5 * (s_form + s_tip), 0.5 * (s_form + s_tip)])
+    drop = mods.drop(w, s, F, s_form, s_tip)
+    np.testing.assert_allclose(drop, [0.004, 0.0, 0.004 + 0.010, 0.008, 0.004, 0.0], atol=1e-12)
