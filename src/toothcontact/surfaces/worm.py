@@ -1,0 +1,301 @@
+"""Cylindrical worm thread flanks ZA, ZN, ZI and ZK as exact helicoids.
+
+Flank forms after DIN 3975 (1976) §3.6.4-3.6.7 / ISO/TR 10828 and Litvin & Fuentes, *Gear
+Geometry and Applied Theory*, 2nd ed. (2004), ch. 19. Every cylindrical worm flank is a
+helicoid (Litvin §19.10, Eqs. 19.10.1-19.10.4: a plane curve performing the screw motion
+about the worm axis with screw parameter p, p > 0 for a right-hand worm), so one flank is
+fixed by its axial profile z = f(r) in the half-plane y = 0, x > 0; only f differs between
+the forms:
+
+- ZA: straight line in the axial section, axial profile angle alpha_x.
+- ZN: straight line in the normal section of the thread space (DIN 3975 §3.1.2: the plane
+  through the radial line at the middle of the space on the reference cylinder, normal to the
+  reference helix there), normal profile angle alpha_n.
+- ZI: involute helicoid; transverse profile an involute of the base circle r_b, with
+  tan(alpha_t) = tan(alpha_n)/sin(gamma), r_b = r1·cos(alpha_t), equivalently
+  cos(gamma_b) = cos(gamma)·cos(alpha_n), tan(gamma_b) = |p|/r_b (helical-gear relations with
+  helix angle beta = pi/2 - gamma).
+- ZK (ZK1): envelope of a straight-sided double-cone grinding wheel whose axis is crossed with
+  the worm axis at the lead angle gamma, centre distance a = D/2 + d1/2, wheel axial-section
+  profile angle alpha_0 = pressure_angle; contact line from the equation of meshing
+  n·v12 = 0 (Litvin ch. 6; v12 = the screw velocity field of the worm, e_z × r + p e_z).
+
+Frame and conventions (mm, rad): worm axis = z, worm centred at z = 0. One thread is centred
+on the +x axis at z = 0 with axial thickness s = pi·mx/2 at d1; its "left" flank faces -z
+(z = -s/2 at d1), its "right" flank faces +z (z = +s/2). The right flank is the left one
+turned by pi about the x axis (f_right = -f_left). A left-hand worm is the mirror image
+(y -> -y) of the right-hand one; here it follows from the sign of p, not from mirroring.
+
+Parameterisation of every flank:  r(u, v) = (u cos(theta), u sin(theta), p·v),
+theta = v - f(u)/p, with
+  u = distance from the worm axis (mm), u in [root radius, tip radius],
+  v = screw-motion angle (rad): the point is the transverse (z = 0) profile screwed by v, so
+      z = p·v exactly and a screw motion by phi maps (u, v) to (u, v + phi).
+The domain u in [r_f, r_a], v in [-L/(2|p|), L/(2|p|)] is therefore exactly the flank between
+the root and tip cylinders and the end planes z = ±L/2 (edges "root", "tip", "end_A" at
+z = -L/2, "end_B" at z = +L/2).
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+from scipy.optimize import brentq
+
+from .base import Flank
+from .jet import value
+
+FORMS = ("ZA", "ZN", "ZI", "ZK")
+
+
+@dataclass(frozen=True)
+class GrindingWheel:
+    """The ZK tool side that generates one flank (mm, rad).
+
+    A point X of the wheel has axial coordinate zeta = (X - centre)·axis and distance rho from
+    the axis; the generating cone side is zeta = half_width + (radius - rho)·tan(profile_angle).
+    """
+
+    centre: np.ndarray  # wheel centre (mm): (a, 0, z of the space centre), a = radius + d1/2
+    axis: np.ndarray  # unit wheel axis, crossed with the worm axis at the lead angle
+    radius: float  # reference radius D/2 (mm): the profile point on the worm reference cylinder
+    profile_angle: float  # alpha_0 (rad): wheel profile to the wheel's radial direction
+    half_width: float  # zeta of the cone side at rho = radius (mm), solved for s = pi·mx/2
+
+    @property
+    def centre_distance(self) -> float:
+        """Distance between the worm axis and the wheel axis (mm)."""
+        return float(self.centre[0])
+
+
+class WormFlank(Flank):
+    """One flank of a cylindrical worm thread (ZA, ZN, ZI or ZK), see the module docstring.
+
+    form: "ZA", "ZN", "ZI" or "ZK"; starts: z1 >= 1; axial_module: mx (mm);
+    pitch_diameter: reference diameter d1 (mm); length: axial length L of the threaded part
+    (mm), centred at z = 0; hand: "right" or "left"; pressure_angle (rad): axial profile angle
+    alpha_x for ZA, normal profile angle alpha_n for ZN and ZI, wheel profile angle alpha_0 for
+    ZK; side: "left" (faces -z) or "right" (faces +z); tip_diameter, root_diameter (mm):
+    default d1 + 2 mx and d1 - 2.4 mx; wheel_diameter: ZK grinding-wheel diameter D (mm).
+    """
+
+    def __init__(self, form: str, starts: int, axial_module: float, pitch_diameter: float, *,
+                 length: float, hand: str = "right", pressure_angle: float = math.radians(20.0),
+                 side: str = "left", tip_diameter: float | None = None,
+                 root_diameter: float | None = None, wheel_diameter: float = 250.0):
+        form = str(form).upper()
+        if form not in FORMS:
+            raise ValueError(f"form must be one of {FORMS}, got {form!r}")
+        if hand not in ("right", "left"):
+            raise ValueError(f"hand must be 'right' or 'left', got {hand!r}")
+        if side not in ("left", "right"):
+            raise ValueError(f"side must be 'left' or 'right', got {side!r}")
+        if int(starts) != starts or starts < 1:
+            raise ValueError(f"starts must be an integer >= 1, got {starts}")
+        if not (axial_module > 0 and pitch_diameter > 0 and length > 0):
+            raise ValueError("axial_module, pitch_diameter and length must be > 0 mm")
+        if not 0 < pressure_angle < math.pi / 2:
+            raise ValueError(f"pressure_angle must lie in (0, pi/2) rad, got {pressure_angle}")
+        self.form, self.starts, self.hand, self.side = form, int(starts), hand, side
+        self.axial_module, self.pitch_diameter = float(axial_module), float(pitch_diameter)
+        self.pressure_angle, self.length = float(pressure_angle), float(length)
+        self.tip_diameter = float(pitch_diameter + 2 * axial_module if tip_diameter is None
+                                  else tip_diameter)
+        self.root_diameter = float(pitch_diameter - 2.4 * axial_module if root_diameter is None
+                                   else root_diameter)
+        if not 0 < self.root_diameter < self.pitch_diameter < self.tip_diameter:
+            raise ValueError("need 0 < root_diameter < pitch_diameter < tip_diameter")
+        self.wheel_diameter = float(wheel_diameter)
+
+        mx, r1 = self.axial_module, self.reference_radius
+        self._p = (1.0 if hand == "right" else -1.0) * self.starts * mx / 2  # = ±r1·tan(gamma)
+        gamma = self.lead_angle
+        self._sg, self._cg = math.copysign(math.sin(gamma), self._p), math.cos(gamma)
+        self._zq = -self.axial_pitch / 2  # centre of the space in front of the left flank
+        self._tau = math.tan(self.pressure_angle)
+        self._half_s = math.pi * mx / 4
+        getattr(self, f"_init_{form.lower()}")()
+        self._left_profile = getattr(self, f"_left_{form.lower()}")
+
+        half = self.length / (2 * abs(self._p))
+        self.domain = ((self.root_diameter / 2, self.tip_diameter / 2), (-half, half))
+        ends = ("end_A", "end_B") if self._p > 0 else ("end_B", "end_A")
+        self.edges = {"u0": "root", "u1": "tip", "v0": ends[0], "v1": ends[1]}
+        # (r_u × r_v)_z = u > 0 everywhere, and the left flank faces -z
+        self.orientation = -1.0 if side == "left" else 1.0
+        self._side_sign = 1.0 if side == "left" else -1.0
+
+    @classmethod
+    def from_lead_angle(cls, form: str, starts: int, lead_angle: float, *,
+                        axial_module: float | None = None, normal_module: float | None = None,
+                        **kwargs) -> "WormFlank":
+        """Build from the lead angle gamma (rad) at d1 and mx (mm) or mn = mx·cos(gamma) (mm):
+        d1 = z1·mx / tan(gamma). Other keywords as in the constructor."""
+        if (axial_module is None) == (normal_module is None):
+            raise ValueError("give exactly one of axial_module and normal_module")
+        mx = axial_module if axial_module is not None else normal_module / math.cos(lead_angle)
+        return cls(form, starts, mx, starts * mx / math.tan(lead_angle), **kwargs)
+
+    # --- worm data -------------------------------------------------------------------------
+    @property
+    def reference_radius(self) -> float:
+        """r1 = d1/2 (mm)."""
+        return self.pitch_diameter / 2
+
+    @property
+    def axial_pitch(self) -> float:
+        """px = pi·mx (mm)."""
+        return math.pi * self.axial_module
+
+    @property
+    def lead(self) -> float:
+        """pz = z1·pi·mx (mm), positive for either hand."""
+        return self.starts * self.axial_pitch
+
+    @property
+    def lead_angle(self) -> float:
+        """gamma at d1 (rad, positive): tan(gamma) = z1·mx/d1."""
+        return math.atan(self.starts * self.axial_module / self.pitch_diameter)
+
+    @property
+    def normal_module(self) -> float:
+        """mn = mx·cos(gamma) (mm)."""
+        return self.axial_module * math.cos(self.lead_angle)
+
+    @property
+    def screw_parameter(self) -> float:
+        """p = lead/(2 pi) (mm/rad), positive for a right-hand worm, negative for left-hand."""
+        return self._p
+
+    @property
+    def axial_thickness(self) -> float:
+        """Thread thickness in the axial section at d1 (mm): pi·mx/2."""
+        return 2 * self._half_s
+
+    @property
+    def base_radius(self) -> float:
+        """ZI only: r_b = r1·cos(alpha_t), tan(alpha_t) = tan(alpha_n)/sin(gamma) (mm)."""
+        if self.form != "ZI":
+            raise AttributeError(f"a {self.form} worm has no base cylinder")
+        return self._rb
+
+    @property
+    def base_lead_angle(self) -> float:
+        """ZI only: base lead angle gamma_b (rad), tan(gamma_b) = |p|/r_b; equivalently
+        cos(gamma_b) = cos(gamma)·cos(alpha_n)."""
+        return math.atan(abs(self._p) / self.base_radius)
+
+    @property
+    def grinding_wheel(self) -> GrindingWheel:
+        """ZK only: the wheel side generating this flank, placed for the thread at z = 0."""
+        if self.form != "ZK":
+            raise AttributeError(f"a {self.form} worm is not ground by a ZK wheel")
+        sg, cg, a = self._sg, self._cg, self._a
+        centre, axis = np.array([a, 0.0, self._zq]), np.array([0.0, -sg, cg])
+        if self.side == "right":  # turned by pi about the x axis
+            centre, axis = centre * [1, -1, -1], axis * [1, -1, -1]
+        return GrindingWheel(centre, axis, self._rw, self.pressure_angle, self._zeta_ref)
+
+    # --- the surface -----------------------------------------------------------------------
+    def point(self, u, v):
+        """(x, y, z) in mm at u = radius (mm), v = screw angle (rad); numpy or jets."""
+        f = self._side_sign * self._left_profile(u)
+        theta = v - f / self._p
+        return u * np.cos(theta), u * np.sin(theta), self._p * v
+
+    def axial_profile(self, r):
+        """z (mm) of this flank in the axial half-plane y = 0, x > 0 at radius r (mm), for the
+        thread centred at z = 0 (other threads and turns: + k·px)."""
+        return self._side_sign * self._left_profile(r)
+
+    # ZA: straight axial profile
+    def _init_za(self):
+        pass
+
+    def _left_za(self, r):
+        return -self._half_s + (r - self.reference_radius) * self._tau
+
+    # ZI: involute helicoid, f = -s/2 + |p|·(inv(alpha(r)) - inv(alpha(r1))), cos(alpha) = rb/r
+    def _init_zi(self):
+        alpha_t = math.atan(self._tau / math.sin(self.lead_angle))
+        self._rb = self.reference_radius * math.cos(alpha_t)
+        if self.root_diameter / 2 <= self._rb:
+            raise ValueError(f"ZI root radius {self.root_diameter / 2:.4g} mm must exceed the "
+                             f"base radius {self._rb:.4g} mm")
+        self._inv1 = math.tan(alpha_t) - alpha_t
+
+    def _left_zi(self, r):
+        rb = self._rb
+        inv = np.sqrt(r * r - rb * rb) / rb - np.arccos(rb / r)
+        return -self._half_s + abs(self._p) * (inv - self._inv1)
+
+    # ZN: straight line in the normal section of the space; in-plane coordinates xi (along
+    # e_x) and eta (along t = (0, -sin g, cos g)) about Q = (0, 0, zq): eta = eta1 + (xi - r1)·tau
+    def _init_zn(self):
+        r1 = self.reference_radius
+        self._eta1 = brentq(lambda e: self._zn(r1, e) + self._half_s, 0.0, self.axial_pitch,
+                            xtol=1e-15, rtol=4 * np.finfo(float).eps)
+
+    def _zn(self, r, eta1):
+        sg, cg, tau = self._sg, self._cg, self._tau
+        b = eta1 - self.reference_radius * tau
+        k = 1 + sg * sg * tau * tau
+        # r² = xi² + (eta·sin g)², a quadratic in xi
+        xi = (-sg * sg * tau * b + np.sqrt(r * r * k - sg * sg * b * b)) / k
+        eta = b + tau * xi
+        return self._zq + eta * cg - self._p * np.arctan2(-eta * sg, xi)
+
+    def _left_zn(self, r):
+        return self._zn(r, self._eta1)
+
+    # ZK: envelope of the wheel cone under the screw motion
+    def _init_zk(self):
+        self._rw = self.wheel_diameter / 2
+        self._a = self._rw + self.reference_radius
+        r1 = self.reference_radius
+        self._zeta_ref = brentq(lambda zr: self._zk(r1, zr) + self._half_s, 0.0,
+                                self.axial_pitch, xtol=1e-15, rtol=4 * np.finfo(float).eps)
+
+    def _zk_contact(self, rho, zeta_ref):
+        """Contact point (x, y, z) on the left-flank wheel side at distance rho (mm) from the
+        wheel axis, its worm radius R and dR/drho. Wheel frame: centre C = (a, 0, zq),
+        e1 = -e_x, e2 = (0, -cos g, -sin g), e3 = axis = (0, -sin g, cos g); wheel point
+        C + rho (cos psi e1 + sin psi e2) + zeta e3, normal tau·e_rho + e3. Meshing
+        n·(e_z × r + p e_z) = 0 reduces to A cos psi + B sin psi = D (derived here)."""
+        sg, cg, tau, p, a = self._sg, self._cg, self._tau, self._p, self._a
+        zeta = zeta_ref + (self._rw - rho) * tau
+        A = sg * (rho - tau * zeta)
+        B = -tau * (a * cg + p * sg)
+        D = a * sg - p * cg
+        psi = np.arctan2(B, A) + np.arccos(D / np.sqrt(A * A + B * B))  # branch near psi = 0
+        cpsi, spsi = np.cos(psi), np.sin(psi)
+        x = a - rho * cpsi
+        y = -rho * cg * spsi - zeta * sg
+        z = self._zq - rho * sg * spsi + zeta * cg
+        dpsi = -sg * (1 + tau * tau) * cpsi / (B * cpsi - A * spsi)  # implicit d psi/d rho
+        dx = -cpsi + rho * spsi * dpsi
+        dy = -cg * spsi - rho * cg * cpsi * dpsi + tau * sg
+        R = np.sqrt(x * x + y * y)
+        return x, y, z, R, (x * dx + y * dy) / R
+
+    def _zk(self, r, zeta_ref):
+        r_f = np.asarray(value(r), float)
+        rho = self._a - r_f  # float Newton for R(rho) = r
+        for _ in range(60):
+            *_, R, dR = self._zk_contact(rho, zeta_ref)
+            step = (R - r_f) / dR
+            rho = rho - step
+            if np.all(np.abs(step) < 1e-13 * self._a):
+                break
+        else:
+            raise RuntimeError("ZK contact line: Newton did not converge")
+        for _ in range(2):  # in jets: each step doubles the number of exact Taylor orders
+            *_, R, dR = self._zk_contact(rho, zeta_ref)
+            rho = rho - (R - r) / dR
+        x, y, z, _, _ = self._zk_contact(rho, zeta_ref)
+        return z - self._p * np.arctan2(y, x)
+
+    def _left_zk(self, r):
+        return self._zk(r, self._zeta_ref)
