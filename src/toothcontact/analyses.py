@@ -47,6 +47,7 @@ def analyse(case: schema.CaseInfo) -> Result:
         "crown_design": crown_design_case,
         "worm_efficiency": worm_efficiency_case,
         "spline_crown": spline_crown_case,
+        "spur": spur_geometry_case,
     }[case.kind]
     with warnings.catch_warnings(record=True) as caught:
         warnings.simplefilter("always")
@@ -276,4 +277,51 @@ def spline_crown_case(case: schema.SplineCrownCase) -> Result:
                             f"{r_max * math.sin(theta):.3f} mm from the crown centre, beyond half "
                             f"the engaged length ({0.5 * case.engaged_length:.3f} mm); on this "
                             "length a larger radius would still fit")
+    return result
+
+
+def spur_geometry_case(case: schema.SpurCase) -> Result:
+    """Geometry of a spur/helical pair: both gears' circles, form and undercut, the mesh."""
+    from . import gearset
+    from .surfaces.generation import generate_side
+
+    try:
+        pair = gearset.gear_pair(case)
+        mesh = pair.transverse_mesh()
+    except ValueError as exc:
+        raise CaseError(str(exc)) from None
+    result = Result(notes=["crown and relief amounts are measured along the flank normal in the "
+                           "transverse plane (ISO 21771); on a helical flank the normal "
+                           "displacement is that amount times cos(beta_b)"])
+    for name, gear, mods in (("pinion", pair.pinion, pair.pinion_modifications),
+                             ("gear", pair.gear, pair.gear_modifications)):
+        section = {"teeth": gear.teeth, "internal": gear.internal,
+                   "transverse_module_mm": gear.transverse_module,
+                   "transverse_pressure_angle_deg": math.degrees(gear.transverse_pressure_angle),
+                   "base_helix_angle_deg": math.degrees(gear.base_helix_angle),
+                   "hand": gear.hand if gear.helix_angle else None,
+                   "pitch_diameter_mm": 2 * gear.pitch_radius, "base_diameter_mm": 2 * gear.base_radius,
+                   "tip_diameter_mm": 2 * gear.tip_radius, "root_diameter_mm": 2 * gear.root_radius_value,
+                   "tooth_thickness_mm": gear.tooth_thickness}
+        if not gear.internal:
+            generated = generate_side(gear)
+            section["form_diameter_mm"] = 2 * generated.form_radius
+            section["undercut"] = generated.undercut
+            result.checks.append(Check(f"{name} is not undercut", not generated.undercut,
+                                       f"form diameter {2 * generated.form_radius:.3f} mm, base "
+                                       f"diameter {2 * gear.base_radius:.3f} mm"))
+        if mods.lead_crown is not None:
+            R = mods.lead_crown.radius_for(gear.face_width)
+            section["crown_radius_mm"] = R
+            for end, w in (("A", -0.5 * gear.face_width), ("B", 0.5 * gear.face_width)):
+                section[f"crown_drop_{end}_mm"] = float(mods.lead_crown.drop(w, gear.face_width))
+        result.sections[name] = section
+    result.sections["mesh"] = {
+        "center_distance_mm": pair.center_distance,
+        "working_pressure_angle_deg": math.degrees(pair.working_pressure_angle),
+        "transverse_contact_ratio": mesh.contact_ratio, "overlap_ratio": pair.overlap_ratio,
+        "transverse_base_pitch_mm": mesh.base_pitch,
+        "rho1_lpstc_mm": mesh.lpstc()}
+    result.checks.append(Check("transverse contact ratio above 1", mesh.contact_ratio > 1.0,
+                               f"{mesh.contact_ratio:.3f}"))
     return result

@@ -88,7 +88,8 @@ class GearPairGeometry(CaseInfo):
     teeth: tuple[int, int] = Field(description="[pinion, gear] teeth, gear < 0 = internal")
     module: Length | None = Field(None, description="module, e.g. '3 mm'")
     diametral_pitch: InverseLength | None = Field(None, description="e.g. '10 1/in'")
-    pressure_angle: Angle = Field(description="operating pressure angle, e.g. '20 deg'")
+    pressure_angle: Angle = Field(description="e.g. '20 deg' (crown_design: operating; "
+                                              "spur: normal, of the rack)")
 
     @model_validator(mode="after")
     def _one_size(self):
@@ -139,6 +140,85 @@ class CrownDesignCase(GearPairGeometry):
             raise ValueError("slope_B: missing; a bias crown needs the slope at end B")
         if self.center_from_B is not None and self.radius is None:
             raise ValueError("center_from_B: only with radius (checking a given crown)")
+        return self
+
+
+class Rack(Model):
+    """Basic rack of the generating cutter, in multiples of the normal module (ISO 53 A)."""
+
+    addendum: Factor = Field(1.0, description="tooth-tip height of the gear, × m_n")
+    dedendum: Factor = Field(1.25, description="root depth of the gear, × m_n")
+    root_radius: Annotated[float, Field(ge=0.0)] = Field(0.38, description="× m_n")
+
+
+class CrownSpec(Model):
+    """Lead crown: radius or height (drop at the face ends when centred), shape, centre."""
+
+    radius: Length | None = None
+    height: Length | None = None
+    shape: Literal["circular", "parabolic"] = "circular"
+    center: quantity("length") = Field(0.0, description="from mid-face toward end B")
+
+    @model_validator(mode="after")
+    def _one(self):
+        if (self.radius is None) == (self.height is None):
+            raise ValueError("radius / height: give exactly one of them")
+        return self
+
+
+class ProfileCrownSpec(Model):
+    height: Length = Field(description="drop at both ends of the active profile, e.g. '4 um'")
+    shape: Literal["circular", "parabolic"] = "parabolic"
+
+
+class TipReliefSpec(Model):
+    amount: Length = Field(description="drop at the tip, e.g. '10 um'")
+    start_diameter: Length = Field(description="diameter where the relief begins")
+    shape: Literal["linear", "parabolic"] = "linear"
+
+
+class EndReliefSpec(Model):
+    amount: Length = Field(description="drop at each face end, e.g. '8 um'")
+    length: Length = Field(description="length from each end, e.g. '3 mm'")
+    shape: Literal["linear", "parabolic"] = "linear"
+
+
+class Member(Model):
+    """One gear of the pair: its shift, face width and flank modifications (both flanks)."""
+
+    profile_shift: float = Field(0.0, ge=-1.5, le=1.5, description="x, in [-1.5, 1.5]")
+    face_width: Length | None = None
+    crown: CrownSpec | None = None
+    profile_crown: ProfileCrownSpec | None = None
+    tip_relief: TipReliefSpec | None = None
+    end_relief: EndReliefSpec | None = None
+
+
+class ExportSpec(Model):
+    teeth: int | None = Field(None, ge=1, description="export a sector of this many teeth")
+    stl_tolerance: Length = Field(0.01, description="chordal deviation of the STL, e.g. '0.01 mm'")
+
+
+class SpurCase(GearPairGeometry):
+    """A parallel-axis pair, spur or helical (helix_angle), external or internal."""
+
+    kind: Literal["spur"]
+    helix_angle: Angle = Field(0.0, description="e.g. '15 deg'; 0 for spur")
+    hand: Literal["right", "left"] = Field("right", description="the pinion's hand")
+    face_width: Length = Field(description="e.g. '30 mm'")
+    center_distance: Length | None = None
+    rack: Rack = Rack()
+    pinion: Member = Member()
+    gear: Member = Member()
+    export: ExportSpec = ExportSpec()
+
+    @model_validator(mode="after")
+    def _helix(self):
+        if not 0 <= self.helix_angle < math.radians(45):
+            raise ValueError(f"helix_angle: {math.degrees(self.helix_angle):.4g} deg must lie "
+                             "in [0, 45) deg")
+        if self.rack.root_radius >= self.rack.dedendum:
+            raise ValueError("rack.root_radius: must be smaller than rack.dedendum")
         return self
 
 
@@ -240,6 +320,7 @@ KINDS: dict[str, type[CaseInfo]] = {
     "crown_design": CrownDesignCase,
     "worm_efficiency": WormEfficiencyCase,
     "spline_crown": SplineCrownCase,
+    "spur": SpurCase,
 }
 
 

@@ -46,6 +46,24 @@ def run(case: Path = typer.Argument(..., help="case file (TOML)"),
 
 
 @app.command()
+def export(cases: list[Path] = typer.Argument(..., help="case files (TOML)"),
+           fmt: str = typer.Option("both", "--format", help="step, stl or both"),
+           out: Optional[Path] = typer.Option(None, "--out", help="output folder [geometry/]")):
+    """Write the parts of each case as STEP/STL (B-spline solids of the exact flanks)."""
+    from . import runner
+
+    formats = {"step": ("step",), "stl": ("stl",), "both": ("step", "stl")}.get(fmt)
+    if formats is None:
+        _fail(f"--format: {fmt!r} is not one of step, stl, both", 2)
+    for case in cases:
+        target = (out or Path("geometry")) / case.stem
+        record = _guarded(lambda: runner.export_case(case, target, formats))
+        for name, part in record["parts"].items():
+            typer.echo(f"{case.stem}/{name}: {part['teeth_exported']} teeth, flank deviation "
+                       f"{part['flank_deviation_um']:.3f} µm, valid {part['valid']} -> {target}")
+
+
+@app.command()
 def cases():
     """List the bundled cases."""
     from . import case as schema, runner
@@ -63,10 +81,14 @@ def demo(out: Path = typer.Option(Path("out"), "--out", help="output folder")):
 
     from . import runner
 
-    table = Table("case", "kind", "checks", title=f"bundled cases -> {out}/<case>/")
+    table = Table("case", "kind", "checks", "STEP/STL", title=f"bundled cases -> {out}/<case>/")
     for path in _guarded(runner.bundled_cases):
         document, _ = _guarded(lambda: runner.run_case(path, out / path.stem))
         failed = sum(not c["ok"] for c in document["checks"])
+        solids = ""
+        if document["kind"] in runner.GEOMETRY_KINDS:
+            record = _guarded(lambda: runner.export_case(path, out / path.stem))
+            solids = ", ".join(f"{n} {p['flank_deviation_um']:.2f} µm" for n, p in record["parts"].items())
         table.add_row(path.stem, document["kind"],
-                      f"{len(document['checks']) - failed} pass, {failed} flagged")
+                      f"{len(document['checks']) - failed} pass, {failed} flagged", solids)
     Console(width=100).print(table)

@@ -24,19 +24,21 @@ def write_run(out_dir: Path, document: dict) -> list[Path]:
     texts = {"result.json": json.dumps(_finite(document), indent=2) + "\n",
              "report.md": markdown(document)}
     out_dir.mkdir(parents=True, exist_ok=True)
-    written = []
-    for filename, text in texts.items():
-        target = out_dir / filename
-        fd, tmp = tempfile.mkstemp(dir=out_dir, prefix=f".{filename}.", suffix=".tmp")
-        try:
-            with os.fdopen(fd, "w", encoding="utf-8") as handle:
-                handle.write(text)
-            os.replace(tmp, target)
-        except BaseException:
-            Path(tmp).unlink(missing_ok=True)
-            raise
-        written.append(target)
-    return written
+    return [write_text(out_dir / filename, text) for filename, text in texts.items()]
+
+
+def write_text(target: Path, text: str) -> Path:
+    """Write a text file whole or not at all (temporary file, then rename)."""
+    fd, tmp = tempfile.mkstemp(dir=target.parent, prefix=f".{target.name}.", suffix=".tmp")
+    try:
+        with os.fdopen(fd, "w", encoding="utf-8") as handle:
+            handle.write(text)
+        os.chmod(tmp, 0o644)
+        os.replace(tmp, target)
+    except BaseException:
+        Path(tmp).unlink(missing_ok=True)
+        raise
+    return target
 
 
 def _finite(value):

@@ -1,0 +1,93 @@
+"""A parallel-axis gear pair from its case: both gears, their modifications, their mesh.
+
+Sources: ISO 21771:2007 for the working pressure angle of a shifted pair,
+inv(alpha_wt) = inv(alpha_t) + 2·tan(alpha_n)·(x1 ± x2)/(z1 ± z2), the centre distance
+a = (r2 ± r1)·cos(alpha_t)/cos(alpha_wt) and the overlap ratio b·sin(beta)/(π·m_n).
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+from scipy.optimize import brentq
+
+from .analytic.spur_mesh import SpurMesh
+from .case import Member, SpurCase
+from .modify import EndRelief, FlankModifications, LeadCrown, ProfileCrown, TipRelief
+from .surfaces.involute import CylindricalGear, inv
+
+
+@dataclass(frozen=True)
+class GearPair:
+    pinion: CylindricalGear
+    gear: CylindricalGear
+    pinion_modifications: FlankModifications
+    gear_modifications: FlankModifications
+    center_distance: float
+    working_pressure_angle: float
+
+    @property
+    def internal(self) -> bool:
+        return self.gear.internal
+
+    def transverse_mesh(self) -> SpurMesh:
+        """The transverse line-of-action geometry (contact ratio, LPSTC, ...)."""
+        p, g = self.pinion, self.gear
+        return SpurMesh(z1=p.teeth, z2=-g.teeth if g.internal else g.teeth,
+                        module=p.transverse_module, pressure_angle=self.working_pressure_angle,
+                        center_distance=self.center_distance, outside_radius_pinion=p.tip_radius,
+                        outside_radius_gear=g.tip_radius)
+
+    @property
+    def overlap_ratio(self) -> float:
+        face = min(self.pinion.face_width, self.gear.face_width)
+        return face * math.sin(self.pinion.helix_angle) / (math.pi * self.pinion.normal_module)
+
+
+def gear_pair(case: SpurCase) -> GearPair:
+    z1, z2 = case.teeth
+    internal = z2 < 0
+    common = dict(normal_module=case.module_mm, pressure_angle=case.pressure_angle,
+                  helix_angle=case.helix_angle, addendum=case.rack.addendum,
+                  dedendum=case.rack.dedendum, root_radius=case.rack.root_radius)
+    other_hand = case.hand if internal else ("left" if case.hand == "right" else "right")
+    pinion = CylindricalGear(z1, face_width=case.pinion.face_width or case.face_width,
+                             hand=case.hand, profile_shift=case.pinion.profile_shift, **common)
+    gear = CylindricalGear(abs(z2), face_width=case.gear.face_width or case.face_width,
+                           hand=other_hand, profile_shift=case.gear.profile_shift,
+                           internal=internal, **common)
+    alpha_t = pinion.transverse_pressure_angle
+    sign = -1.0 if internal else 1.0
+    x_sum = case.pinion.profile_shift + sign * case.gear.profile_shift
+    involute_w = inv(alpha_t) + 2.0 * math.tan(case.pressure_angle) * x_sum / (z1 + sign * abs(z2))
+    alpha_w = brentq(lambda a: inv(a) - involute_w, 1e-6, math.radians(70))
+    r_sum = gear.pitch_radius + sign * pinion.pitch_radius
+    zero_backlash = abs(r_sum) * math.cos(alpha_t) / math.cos(alpha_w)
+    if case.center_distance is not None:
+        center = case.center_distance
+        alpha_w = math.acos(abs(r_sum) * math.cos(alpha_t) / center)
+    else:
+        center = zero_backlash
+    return GearPair(pinion, gear, modifications(case.pinion, pinion, "pinion"),
+                    modifications(case.gear, gear, "gear"), center, alpha_w)
+
+
+def modifications(member: Member, gear: CylindricalGear, name: str) -> FlankModifications:
+    """The member's modifications, with diameters turned into roll lengths rb·t."""
+    crown = member.crown
+    tip = member.tip_relief
+    if tip is not None:
+        lo, hi = sorted((2 * gear.base_radius, 2 * gear.tip_radius))
+        if not lo < tip.start_diameter < hi:
+            raise ValueError(f"{name}.tip_relief.start_diameter: {tip.start_diameter:.4g} mm must "
+                             f"lie between the base diameter {lo:.4g} mm and the tip {hi:.4g} mm")
+    return FlankModifications(
+        lead_crown=None if crown is None else LeadCrown(crown.radius, crown.height, crown.shape,
+                                                        crown.center),
+        profile_crown=None if member.profile_crown is None else ProfileCrown(
+            member.profile_crown.height, member.profile_crown.shape),
+        tip_relief=None if tip is None else TipRelief(
+            tip.amount, float(gear.base_radius * gear.roll_angle(0.5 * tip.start_diameter)), tip.shape),
+        end_relief=None if member.end_relief is None else EndRelief(
+            member.end_relief.amount, member.end_relief.length, member.end_relief.shape))
