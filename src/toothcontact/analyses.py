@@ -48,6 +48,7 @@ def analyse(case: schema.CaseInfo) -> Result:
         "worm_efficiency": worm_efficiency_case,
         "spline_crown": spline_crown_case,
         "spur": spur_geometry_case,
+        "spline": spline_geometry_case,
     }[case.kind]
     with warnings.catch_warnings(record=True) as caught:
         warnings.simplefilter("always")
@@ -324,4 +325,37 @@ def spur_geometry_case(case: schema.SpurCase) -> Result:
         "rho1_lpstc_mm": mesh.lpstc()}
     result.checks.append(Check("transverse contact ratio above 1", mesh.contact_ratio > 1.0,
                                f"{mesh.contact_ratio:.3f}"))
+    return result
+
+
+def spline_geometry_case(case: schema.SplineCase) -> Result:
+    """Geometry of an involute spline: diameters, the members' shifts, the hub's form circle
+    and crown, and the eq 19 crown limit for the clearance."""
+    from . import gearset
+    from .surfaces.generation import generate_side
+
+    try:
+        pair = gearset.spline_pair(case)
+    except ValueError as exc:
+        raise CaseError(str(exc)) from None
+    spline, hub, sleeve = pair.spline, pair.hub, pair.sleeve
+    generated = generate_side(hub)
+    section = {f"{k}_diameter_mm": v for k, v in spline.diameters.items()}
+    section.update(pitch_diameter_mm=spline.pitch_diameter, base_diameter_mm=2 * hub.base_radius,
+                   hub_profile_shift=hub.profile_shift, sleeve_profile_shift=sleeve.profile_shift,
+                   hub_form_diameter_mm=2 * generated.form_radius,
+                   normal_clearance_per_side_mm=0.5 * case.clearance * math.cos(case.pressure_angle))
+    result = Result(sections={"spline": section})
+    result.checks.append(Check("hub is not undercut", not generated.undercut,
+                               f"form diameter {2 * generated.form_radius:.4f} mm"))
+    result.checks.append(Check("hub form circle below the sleeve's minor diameter",
+                               2 * generated.form_radius < spline.diameters["sleeve_minor"],
+                               f"form {2 * generated.form_radius:.4f} mm, sleeve minor "
+                               f"{spline.diameters['sleeve_minor']:.4f} mm"))
+    if case.crown is not None:
+        crown = pair.hub_modifications.lead_crown
+        radius = crown.radius_for(case.engaged_length) * math.cos(case.pressure_angle)
+        section["crown_radius_mm"] = radius
+        section["crown_height_mm"] = float(crown.drop(0.5 * case.engaged_length, case.engaged_length)
+                                           / math.cos(case.pressure_angle))
     return result

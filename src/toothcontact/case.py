@@ -222,6 +222,33 @@ class SpurCase(GearPairGeometry):
         return self
 
 
+class SplineCase(CaseInfo):
+    """An involute spline (hub and sleeve) with an optional lead crown on the hub teeth."""
+
+    kind: Literal["spline"]
+    teeth: int = Field(ge=6, description="spline teeth (>= 6)")
+    module: Length | None = None
+    diametral_pitch: InverseLength | None = None
+    pressure_angle: Angle = Field(description="30, 37.5 or 45 deg")
+    root: Literal["flat", "fillet"] = "fillet"
+    engaged_length: Length
+    tooth_thickness: Length = Field(description="hub tooth thickness T_mod at the crown centre")
+    clearance: quantity("length") = Field(description="dT: sleeve space width minus T_mod")
+    crown: CrownSpec | None = Field(None, description="lead crown of the hub teeth, measured in "
+                                                      "the tooth-thickness direction (seed 003)")
+    export: ExportSpec = ExportSpec()
+
+    @model_validator(mode="after")
+    def _size(self):
+        if (self.module is None) == (self.diametral_pitch is None):
+            raise ValueError("module / diametral_pitch: give exactly one of them")
+        return self
+
+    @property
+    def module_mm(self) -> float:
+        return self.module if self.module is not None else 1.0 / self.diametral_pitch
+
+
 class Condition(Model):
     temperature: Temperature = Field(description="e.g. '-50 degC'")
     viscosity: Viscosity = Field(description="kinematic viscosity, e.g. '30000 mm^2/s'")
@@ -321,6 +348,7 @@ KINDS: dict[str, type[CaseInfo]] = {
     "worm_efficiency": WormEfficiencyCase,
     "spline_crown": SplineCrownCase,
     "spur": SpurCase,
+    "spline": SplineCase,
 }
 
 

@@ -1,4 +1,5 @@
-"""A parallel-axis gear pair from its case: both gears, their modifications, their mesh.
+"""Gear sets from their cases: a parallel-axis pair (both gears, modifications, mesh) and
+an involute spline (hub and sleeve).
 
 Sources: ISO 21771:2007 for the working pressure angle of a shifted pair,
 inv(alpha_wt) = inv(alpha_t) + 2·tan(alpha_n)·(x1 ± x2)/(z1 ± z2), the centre distance
@@ -13,9 +14,10 @@ from dataclasses import dataclass
 from scipy.optimize import brentq
 
 from .analytic.spur_mesh import SpurMesh
-from .case import Member, SpurCase
+from .case import Member, SplineCase, SpurCase
 from .modify import EndRelief, FlankModifications, LeadCrown, ProfileCrown, TipRelief
 from .surfaces.involute import CylindricalGear, inv
+from .surfaces.spline import InvoluteSpline
 
 
 @dataclass(frozen=True)
@@ -91,3 +93,40 @@ def modifications(member: Member, gear: CylindricalGear, name: str) -> FlankModi
             tip.amount, float(gear.base_radius * gear.roll_angle(0.5 * tip.start_diameter)), tip.shape),
         end_relief=None if member.end_relief is None else EndRelief(
             member.end_relief.amount, member.end_relief.length, member.end_relief.shape))
+
+
+@dataclass(frozen=True)
+class SplinePair:
+    """Hub (external) and sleeve (internal) of a spline, and the hub's modifications."""
+
+    spline: InvoluteSpline
+    hub: CylindricalGear
+    sleeve: CylindricalGear
+    hub_modifications: FlankModifications
+
+
+def spline_pair(case: SplineCase) -> SplinePair:
+    """The spline of a case. Its crown is given in the tooth-thickness direction (seed 003,
+    Dudley); on the flank normal in the transverse plane that is the drop times
+    cos(alpha), so the flank's crown radius is R / cos(alpha)."""
+    spline = InvoluteSpline(case.teeth, case.module_mm, case.pressure_angle, case.tooth_thickness,
+                            case.clearance, case.engaged_length, case.root)
+    mods = FlankModifications()
+    if case.crown is not None:
+        c, scale = case.crown, 1.0 / math.cos(case.pressure_angle)
+        mods = FlankModifications(lead_crown=LeadCrown(
+            None if c.radius is None else c.radius * scale,
+            None if c.height is None else c.height / scale, c.shape, c.center))
+    return SplinePair(spline, spline.hub(), spline.sleeve(), mods)
+
+
+def solid_parts(case) -> dict[str, tuple[CylindricalGear, FlankModifications]]:
+    """The parts of a case that have solids, by name, with their flank modifications."""
+    if case.kind == "spur":
+        pair = gear_pair(case)
+        return {"pinion": (pair.pinion, pair.pinion_modifications),
+                "gear": (pair.gear, pair.gear_modifications)}
+    if case.kind == "spline":
+        pair = spline_pair(case)
+        return {"hub": (pair.hub, pair.hub_modifications), "sleeve": (pair.sleeve, FlankModifications())}
+    raise ValueError(f"kind {case.kind!r} has no solids")

@@ -41,7 +41,7 @@ def run_case(path: str | Path, out_dir: str | Path | None = None) -> tuple[dict,
     return document, report.write_run(target, document)
 
 
-GEOMETRY_KINDS = ("spur",)
+GEOMETRY_KINDS = ("spur", "spline")
 
 
 def export_case(path: str | Path, out_dir: str | Path | None = None,
@@ -59,10 +59,8 @@ def export_case(path: str | Path, out_dir: str | Path | None = None,
         raise schema.CaseError(f"{path}: kind: {case.kind!r} has no solid to export; "
                                f"export works for {', '.join(GEOMETRY_KINDS)}")
     try:
-        pair = gearset.gear_pair(case)
-        parts = {"pinion": (pair.pinion, pair.pinion_modifications),
-                 "gear": (pair.gear, pair.gear_modifications)}
-        bodies = {name: cad.build_gear(g, mods, teeth=_sector(case, g)) for name, (g, mods) in parts.items()}
+        bodies = {name: cad.build_gear(g, mods, teeth=_sector(case, g))
+                  for name, (g, mods) in gearset.solid_parts(case).items()}
     except ValueError as exc:
         raise schema.CaseError(f"{path}: {exc}") from None
     target = Path(out_dir) if out_dir is not None else Path("geometry") / path.stem
