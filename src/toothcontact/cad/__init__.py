@@ -1,0 +1,9 @@
+"""CAD views of the exact flanks: B-spline solids (OCP, the kernel of CadQuery) -> STEP,
+tessellation -> STL. Everything here imports OCP, so it is loaded only by the commands that
+write or check solids."""
+
+from .files import is_valid, read_step, tessellate, volume, write_mesh, write_step
+from .gear import RING_RIM_MODULES, GearBody, build_gear, chord_parameters, flank_deviation
+
+__all__ = ["GearBody", "RING_RIM_MODULES", "build_gear", "chord_parameters", "flank_deviation",
+           "is_valid", "read_step", "tessellate", "volume", "write_mesh", "write_step"]
