@@ -4,6 +4,8 @@ write or check solids."""
 
 from .files import is_valid, read_step, tessellate, volume, write_mesh, write_step
 from .gear import RING_RIM_MODULES, GearBody, build_gear, chord_parameters, flank_deviation
+from .worm import WormBody, build_worm, worm_flank_deviation
 
-__all__ = ["GearBody", "RING_RIM_MODULES", "build_gear", "chord_parameters", "flank_deviation",
-           "is_valid", "read_step", "tessellate", "volume", "write_mesh", "write_step"]
+__all__ = ["GearBody", "RING_RIM_MODULES", "WormBody", "build_gear", "build_worm",
+           "chord_parameters", "flank_deviation", "is_valid", "read_step", "tessellate", "volume",
+           "worm_flank_deviation", "write_mesh", "write_step"]
