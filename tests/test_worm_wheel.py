@@ -12,7 +12,7 @@ import time
 
 import numpy as np
 import pytest
-from scipy.optimize import least_squares, minimize_scalar
+from scipy.optimize import brentq, least_squares, minimize_scalar
 
 from toothcontact.surfaces.wheel import WormWheelFlank, _Taylor3
 from toothcontact.surfaces.worm import WormFlank
@@ -77,14 +77,16 @@ def setting(wheel, centre_distance, crossing_angle):
 def to_wheel(wheel, X, phi1, centre_distance, crossing_angle):
     """Fixed-frame points X (..., 3) at hob/worm angle phi1 -> wheel-attached coordinates:
     undo the wheel's turn phi1·z1/z2 about k2 through C, then read the point in the wheel
-    basis (x_w = -e_x, y_w = k2 × x_w, k2) turned by s·pi/z2 (tooth 0 on +x2)."""
+    basis (x_w = -e_x, y_w = k2 × x_w, k2) turned by sigma·s·pi/z2, sigma = +1 for the left,
+    -1 for the right flank (tooth 0 on +x2)."""
     C, k2, s = setting(wheel, centre_distance, crossing_angle)
     z1, z2 = wheel.hob.starts, wheel.teeth
     Y = np.einsum("...ij,...j->...i", rot(k2, -np.asarray(phi1) * z1 / z2), X - C)
     xw = np.array([-1.0, 0.0, 0.0])
     yw = np.cross(k2, xw)
     local = np.stack([Y @ xw, Y @ yw, Y @ k2], axis=-1)
-    return np.einsum("ij,...j->...i", rot([0, 0, 1], -s * math.pi / z2), local)
+    sigma = 1.0 if wheel.side == "left" else -1.0
+    return np.einsum("ij,...j->...i", rot([0, 0, 1], -sigma * s * math.pi / z2), local)
 
 
 def to_worm(wheel, P, phi1, centre_distance, crossing_angle=math.pi / 2):
@@ -92,7 +94,8 @@ def to_worm(wheel, P, phi1, centre_distance, crossing_angle=math.pi / 2):
     worm-attached (hob-attached) coordinates."""
     C, k2, s = setting(wheel, centre_distance, crossing_angle)
     z1, z2 = wheel.hob.starts, wheel.teeth
-    local = np.einsum("ij,...j->...i", rot([0, 0, 1], s * math.pi / z2), P)
+    sigma = 1.0 if wheel.side == "left" else -1.0
+    local = np.einsum("ij,...j->...i", rot([0, 0, 1], sigma * s * math.pi / z2), P)
     xw = np.array([-1.0, 0.0, 0.0])
     yw = np.cross(k2, xw)
     Y = local[..., :1] * xw + local[..., 1:2] * yw + local[..., 2:] * k2
@@ -159,6 +162,15 @@ def test_tip_edge_and_inside_blank():
                     [0, -(a - rk) + 1e-3, 0], [re - 1e-3, 0, 0.49 * b], [re + 1e-3, 0, 0.1],
                     [a - rk - 2, 0, 0.5 * b + 1e-3]])
     np.testing.assert_array_equal(w.inside_blank(pts), [True, False, True, True, False, False])
+
+
+def test_hob_too_short_is_refused():
+    """A hob shorter than its generating zone raises ValueError."""
+    z1, mx, d1, z2 = SETS["seed000"]
+    hob = WormFlank("ZI", z1, mx, d1, length=4.0, pressure_angle=ALPHA,
+                    tip_diameter=d1 + 2.4 * mx)
+    with pytest.raises(ValueError, match="too short"):
+        WormWheelFlank(hob, z2)
 
 
 # --- 1. equation of meshing ------------------------------------------------------------------
@@ -235,12 +247,19 @@ def worm_signed_distance(worm, W):
             s = worm.evaluate(np.array(x[0]), np.array(x[1]))
             return np.stack([s.r_u, s.r_v], axis=-1)
 
-        sol = least_squares(fun, [rho, v0], jac=jac, xtol=1e-15, ftol=1e-15, gtol=1e-15,
-                            method="lm")
-        s = worm.evaluate(np.array(sol.x[0]), np.array(sol.x[1]))
+        x = least_squares(fun, [rho, v0], jac=jac, xtol=1e-15, ftol=1e-15, gtol=1e-15,
+                          method="lm").x
+        for _ in range(3):  # polish: Newton on (r - W)·r_u = (r - W)·r_v = 0
+            s = worm.evaluate(np.array(x[0]), np.array(x[1]))
+            e = s.points - w
+            F = np.array([e @ s.r_u, e @ s.r_v])
+            J = np.array([[s.r_u @ s.r_u + e @ s.r_uu, s.r_u @ s.r_v + e @ s.r_uv],
+                          [s.r_u @ s.r_v + e @ s.r_uv, s.r_v @ s.r_v + e @ s.r_vv]])
+            x = x - np.linalg.solve(J, F)
+        s = worm.evaluate(np.array(x[0]), np.array(x[1]))
         gap = w - s.points
-        assert np.linalg.norm(np.cross(gap, s.normals)) < 1e-9 + 1e-7 * np.linalg.norm(gap)
-        out.append((float(gap @ s.normals), sol.x[0], sol.x[1], w))
+        assert np.linalg.norm(np.cross(gap, s.normals)) < 1e-11
+        out.append((float(gap @ s.normals), x[0], x[1], w))
     return out
 
 
@@ -265,7 +284,7 @@ def test_hob_identical_to_worm_gives_line_contact(form, data, hand):
     z1 = worm.starts
     _, _, phi_c = w.generating_parameters(0.5, 0.0)
     vs = np.linspace(*w.domain[1], 9) * 0.95
-    worst_contact, worst_pen, lines = 0.0, 0.0, 0
+    worst_contact, worst_pen, counts = 0.0, np.inf, []
     for dphi in (-2.0, 0.0, 2.5):
         phi = float(phi_c) + dphi
 
@@ -283,14 +302,14 @@ def test_hob_identical_to_worm_gives_line_contact(form, data, hand):
                 k = round((ph - phi) / (2 * math.pi / z1))
                 assert ph - phi - k * 2 * math.pi / z1 == pytest.approx(0.0, abs=1e-6)
         assert found >= 3  # a contact line across (part of) the face
-        lines += 1
+        counts.append(found)
         u, v = np.meshgrid(np.linspace(0, 1, 12), np.linspace(*w.domain[1], 9), indexing="ij")
         real = w.inside_blank(np.stack(w.point(u, v), -1))
         W = wheel_in_worm(w, u[real], v[real], phi)
         d = np.array([r[0] for r in worm_signed_distance(worm, W)])
         worst_pen = min(worst_pen, d.min())
     print(f"\n{form} {data} {hand}: contact |d| max {worst_contact:.2e} mm, "
-          f"min d on grid {worst_pen:.2e} mm, {lines} contact lines")
+          f"min d on grid {worst_pen:.2e} mm, contact found at {counts} of 9 face positions")
     assert worst_contact < 1e-8
     assert worst_pen >= -1e-8
 
@@ -308,7 +327,8 @@ def relative_curvature(w, worm, u, v, wu, wv, phi, extra):
     e2 = np.cross(n, e1)
 
     def form(k1, k2, d1, d2):
-        return sum(k * np.outer([d @ e1, d @ e2], [d @ e1, d @ e2]) for k, d in ((k1, d1), (k2, d2)))
+        comps = [np.array([d @ e1, d @ e2]) for d in (d1, d2)]
+        return k1 * np.outer(comps[0], comps[0]) + k2 * np.outer(comps[1], comps[1])
 
     k1, k2, d1, d2 = sw.principal_curvatures()
     Kw = form(float(k1), float(k2), R @ d1, R @ d2)
@@ -340,11 +360,11 @@ def solve_contact(w, worm, phi, guess=(0.5, 0.0)):
     flank touches the worm flank (coincident points, opposite normals): least squares."""
     W = wheel_in_worm(w, guess[0], guess[1], phi)
     _, wu, wv, Wsh = worm_signed_distance(worm, W)[0]
-    shift = Wsh[2] - W[0, 2]
+    shift = Wsh[2] - W.reshape(3)[2]
 
     def res(x):
         u, v, a, b, delta = x
-        P = wheel_in_worm(w, u, v, phi, delta)[0] + [0, 0, shift]
+        P = wheel_in_worm(w, u, v, phi, delta).reshape(3) + [0, 0, shift]
         sw = w.evaluate(np.array(u), np.array(v))
         R = to_worm(w, np.eye(3), phi, 0.0) - to_worm(w, np.zeros((3, 3)), phi, 0.0)
         nw = R.T @ rot([0, 0, 1], -delta) @ sw.normals
@@ -417,8 +437,9 @@ def test_oversized_hob_gives_point_contact(data, kw):
     duv = np.linalg.lstsq(J, t3, rcond=None)[0]
 
     def reach(thr):
-        f = lambda s: sep(np.array([u + s * duv[0]]), np.array([v + s * duv[1]]))[0] - thr  # noqa: E731
-        from scipy.optimize import brentq
+        def f(s):
+            return sep(np.array([u + s * duv[0]]), np.array([v + s * duv[1]]))[0] - thr
+
         s_hi = 0.05
         while f(s_hi) < 0:
             s_hi *= 2
@@ -489,24 +510,25 @@ def test_jet_derivatives_match_finite_differences(form, data, hand, side, kw):
 @pytest.mark.parametrize("hand", ["right", "left"])
 def test_tooth_0_on_x_axis_and_normals_out_of_the_tooth(hand):
     """Σ = 90°, symmetric hob: the right flank is the left flank turned by pi about the x2
-    axis (right(u, v) = R_x(pi) left(u, -v), 1e-9 mm), so tooth 0 is centred on +x2; the
-    flank at the pitch circle in the mid-plane lies at polar angle ∓pi/(2 z2) (1e-3 rad, a
-    half tooth thickness); every outward normal points away from the tooth centre plane
-    (sign of n·e_theta = sign of the point's polar angle)."""
+    axis (right(u, v) = R_x(pi) left(u, -v), 1e-9 mm), so tooth 0 is centred on +x2; in the
+    mid-plane the hob's axial section generates the wheel like a rack: the point generated by
+    the hob's reference radius r1 lies on the reference circle r2 (1e-12 mm) at polar angle
+    -sigma·s·pi/(2 z2) (tooth thickness pi·mx/2 at d2, 1e-12 rad); every outward normal
+    points away from the tooth centre plane (sign of n·e_theta = sign of the polar angle)."""
     _, _, left = wheel_for("ZA", "seed000", hand, "left")
     _, _, right = wheel_for("ZA", "seed000", hand, "right")
     u, v = left.grid(9, 7)
     Pl = np.stack(left.point(u, v), -1)
     Pr = np.stack(right.point(u, -v), -1)
     np.testing.assert_allclose(Pr, Pl * [1, -1, -1], atol=1e-9)
-    for fl in (left, right):
-        # mid-plane point on the reference circle
-        r2 = fl.reference_radius
-        uu = np.linspace(0, 1, 2001)
-        R = np.hypot(*fl.point(uu, np.zeros_like(uu))[:2])
-        k = np.argmin(np.abs(R - r2))
-        x, y, _ = fl.point(uu[k:k + 1], np.zeros(1))
-        assert abs(abs(math.atan2(y[0], x[0])) - math.pi / (2 * fl.teeth)) < 1e-3
+    s_hand = 1 if hand == "right" else -1
+    for fl, sigma in ((left, 1), (right, -1)):
+        r0, r1 = fl.hob_radius(np.array([0.0, 1.0]), np.zeros(2))
+        u_ref = (fl.hob.reference_radius - r0) / (r1 - r0)
+        x, y, z = fl.point(np.array(u_ref), np.array(0.0))
+        assert math.hypot(x, y) == pytest.approx(fl.reference_radius, abs=1e-12)
+        assert math.atan2(y, x) == pytest.approx(-sigma * s_hand * math.pi / (2 * fl.teeth),
+                                                 abs=1e-12)
         s = fl.evaluate(u, v)
         th = np.arctan2(s.points[..., 1], s.points[..., 0])
         e_th = np.stack([-np.sin(th), np.cos(th), np.zeros_like(th)], -1)
@@ -520,13 +542,16 @@ def test_taylor3_third_derivatives():
     t = _Taylor3(t0, 1.0)
     g = np.arctan2(np.sin(t) * 2.0, np.sqrt(t + 1.0)) + np.arccos(t / 2) * t ** 3 / (1 + t)
     h = 1e-3
-    ref = lambda x: np.arctan2(np.sin(x) * 2, np.sqrt(x + 1)) + np.arccos(x / 2) * x**3 / (1 + x)  # noqa: E731
+
+    def ref(x):
+        return np.arctan2(np.sin(x) * 2, np.sqrt(x + 1)) + np.arccos(x / 2) * x**3 / (1 + x)
+
     # fourth-order differences of the closed form
     d1 = (ref(t0 - 2 * h) - 8 * ref(t0 - h) + 8 * ref(t0 + h) - ref(t0 + 2 * h)) / (12 * h)
     d2 = (-ref(t0 - 2 * h) + 16 * ref(t0 - h) - 30 * ref(t0) + 16 * ref(t0 + h)
           - ref(t0 + 2 * h)) / (12 * h * h)
-    d3 = (-ref(t0 - 3 * h) + 8 * ref(t0 - 2 * h) - 13 * ref(t0 - h) + 13 * ref(t0 + h)
-          - 8 * ref(t0 + 2 * h) + ref(t0 + 3 * h)) / (8 * h**3)
+    d3 = (ref(t0 - 3 * h) - 8 * ref(t0 - 2 * h) + 13 * ref(t0 - h) - 13 * ref(t0 + h)
+          + 8 * ref(t0 + 2 * h) - ref(t0 + 3 * h)) / (8 * h**3)
     np.testing.assert_allclose(g.d[0], ref(t0), rtol=1e-14)
     np.testing.assert_allclose(g.d[1], d1, rtol=1e-9)
     np.testing.assert_allclose(g.d[2], d2, rtol=1e-6)

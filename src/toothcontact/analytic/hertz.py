@@ -65,14 +65,15 @@ def curvatures_from_radii(radii: tuple[float, float]) -> tuple[float, float]:
 
 
 def relative_curvature(k1: tuple[float, float], k2: tuple[float, float],
-                       angle: float = 0.0) -> RelativeCurvature:
+                       angle: float = 0.0, point_contact: bool = True) -> RelativeCurvature:
     """A and B of the gap from the principal curvatures of both bodies.
 
     `angle` (rad) is between body 1's first and body 2's first principal direction. The gap
     is half the sum of the two curvature tensors, which gives Johnson §4.2's
     A + B = (k11+k12+k21+k22)/2 and B - A = ½·sqrt((k11-k12)² + (k21-k22)²
     + 2(k11-k12)(k21-k22)·cos 2ψ) (Roark Table 33 case 4, the root in cos theta).
-    Raises ValueError when the gap is not positive definite (conforming or separating bodies).
+    Raises ValueError when the gap is not positive definite (conforming or separating bodies),
+    unless point_contact is False (line contact, A = 0, is then returned as computed).
     """
     c, s = math.cos(angle), math.sin(angle)
     t11 = k1[0] + k2[0] * c * c + k2[1] * s * s
@@ -80,7 +81,7 @@ def relative_curvature(k1: tuple[float, float], k2: tuple[float, float],
     t12 = (k2[0] - k2[1]) * c * s
     mean, half_diff = 0.5 * (t11 + t22), math.hypot(0.5 * (t11 - t22), t12)
     lo, hi = mean - half_diff, mean + half_diff
-    if not lo > 0.0:
+    if point_contact and not lo > 0.0:
         raise ValueError(
             "the bodies do not make point contact: the relative curvature "
             f"({lo:.4g}, {hi:.4g}) 1/mm must be positive in every direction "

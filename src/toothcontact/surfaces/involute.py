@@ -203,6 +203,13 @@ class InvoluteFlank(Flank):
         (u0, u1), _ = self.domain
         return self.gear.base_radius * (u1 if self.gear.internal else u0)
 
+    def parameters_near(self, points):
+        """Starting parameters (u, v) for points near the flank (own frame): the roll angle
+        of their radius and their z."""
+        r = np.hypot(points[..., 0], points[..., 1])
+        t = np.sqrt(np.maximum(r * r / self.gear.base_radius**2 - 1.0, 0.0))
+        return t, points[..., 2].copy()
+
     def transverse_point(self, t):
         """The flank's transverse profile at z = 0: arrays x, y (mm) at roll angles t."""
         x, y, _ = self.point(np.asarray(t, float), 0.0)

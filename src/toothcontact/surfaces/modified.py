@@ -28,3 +28,6 @@ class ModifiedFlank(Flank):
         nx, ny, nz = self.base.unit_normal(u, v)
         d = -self._normal_factor * self.drop(u, v)
         return x + d * nx, y + d * ny, z + d * nz
+
+    def parameters_near(self, points):
+        return self.base.parameters_near(points)

@@ -1,0 +1,102 @@
+"""Where the gears sit: rigid frames of a pair in mesh, with misalignment.
+
+World frame of a parallel-axis pair: the pinion turns about the z axis through the origin,
+its tooth 0 on +x at roll angle 0; the gear's centre lies on the x axis (at +a for an
+external gear, at -a for a ring), so the pitch point is on +x. The pinion drives turning
+counter-clockwise (+phi1): its flank side +1 meets the gear. Units: mm, rad.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+
+from .gearset import GearPair
+
+
+def rotation(axis, angle: float) -> np.ndarray:
+    """Rotation matrix about a unit `axis` by `angle` (Rodrigues)."""
+    k = np.asarray(axis, float)
+    k = k / np.linalg.norm(k)
+    K = np.array([[0, -k[2], k[1]], [k[2], 0, -k[0]], [-k[1], k[0], 0]])
+    return np.eye(3) + math.sin(angle) * K + (1 - math.cos(angle)) * K @ K
+
+
+@dataclass(frozen=True)
+class Frame:
+    """world = R·local + origin."""
+
+    R: np.ndarray
+    origin: np.ndarray
+
+    def to_world(self, p):
+        return p @ self.R.T + self.origin
+
+    def vectors_to_world(self, n):
+        return n @ self.R.T
+
+    def to_local(self, p):
+        return (p - self.origin) @ self.R
+
+    def vectors_to_local(self, n):
+        return n @ self.R
+
+
+@dataclass(frozen=True)
+class Misalignment:
+    """Misalignment of the gear relative to the pinion.
+
+    slope: tilt of the gear axis in the plane of action (rad), positive closing the gap at
+    end B (z > 0); slope_normal: tilt normal to the plane of action (rad), about the line of
+    action; center_distance_error (mm, positive = farther apart); axial_shift of the gear
+    along its axis (mm). Tilts turn about the gear axis's mid-face point."""
+
+    slope: float = 0.0
+    slope_normal: float = 0.0
+    center_distance_error: float = 0.0
+    axial_shift: float = 0.0
+
+
+class ParallelMesh:
+    """A spur/helical pair in mesh: the frames of both members at any pinion angle."""
+
+    def __init__(self, pair: GearPair, misalignment: Misalignment = Misalignment()):
+        self.pair, self.misalignment = pair, misalignment
+        g = pair.gear
+        self.internal = g.internal
+        self.ratio = pair.pinion.teeth / g.teeth
+        a = pair.center_distance + misalignment.center_distance_error
+        self.center = np.array([-a if self.internal else a, 0.0, misalignment.axial_shift])
+        # gear tooth 0 beside the space that holds pinion tooth 0, on the driven side
+        pitch = 2.0 * math.pi / g.teeth
+        self.gear_start = 0.5 * pitch if self.internal else math.pi - 0.5 * pitch
+        self.gear_side = -1 if self.internal else 1
+        alpha = pair.working_pressure_angle
+        # line of action at the pitch point: the normal of pinion flank side +1 there (it faces
+        # +y and, as the tooth narrows toward its tip, leans outward by the pressure angle)
+        self.line_of_action = np.array([math.sin(alpha), math.cos(alpha), 0.0])
+        self.plane_normal = np.cross(self.line_of_action, [0.0, 0.0, 1.0])
+        self._tilt = self._tilt_rotation()
+
+    def pinion_frame(self, phi1: float, tooth: int = 0) -> Frame:
+        angle = phi1 + tooth * 2.0 * math.pi / self.pair.pinion.teeth
+        return Frame(rotation([0, 0, 1], angle), np.zeros(3))
+
+    def gear_frame(self, phi1: float, tooth: int = 0, delta: float = 0.0) -> Frame:
+        """The gear's frame when the pinion has turned phi1 and the gear lags by delta (rad,
+        the transmission error: positive = gear behind its ideal position)."""
+        g = self.pair.gear
+        sense = 1.0 if self.internal else -1.0
+        angle = (self.gear_start + sense * (phi1 * self.ratio - delta)
+                 + sense * tooth * 2.0 * math.pi / g.teeth)
+        return Frame(self._tilt @ rotation([0, 0, 1], angle), self.center)
+
+    def _tilt_rotation(self) -> np.ndarray:
+        """Tilts about axes through the gear's mid-face point. A rotation by +slope about
+        k = L × e_z (L: line of action, the pinion flank's normal at the pitch point) moves a
+        gear point at height z by -slope·z along L, i.e. toward the pinion at end B (z > 0),
+        for an external and a ring gear alike."""
+        m = self.misalignment
+        return rotation(self.plane_normal, m.slope) @ rotation(self.line_of_action, m.slope_normal)

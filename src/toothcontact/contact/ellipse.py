@@ -1,0 +1,41 @@
+"""The contact ellipse held against the flank's edges (DESIGN.md principle 4).
+
+The ellipse lies in the common tangent plane; each of its boundary points is carried onto a
+flank along the common normal, and its parameters are compared with the flank's domain.
+The margin to an edge is the least distance (mm, along the flank) from the ellipse to that
+edge; a negative margin means the ellipse is cut by the edge: edge loading.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from ..assembly import Frame
+from ..surfaces.base import Flank
+from .local import TangentPlane
+from .rays import intersect
+
+
+def edge_margins(flank: Flank, frame: Frame, plane: TangentPlane, a: float, b: float,
+                 angle: float, guess, samples: int = 72) -> dict[str, float]:
+    """Margin (mm) from the ellipse (semi-axes a along `angle` from e1, b across) to each of
+    the flank's edges, named as in flank.edges."""
+    theta = np.linspace(0.0, 2.0 * np.pi, samples, endpoint=False)
+    da = np.cos(angle) * plane.e1 + np.sin(angle) * plane.e2
+    db = np.cross(plane.normal, da)
+    points = plane.point + a * np.cos(theta)[:, None] * da + b * np.sin(theta)[:, None] * db
+    local = frame.to_local(points)
+    direction = np.broadcast_to(frame.vectors_to_local(plane.normal), local.shape)
+    hits = intersect(flank, local, direction, np.full(samples, guess[0]),
+                     np.full(samples, guess[1]), iterations=40)
+    sample = flank.evaluate(hits.u, hits.v)
+    speed_u = np.linalg.norm(sample.r_u, axis=-1)
+    speed_v = np.linalg.norm(sample.r_v, axis=-1)
+    (u0, u1), (v0, v1) = flank.domain
+    margins = {
+        flank.edges["u0"]: (hits.u - u0) * speed_u,
+        flank.edges["u1"]: (u1 - hits.u) * speed_u,
+        flank.edges["v0"]: (hits.v - v0) * speed_v,
+        flank.edges["v1"]: (v1 - hits.v) * speed_v,
+    }
+    return {name: float(np.min(value)) for name, value in margins.items()}

@@ -1,0 +1,88 @@
+"""Contact by surface separation on a crowned spur pair, against closed forms."""
+
+import math
+
+import numpy as np
+import pytest
+
+from toothcontact import gearset
+from toothcontact.analytic.hertz import compliance, roark_point
+from toothcontact.assembly import Misalignment, ParallelMesh
+from toothcontact.case import parse_case
+from toothcontact.contact.cycle import CycleSettings, parallel_cycle
+from toothcontact.surfaces.generation import generate_side
+from toothcontact.surfaces.modified import ModifiedFlank
+
+STEEL = compliance(206000.0, 0.3, 206000.0, 0.3)
+CASE = {"kind": "spur", "teeth": [20, 60], "module": "3 mm", "pressure_angle": "20 deg",
+        "face_width": "30 mm", "pinion": {"crown": {"radius": "4000 mm"}}}
+
+
+def run(case=CASE, slope=0.0, positions=3):
+    pair = gearset.gear_pair(parse_case(case))
+    mesh = ParallelMesh(pair, Misalignment(slope=slope))
+
+    def flank(g, mods, side):
+        f = g.flank(side, None if g.internal else generate_side(g).form_radius)
+        return f if mods.empty else ModifiedFlank(f, mods)
+
+    pinion = flank(pair.pinion, pair.pinion_modifications, 1)
+    gear = flank(pair.gear, pair.gear_modifications, mesh.gear_side)
+    load = 8000.0 / math.cos(pair.working_pressure_angle)
+    return pair, parallel_cycle(mesh, pinion, gear, load, STEEL, CycleSettings(positions=positions))
+
+
+@pytest.fixture(scope="module")
+def aligned():
+    return run()
+
+
+def test_fitted_gap_agrees_with_the_flank_curvatures(aligned):
+    """A and B from the separation fit within 0.5 % of A and B from both flanks' principal
+    curvatures, at every position and pair."""
+    _, rows = aligned
+    assert len(rows) >= 3
+    for r in rows:
+        assert r["A_per_mm"] == pytest.approx(r["A_analytic_per_mm"], rel=5e-3)
+        assert r["B_per_mm"] == pytest.approx(r["B_analytic_per_mm"], rel=5e-3)
+
+
+def test_aligned_crowned_spur_touches_mid_face_without_transmission_error(aligned):
+    _, rows = aligned
+    for r in rows:
+        assert r["face_position_mm"] == pytest.approx(0.0, abs=1e-3)
+        assert r["A_analytic_per_mm"] == pytest.approx(1 / (2 * 4000.0), rel=1e-6)
+        assert abs(r["transmission_error_urad"]) < 0.05
+
+
+def test_hertz_ellipse_equals_roark_with_the_profile_radii_of_the_contact_point(aligned):
+    """Seed 003 eqs (6)-(11) with rho1 = sqrt(r² - rb1²) at the actual contact radius, rho2
+    = C·sin(alpha) - rho1, and the crown radius: within 1 %."""
+    pair, rows = aligned
+    rb1 = pair.pinion.base_radius
+    for r in rows:
+        rho1 = math.sqrt(r["contact_radius_pinion_mm"] ** 2 - rb1**2)
+        rho2 = pair.center_distance * math.sin(pair.working_pressure_angle) - rho1
+        curv = [1 / rho1, 1 / rho2, 1 / 4000.0, 0.0]
+        roark = roark_point(sum(curv), abs(curv[0] + curv[1] - curv[2] - curv[3]), r["normal_load_N"],
+                            STEEL)
+        assert r["a_mm"] == pytest.approx(roark.a, rel=0.01)
+        assert r["b_mm"] == pytest.approx(roark.b, rel=0.01)
+        assert r["p_max_MPa"] == pytest.approx(roark.p0, rel=0.01)
+
+
+def test_slope_moves_the_contact_by_R_theta_and_then_onto_the_edge():
+    _, rows = run(slope=0.001)
+    for r in rows:
+        assert r["face_position_mm"] == pytest.approx(4000.0 * 0.001, rel=0.01)
+    _, rows = run(slope=0.0035)  # R·theta = 14 mm: the ellipse (a ≈ 8.4 mm) runs off end B
+    assert all(r["edge_contact"] for r in rows)
+    worst = [min(r["edge_margins_mm"], key=r["edge_margins_mm"].get) for r in rows]
+    assert all(name.endswith("end_B") for name in worst)
+
+
+def test_bias_crown_adds_its_centre_shift():
+    case = {**CASE, "pinion": {"crown": {"radius": "4000 mm", "center": "2.5 mm"}}}
+    _, rows = run(case, slope=0.001)
+    for r in rows:
+        assert r["face_position_mm"] == pytest.approx(2.5 + 4.0, rel=0.01)
