@@ -12,7 +12,6 @@ import math
 from dataclasses import dataclass
 
 import numpy as np
-from scipy.optimize import minimize
 
 from ..assembly import Frame
 from ..surfaces.base import Flank
@@ -52,33 +51,51 @@ class ContactPoint:
 
 
 def least_separation(pinion: Flank, gear: Flank, pinion_frame: Frame, gear_frame: Frame,
-                     grid: tuple[np.ndarray, np.ndarray]) -> ContactPoint | None:
-    """The pinion point of least separation: the best grid point, refined by a bounded
-    quasi-Newton search on the smooth separation (None if the flanks do not face)."""
+                     grid: tuple[np.ndarray, np.ndarray], refinements: int = 6) -> ContactPoint | None:
+    """The pinion point of least separation (None if the flanks do not face each other).
+
+    The best grid point is refined by fitting a quadratic to the separation on a 5 × 5 patch
+    around it and moving to the fitted minimum (kept inside the flank's domain), with the
+    patch shrinking each time: a handful of vectorised evaluations instead of a point-by-point
+    search."""
     u, v = grid
     field = separation(pinion, gear, pinion_frame, gear_frame, u, v).s
     if not np.isfinite(field).any():
         return None
     i = np.nanargmin(field)
-    start = np.array([u.flat[i], v.flat[i]])
-
-    def s_at(x):
-        value = separation(pinion, gear, pinion_frame, gear_frame, np.array([x[0]]),
-                           np.array([x[1]])).s[0]
-        return value if np.isfinite(value) else 1e3
-
     (u0, u1), (v0, v1) = pinion.domain
-    scale = np.array([u1 - u0, v1 - v0])
-    best = minimize(lambda y: s_at(start + y * scale), np.zeros(2), method="L-BFGS-B",
-                    bounds=[((u0 - start[0]) / scale[0], (u1 - start[0]) / scale[0]),
-                            ((v0 - start[1]) / scale[1], (v1 - start[1]) / scale[1])],
-                    options={"ftol": 1e-15, "gtol": 1e-12, "eps": 1e-7})
-    x = start + best.x * scale
-    if not best.fun <= field.flat[i]:
-        x = start
-    hit = separation(pinion, gear, pinion_frame, gear_frame, np.array([x[0]]), np.array([x[1]]))
-    return ContactPoint(float(x[0]), float(x[1]), float(hit.gear_u[0]), float(hit.gear_v[0]),
-                        float(hit.s[0]))
+    centre = np.array([u.flat[i], v.flat[i]])
+    half = np.array([(u1 - u0) / max(u.shape[0] - 1, 1), (v1 - v0) / max(u.shape[1] - 1, 1)])
+    best_s = field.flat[i]
+    offsets = np.linspace(-1.0, 1.0, 5)
+    du, dv = np.meshgrid(offsets, offsets, indexing="ij")
+    design = np.stack([np.ones(25), du.ravel(), dv.ravel(), du.ravel() ** 2,
+                       (du * dv).ravel(), dv.ravel() ** 2], axis=-1)
+    for _ in range(refinements):
+        pu = np.clip(centre[0] + half[0] * du, u0, u1)
+        pv = np.clip(centre[1] + half[1] * dv, v0, v1)
+        values = separation(pinion, gear, pinion_frame, gear_frame, pu, pv).s
+        k = np.nanargmin(values)
+        candidate = np.array([pu.flat[k], pv.flat[k]])
+        ok = np.isfinite(values.ravel())
+        if ok.sum() >= 6:
+            c, *_ = np.linalg.lstsq(design[ok], values.ravel()[ok], rcond=None)
+            hessian = np.array([[2 * c[3], c[4]], [c[4], 2 * c[5]]])
+            if np.all(np.linalg.eigvalsh(hessian) > 0):
+                step = np.linalg.solve(hessian, -c[1:3])
+                vertex = np.clip(centre + np.clip(step, -1.5, 1.5) * half, [u0, v0], [u1, v1])
+                candidate = vertex
+        trial = separation(pinion, gear, pinion_frame, gear_frame, np.array([candidate[0]]),
+                           np.array([candidate[1]])).s[0]
+        if np.isfinite(trial) and trial <= min(best_s, np.nanmin(values)):
+            centre, best_s = candidate, trial
+        elif np.nanmin(values) < best_s:
+            centre, best_s = np.array([pu.flat[k], pv.flat[k]]), values.flat[k]
+        half = 0.3 * half
+    hit = separation(pinion, gear, pinion_frame, gear_frame, np.array([centre[0]]),
+                     np.array([centre[1]]))
+    return ContactPoint(float(centre[0]), float(centre[1]), float(hit.gear_u[0]),
+                        float(hit.gear_v[0]), float(hit.s[0]))
 
 
 def solve_transmission_error(least, delta0: float = 0.0, tolerance: float = 1e-10,
