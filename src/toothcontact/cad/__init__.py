@@ -3,9 +3,10 @@ tessellation -> STL. Everything here imports OCP, so it is loaded only by the co
 write or check solids."""
 
 from .files import is_valid, read_step, tessellate, volume, write_mesh, write_step
-from .gear import RING_RIM_MODULES, GearBody, build_gear, chord_parameters, flank_deviation
+from .gear import RING_RIM_MODULES, GearBody, build_gear
+from .loft import flank_deviation
 from .worm import WormBody, build_worm, worm_flank_deviation
 
 __all__ = ["GearBody", "RING_RIM_MODULES", "WormBody", "build_gear", "build_worm",
-           "chord_parameters", "flank_deviation", "is_valid", "read_step", "tessellate", "volume",
+           "flank_deviation", "is_valid", "read_step", "tessellate", "volume",
            "worm_flank_deviation", "write_mesh", "write_step"]

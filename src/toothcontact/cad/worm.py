@@ -16,7 +16,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from ..surfaces.worm import WormFlank
-from .gear import _interpolated, chord_parameters
+from .loft import chord_parameters, interpolated
 
 #: depth (× m_x) by which the swept thread section reaches into the core, so that the
 #: fusion of thread and core has overlapping, not touching, volumes
@@ -71,9 +71,9 @@ def _swept_thread(left: WormFlank, right: WormFlank, n: int, z0: float, turns: i
     corners = [pts_right[0], (below, 0.0, z_right[0]), (below, 0.0, z_left[0]), pts_left[0]]
     line = lambda p, q: BRepBuilderAPI_MakeEdge(gp_Pnt(*map(float, p)), gp_Pnt(*map(float, q))).Edge()  # noqa: E731
     wire = BRepBuilderAPI_MakeWire()
-    wire.Add(_interpolated(pts_left, params))
+    wire.Add(interpolated(pts_left, params))
     wire.Add(line(pts_left[-1], pts_right[-1]))
-    wire.Add(_interpolated(pts_right[::-1], 1.0 - params[::-1]))
+    wire.Add(interpolated(pts_right[::-1], 1.0 - params[::-1]))
     for p, q in zip(corners, corners[1:]):
         wire.Add(line(p, q))
     place = gp_Trsf()
