@@ -54,3 +54,19 @@ def test_the_deviation_measure_sees_an_offset():
     for p, n in zip(s.points + 0.002 * s.normals, s.normals):
         vertex = BRepBuilderAPI_MakeVertex(gp_Pnt(*map(float, p))).Vertex()
         assert BRepExtrema_DistShapeShape(vertex, shell).Value() == pytest.approx(0.002, abs=1e-6)
+
+
+def test_worm_set_export_worm_and_enveloped_wheel(tmp_path):
+    """Seed 000's worm set: both solids valid, both flank families within 1 µm of the exact
+    surfaces (the wheel's: the envelope), STEP round trip and watertight STL."""
+    import json
+
+    from toothcontact.runner import bundled_cases_dir, export_case
+
+    record = export_case(bundled_cases_dir() / "worm_saba_set.toml", tmp_path)
+    assert record == json.loads((tmp_path / "export.json").read_text())
+    for name in ("worm", "wheel"):
+        part = record["parts"][name]
+        assert part["valid"] and part["stl_watertight"], name
+        assert part["flank_deviation_um"] < 1.0, name
+        assert part["step_reread_volume_mm3"] == pytest.approx(part["volume_mm3"], rel=1e-9)

@@ -49,6 +49,7 @@ def analyse(case: schema.CaseInfo) -> Result:
         "spline_crown": spline_crown_case,
         "spur": spur_geometry_case,
         "spline": spline_geometry_case,
+        "worm": worm_geometry_case,
     }[case.kind]
     with warnings.catch_warnings(record=True) as caught:
         warnings.simplefilter("always")
@@ -358,4 +359,39 @@ def spline_geometry_case(case: schema.SplineCase) -> Result:
         section["crown_radius_mm"] = radius
         section["crown_height_mm"] = float(crown.drop(0.5 * case.engaged_length, case.engaged_length)
                                            / math.cos(case.pressure_angle))
+    return result
+
+
+def worm_geometry_case(case: schema.WormCase) -> Result:
+    """Geometry of a worm set: the worm, the hob and the enveloped wheel's blank (DIN 3975)."""
+    from . import gearset
+
+    try:
+        parts = gearset.worm_set(case)
+    except ValueError as exc:
+        raise CaseError(f"worm / wheel: {exc}") from None
+    worm, wheel = parts.worm["left"], parts.wheel["left"]
+    hob = wheel.hob
+    section = {"form": worm.form, "starts": worm.starts, "hand": worm.hand,
+               "axial_module_mm": worm.axial_module, "normal_module_mm": worm.normal_module,
+               "lead_mm": worm.lead, "lead_angle_deg": math.degrees(worm.lead_angle),
+               "pitch_diameter_mm": worm.pitch_diameter, "tip_diameter_mm": worm.tip_diameter,
+               "root_diameter_mm": worm.root_diameter, "length_mm": worm.length}
+    if worm.form == "ZI":
+        section["base_diameter_mm"] = 2 * worm.base_radius
+    result = Result(sections={
+        "worm": section,
+        "hob": {"pitch_diameter_mm": hob.pitch_diameter,
+                "oversized": hob.pitch_diameter != worm.pitch_diameter,
+                "lead_angle_deg": math.degrees(hob.lead_angle),
+                "crossing_angle_deg": math.degrees(wheel.crossing_angle),
+                "generating_center_distance_mm": wheel.generating_centre_distance},
+        "wheel": {"teeth": wheel.teeth, "ratio": wheel.teeth / worm.starts,
+                  "pitch_diameter_mm": 2 * wheel.reference_radius,
+                  "tip_diameter_mm": wheel.tip_diameter, "root_diameter_mm": wheel.root_diameter,
+                  "throat_radius_mm": wheel.throat_radius,
+                  "outside_diameter_mm": wheel.outside_diameter, "face_width_mm": wheel.face_width,
+                  "center_distance_mm": wheel.centre_distance},
+    }, notes=["the wheel flank is the exact envelope of the hob thread (equation of meshing); "
+              "the blank follows DIN 3975 guideline proportions"])
     return result

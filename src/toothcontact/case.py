@@ -249,6 +249,53 @@ class SplineCase(CaseInfo):
         return self.module if self.module is not None else 1.0 / self.diametral_pitch
 
 
+class WormSpec(Model):
+    """The worm: flank form, starts, module and lead, hand, profile angle, length."""
+
+    form: Literal["ZA", "ZN", "ZI", "ZK"] = "ZI"
+    starts: int = Field(ge=1, le=12, description="worm starts z1 (1..12)")
+    normal_module: Length | None = None
+    axial_module: Length | None = None
+    lead_angle: Angle | None = None
+    pitch_diameter: Length | None = None
+    hand: Literal["right", "left"] = "right"
+    pressure_angle: Angle = Field(description="axial angle for ZA, normal for ZN/ZI, grinding-"
+                                              "wheel angle for ZK, e.g. '20 deg'")
+    length: Length = Field(description="threaded length, e.g. '30 mm'")
+    grinding_wheel_diameter: Length = Field(250.0, description="ZK only")
+
+    @model_validator(mode="after")
+    def _choices(self):
+        if (self.normal_module is None) == (self.axial_module is None):
+            raise ValueError("worm.normal_module / worm.axial_module: give exactly one of them")
+        if (self.lead_angle is None) == (self.pitch_diameter is None):
+            raise ValueError("worm.lead_angle / worm.pitch_diameter: give exactly one of them")
+        if self.lead_angle is not None and not 0 < self.lead_angle < math.radians(45):
+            raise ValueError("worm.lead_angle: must lie between 0 and 45 deg")
+        return self
+
+
+class WheelSpec(Model):
+    """The worm wheel and the hob that cuts it (identical to the worm, or oversized)."""
+
+    teeth: int = Field(ge=10, description="wheel teeth z2 (>= 10)")
+    face_width: Length | None = None
+    profile_shift: float = Field(0.0, ge=-1.0, le=1.0, description="x2, in [-1, 1]")
+    hob_pitch_diameter: Length | None = Field(
+        None, description="pitch diameter of an oversized hob with the worm's lead; "
+                          "default: the worm's (line contact)")
+    align_hob_thread: bool = Field(False, description="tilt an oversized hob to the worm's thread")
+
+
+class WormCase(CaseInfo):
+    """A worm set: the worm's flanks and the wheel enveloped by the hob."""
+
+    kind: Literal["worm"]
+    worm: WormSpec
+    wheel: WheelSpec
+    export: ExportSpec = ExportSpec()
+
+
 class Condition(Model):
     temperature: Temperature = Field(description="e.g. '-50 degC'")
     viscosity: Viscosity = Field(description="kinematic viscosity, e.g. '30000 mm^2/s'")
@@ -349,6 +396,7 @@ KINDS: dict[str, type[CaseInfo]] = {
     "spline_crown": SplineCrownCase,
     "spur": SpurCase,
     "spline": SplineCase,
+    "worm": WormCase,
 }
 
 

@@ -59,7 +59,7 @@ def export(cases: list[Path] = typer.Argument(..., help="case files (TOML)"),
         target = (out or Path("geometry")) / case.stem
         record = _guarded(lambda: runner.export_case(case, target, formats))
         for name, part in record["parts"].items():
-            typer.echo(f"{case.stem}/{name}: {part['teeth_exported']} teeth, flank deviation "
+            typer.echo(f"{case.stem}/{name}: {part['built']}, flank deviation "
                        f"{part['flank_deviation_um']:.3f} µm, valid {part['valid']} -> {target}")
 
 

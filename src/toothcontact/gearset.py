@@ -1,5 +1,5 @@
-"""Gear sets from their cases: a parallel-axis pair (both gears, modifications, mesh) and
-an involute spline (hub and sleeve).
+"""Gear sets from their cases: a parallel-axis pair (both gears, modifications, mesh), an
+involute spline (hub and sleeve) and a worm set (worm and hob-enveloped wheel).
 
 Sources: ISO 21771:2007 for the working pressure angle of a shifted pair,
 inv(alpha_wt) = inv(alpha_t) + 2·tan(alpha_n)·(x1 ± x2)/(z1 ± z2), the centre distance
@@ -14,10 +14,12 @@ from dataclasses import dataclass
 from scipy.optimize import brentq
 
 from .analytic.spur_mesh import SpurMesh
-from .case import Member, SplineCase, SpurCase
+from .case import Member, SplineCase, SpurCase, WormCase
 from .modify import EndRelief, FlankModifications, LeadCrown, ProfileCrown, TipRelief
 from .surfaces.involute import CylindricalGear, inv
 from .surfaces.spline import InvoluteSpline
+from .surfaces.wheel import WormWheelFlank
+from .surfaces.worm import WormFlank
 
 
 @dataclass(frozen=True)
@@ -120,13 +122,37 @@ def spline_pair(case: SplineCase) -> SplinePair:
     return SplinePair(spline, spline.hub(), spline.sleeve(), mods)
 
 
-def solid_parts(case) -> dict[str, tuple[CylindricalGear, FlankModifications]]:
-    """The parts of a case that have solids, by name, with their flank modifications."""
-    if case.kind == "spur":
-        pair = gear_pair(case)
-        return {"pinion": (pair.pinion, pair.pinion_modifications),
-                "gear": (pair.gear, pair.gear_modifications)}
-    if case.kind == "spline":
-        pair = spline_pair(case)
-        return {"hub": (pair.hub, pair.hub_modifications), "sleeve": (pair.sleeve, FlankModifications())}
-    raise ValueError(f"kind {case.kind!r} has no solids")
+@dataclass(frozen=True)
+class WormSet:
+    """Worm flanks and wheel flanks of a worm set, by side ("left", "right")."""
+
+    worm: dict[str, WormFlank]
+    wheel: dict[str, WormWheelFlank]
+
+
+def worm_set(case: WormCase) -> WormSet:
+    """The worm of a case and its wheel, enveloped by the hob (the worm itself or an
+    oversized hob with the worm's axial module, hence its lead)."""
+    spec = case.worm
+    common = dict(form=spec.form, starts=spec.starts, length=spec.length, hand=spec.hand,
+                  pressure_angle=spec.pressure_angle, wheel_diameter=spec.grinding_wheel_diameter)
+    if spec.lead_angle is not None:
+        mx = spec.axial_module or spec.normal_module / math.cos(spec.lead_angle)
+        d1 = spec.starts * mx / math.tan(spec.lead_angle)
+    else:
+        d1 = spec.pitch_diameter
+        mx = spec.axial_module
+        if mx is None:  # normal module given with the pitch diameter: sin(gamma) = z1·mn/d1
+            mx = spec.normal_module / math.cos(math.asin(spec.starts * spec.normal_module / d1))
+    worm = {side: WormFlank(axial_module=mx, pitch_diameter=d1, side=side, **common)
+            for side in ("left", "right")}
+    w = case.wheel
+    hob_d1 = w.hob_pitch_diameter or d1
+    hob_common = {**common, "length": spec.length + 4.0 * math.pi * mx * spec.starts}
+    wheel = {}
+    for side in ("left", "right"):
+        hob = worm[side] if hob_d1 == d1 else WormFlank(
+            axial_module=mx, pitch_diameter=hob_d1, side=side, **hob_common)
+        wheel[side] = WormWheelFlank(hob, w.teeth, worm=worm[side], profile_shift=w.profile_shift,
+                                     face_width=w.face_width, align_hob_thread=w.align_hob_thread)
+    return WormSet(worm, wheel)

@@ -41,7 +41,8 @@ def run_case(path: str | Path, out_dir: str | Path | None = None) -> tuple[dict,
     return document, report.write_run(target, document)
 
 
-GEOMETRY_KINDS = ("spur", "spline")
+#: case kinds with solids to export (kept here so the CLI need not import OCP to know)
+GEOMETRY_KINDS = ("spur", "spline", "worm")
 
 
 def export_case(path: str | Path, out_dir: str | Path | None = None,
@@ -51,7 +52,8 @@ def export_case(path: str | Path, out_dir: str | Path | None = None,
     deviation from the exact surface, validity, volume, STEP round trip and STL check."""
     import json
 
-    from . import cad, gearset
+    from . import cad
+    from .report import write_text
 
     path = Path(path)
     case, _ = schema.load_case(path)
@@ -59,17 +61,17 @@ def export_case(path: str | Path, out_dir: str | Path | None = None,
         raise schema.CaseError(f"{path}: kind: {case.kind!r} has no solid to export; "
                                f"export works for {', '.join(GEOMETRY_KINDS)}")
     try:
-        bodies = {name: cad.build_gear(g, mods, teeth=_sector(case, g))
-                  for name, (g, mods) in gearset.solid_parts(case).items()}
+        bodies = cad.build_parts(case)
     except ValueError as exc:
         raise schema.CaseError(f"{path}: {exc}") from None
     target = Path(out_dir) if out_dir is not None else Path("geometry") / path.stem
     target.mkdir(parents=True, exist_ok=True)
     record = {"case": path.stem, "parts": {}}
     for name, body in bodies.items():
-        entry = {"teeth_exported": _sector(case, body.gear) or body.gear.teeth,
-                 "valid": cad.is_valid(body.solid), "volume_mm3": cad.volume(body.solid),
-                 "flank_deviation_um": 1000.0 * cad.flank_deviation(body), "notes": body.notes}
+        entry = {"built": body.description, "valid": cad.is_valid(body.solid),
+                 "volume_mm3": cad.volume(body.solid),
+                 "flank_deviation_um": 1000.0 * body.flank_deviation(),
+                 "notes": getattr(body, "notes", [])}
         if "step" in formats:
             step = cad.write_step(body.solid, target / f"{name}.step")
             entry["step"] = step.name
@@ -81,13 +83,5 @@ def export_case(path: str | Path, out_dir: str | Path | None = None,
                          stl_watertight=bool(mesh.is_watertight),
                          stl_tolerance_mm=case.export.stl_tolerance)
         record["parts"][name] = entry
-    from .report import write_text
-
     write_text(target / "export.json", json.dumps(record, indent=2) + "\n")
     return record
-
-
-def _sector(case, gear) -> int | None:
-    """Teeth to export: the case's sector size, for external gears with more teeth."""
-    n = case.export.teeth
-    return n if n is not None and not gear.internal and n < gear.teeth else None

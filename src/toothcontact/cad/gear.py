@@ -18,8 +18,8 @@ from ..surfaces.base import Flank
 from ..surfaces.generation import generate_side
 from ..surfaces.involute import CylindricalGear
 from ..surfaces.modified import ModifiedFlank
-from .loft import (arc, chord_parameters, generated_face, interpolated, loft, patterned_wire,
-                   polar)
+from .loft import (arc, chord_parameters, flank_deviation, generated_face, half_root_arc,
+                   interpolated, loft, patterned_wire, polar, sector_closure)
 
 #: radial thickness of a ring gear's rim below its root circle, in normal modules
 RING_RIM_MODULES = 3.0
@@ -36,8 +36,16 @@ class GearBody:
     faces: dict[int, object]
     fit_u: np.ndarray
     fit_v: np.ndarray
-    undercut: bool = False
+    teeth_built: int
     notes: list[str] = field(default_factory=list)
+
+    @property
+    def description(self) -> str:
+        return f"{self.teeth_built} of {self.gear.teeth} teeth"
+
+    def flank_deviation(self) -> float:
+        """Largest distance (mm) from tooth 0's exact flanks to their B-spline faces."""
+        return flank_deviation(self)
 
 
 def build_gear(gear: CylindricalGear, modifications: FlankModifications | None = None,
@@ -48,12 +56,12 @@ def build_gear(gear: CylindricalGear, modifications: FlankModifications | None =
     mods = modifications or FlankModifications()
     notes = []
     if gear.internal:
-        generated, form_radius, undercut = None, None, False
+        generated, form_radius = None, None
         notes.append("ring gear: the root is a sharp corner (no pinion-cutter fillet yet)")
     else:
         generated = generate_side(gear)
-        form_radius, undercut = generated.form_radius, generated.undercut
-        if undercut:
+        form_radius = generated.form_radius
+        if generated.undercut:
             raise ValueError(f"the {gear.teeth}-tooth gear is undercut by its rack at profile shift "
                              f"{gear.profile_shift:g}: increase the profile shift")
     flanks = {side: _apply(gear.flank(side, form_radius), mods) for side in (1, -1)}
@@ -78,7 +86,7 @@ def build_gear(gear: CylindricalGear, modifications: FlankModifications | None =
     solid = maker.Shape()
     if gear.internal:
         solid = _ring_from_hole(gear, solid)
-    return GearBody(gear, solid, flanks, faces, fit_u, fit_v, undercut, notes)
+    return GearBody(gear, solid, flanks, faces, fit_u, fit_v, teeth or gear.teeth, notes)
 
 
 def _apply(flank: Flank, mods: FlankModifications) -> Flank:
@@ -143,38 +151,15 @@ def _section_wire(gear: CylindricalGear, flanks: dict, generated, params: dict, 
         start, end = fil_minus[0], fil_plus[-1]
     root = 0.5 * (np.hypot(*start[:2]) + np.hypot(*end[:2]))
     space_before, space_after = turn - 0.5 * pitch, turn + 0.5 * pitch
-    edges = [_half_root_arc(root, space_before, start, z), *side_minus, tip, *side_plus,
-             _half_root_arc(root, space_after, end, z, reverse=True)]
+    edges = [half_root_arc(root, space_before, start, z), *side_minus, tip, *side_plus,
+             half_root_arc(root, space_after, end, z, reverse=True)]
     flank_edges = {-1: len(side_minus), 1: len(side_minus) + 2}
 
-    closure = (_sector_closure(gear, root, space_before, space_before + teeth * pitch, z)
-               if teeth < gear.teeth else [])
+    if teeth < gear.teeth and gear.internal:
+        raise ValueError("a ring gear is built whole, not as a sector")
+    closure = (sector_closure(root, root - 2.0 * gear.normal_module, space_before,
+                              space_before + teeth * pitch, z) if teeth < gear.teeth else [])
     return patterned_wire(edges, teeth, pitch, closure), flank_edges
-
-
-def _half_root_arc(radius: float, space_angle: float, point: np.ndarray, z: float,
-                   reverse: bool = False):
-    """Root arc from the centre of a space (at `space_angle`) to a tooth's root point."""
-    centre = np.array(polar(radius, space_angle, z))
-    angle = math.atan2(point[1], point[0])
-    middle = polar(radius, 0.5 * (angle + space_angle), z)
-    return arc(point, middle, centre) if reverse else arc(centre, middle, point)
-
-
-def _sector_closure(gear: CylindricalGear, root: float, first: float, last: float, z: float):
-    """Radial lines and an inner arc closing a sector from the space centre at `last` back
-    to the one at `first` (angles in rad)."""
-    from OCP.BRepBuilderAPI import BRepBuilderAPI_MakeEdge
-    from OCP.gp import gp_Pnt
-
-    inner = root - 2.0 * gear.normal_module
-    if gear.internal or inner <= 0:
-        raise ValueError("a sector needs an external gear with room below its root")
-    a_out, a_in = polar(root, last, z), polar(inner, last, z)
-    b_in, b_out = polar(inner, first, z), polar(root, first, z)
-    line = lambda p, q: BRepBuilderAPI_MakeEdge(gp_Pnt(*p), gp_Pnt(*q)).Edge()  # noqa: E731
-    return [line(a_out, a_in), arc(a_in, polar(inner, 0.5 * (first + last), z), b_in),
-            line(b_in, b_out)]
 
 
 def _ring_from_hole(gear: CylindricalGear, hole):

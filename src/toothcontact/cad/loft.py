@@ -52,6 +52,30 @@ def polar(radius: float, angle: float, z: float) -> tuple[float, float, float]:
     return radius * math.cos(angle), radius * math.sin(angle), z
 
 
+def half_root_arc(radius: float, space_angle: float, point: np.ndarray, z: float,
+                  reverse: bool = False):
+    """Root arc from the centre of a space (at `space_angle`) to a tooth's root point."""
+    centre = np.array(polar(radius, space_angle, z))
+    angle = math.atan2(point[1], point[0])
+    middle = polar(radius, 0.5 * (angle + space_angle), z)
+    return arc(point, middle, centre) if reverse else arc(centre, middle, point)
+
+
+def sector_closure(root: float, inner: float, first: float, last: float, z: float) -> list:
+    """Radial lines and an inner arc (radius `inner`) closing a sector from the space centre
+    at angle `last` back to the one at `first` (rad), at height z."""
+    from OCP.BRepBuilderAPI import BRepBuilderAPI_MakeEdge
+    from OCP.gp import gp_Pnt
+
+    if not 0 < inner < root:
+        raise ValueError("a sector needs room below the root")
+    a_out, a_in = polar(root, last, z), polar(inner, last, z)
+    b_in, b_out = polar(inner, first, z), polar(root, first, z)
+    line = lambda p, q: BRepBuilderAPI_MakeEdge(gp_Pnt(*p), gp_Pnt(*q)).Edge()  # noqa: E731
+    return [line(a_out, a_in), arc(a_in, polar(inner, 0.5 * (first + last), z), b_in),
+            line(b_in, b_out)]
+
+
 def patterned_wire(edges: list, count: int, pitch: float, closure: list = ()):
     """A wire of `count` copies of `edges` turned by multiples of `pitch` about z, followed
     by the `closure` edges."""

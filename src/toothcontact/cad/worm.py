@@ -3,8 +3,9 @@
 Every worm flank is a helicoid (see surfaces.worm): its axial profile, screwed about the
 axis. The solid is built the same way: the thread's axial section (both flank profiles
 interpolated through exact points, tip and root lines) is swept along a helix with the
-Frenet trihedron, which for a helix is exactly the screw motion; the thread is fused with the
-core cylinder and cut to length by the end planes. `worm_flank_deviation` measures the
+Frenet trihedron, which for a helix is exactly the screw motion; the threads, whose root
+faces lie on the core cylinder, are glued to it (a fusion of shapes that share faces, far
+faster than a general boolean) and cut to length by the end planes. `worm_flank_deviation` measures the
 faces against the exact flank.
 """
 
@@ -18,17 +19,20 @@ import numpy as np
 from ..surfaces.worm import WormFlank
 from .loft import chord_parameters, interpolated
 
-#: depth (× m_x) by which the swept thread section reaches into the core, so that the
-#: fusion of thread and core has overlapping, not touching, volumes
-CORE_OVERLAP = 0.3
-
-
 @dataclass
 class WormBody:
     """A built worm: the OCP solid and its two exact flanks (left, right)."""
 
     solid: object
     flanks: dict[str, WormFlank]
+
+    @property
+    def description(self) -> str:
+        worm = self.flanks["left"]
+        return f"{worm.starts} start(s), {worm.length:g} mm long"
+
+    def flank_deviation(self) -> float:
+        return worm_flank_deviation(self)
 
 
 def build_worm(left: WormFlank, right: WormFlank, profile_points: int = 17) -> WormBody:
@@ -37,24 +41,35 @@ def build_worm(left: WormFlank, right: WormFlank, profile_points: int = 17) -> W
     from OCP.BRepPrimAPI import BRepPrimAPI_MakeCylinder
     from OCP.gp import gp_Ax2, gp_Dir, gp_Pnt
 
+    from OCP.BOPAlgo import BOPAlgo_GlueFull
+    from OCP.TopTools import TopTools_ListOfShape
+
     rf, ra = left.domain[0]
     lead, length = left.lead, left.length
     turns_before = math.ceil(0.5 * length / lead + 1.0)
-    shape = None
+    base = gp_Ax2(gp_Pnt(0, 0, -0.5 * length), gp_Dir(0, 0, 1))
+    envelope = BRepPrimAPI_MakeCylinder(base, ra + left.axial_module, length).Shape()
+    threads, core = TopTools_ListOfShape(), TopTools_ListOfShape()
     for start in range(left.starts):
         thread = _swept_thread(left, right, profile_points, -turns_before * lead,
                                2 * turns_before, start * 2.0 * math.pi / left.starts)
-        shape = thread if shape is None else _boolean(BRepAlgoAPI_Fuse, shape, thread)
-    base = gp_Ax2(gp_Pnt(0, 0, -0.5 * length), gp_Dir(0, 0, 1))
-    core = BRepPrimAPI_MakeCylinder(base, rf, length).Shape()
-    envelope = BRepPrimAPI_MakeCylinder(base, ra + left.axial_module, length).Shape()
-    worm = _boolean(BRepAlgoAPI_Common, _boolean(BRepAlgoAPI_Fuse, shape, core), envelope)
-    return WormBody(worm, {"left": left, "right": right})
+        threads.Append(_boolean(BRepAlgoAPI_Common, thread, envelope))
+    core.Append(BRepPrimAPI_MakeCylinder(base, rf, length).Shape())
+    fuse = BRepAlgoAPI_Fuse()
+    fuse.SetArguments(core)
+    fuse.SetTools(threads)
+    fuse.SetGlue(BOPAlgo_GlueFull)
+    fuse.SetRunParallel(True)
+    fuse.Build()
+    if not fuse.IsDone():
+        raise RuntimeError("gluing the worm's threads to its core failed")
+    return WormBody(fuse.Shape(), {"left": left, "right": right})
 
 
 def _swept_thread(left: WormFlank, right: WormFlank, n: int, z0: float, turns: int, angle: float):
-    """One thread: its axial section at z0 (a whole number of leads below the thread centred
-    at z = 0, turned by `angle`) swept along `turns` turns of a helix."""
+    """One thread: its axial section (flanks, tip line, root line on the core cylinder) at z0,
+    a whole number of leads below the thread centred at z = 0, turned by `angle`, swept along
+    `turns` turns of a helix."""
     from OCP.BRepBuilderAPI import (BRepBuilderAPI_MakeEdge, BRepBuilderAPI_MakeWire,
                                     BRepBuilderAPI_Transform)
     from OCP.BRepOffsetAPI import BRepOffsetAPI_MakePipeShell
@@ -67,15 +82,12 @@ def _swept_thread(left: WormFlank, right: WormFlank, n: int, z0: float, turns: i
     pts_left = np.column_stack([r, 0 * r, z_left])
     pts_right = np.column_stack([r, 0 * r, z_right])
     params = chord_parameters(pts_left[:, [0, 2]])
-    below = rf - CORE_OVERLAP * left.axial_module
-    corners = [pts_right[0], (below, 0.0, z_right[0]), (below, 0.0, z_left[0]), pts_left[0]]
     line = lambda p, q: BRepBuilderAPI_MakeEdge(gp_Pnt(*map(float, p)), gp_Pnt(*map(float, q))).Edge()  # noqa: E731
     wire = BRepBuilderAPI_MakeWire()
     wire.Add(interpolated(pts_left, params))
     wire.Add(line(pts_left[-1], pts_right[-1]))
     wire.Add(interpolated(pts_right[::-1], 1.0 - params[::-1]))
-    for p, q in zip(corners, corners[1:]):
-        wire.Add(line(p, q))
+    wire.Add(line(pts_right[0], pts_left[0]))  # the root line, on the core cylinder
     place = gp_Trsf()
     place.SetRotation(gp_Ax1(gp_Pnt(0, 0, 0), gp_Dir(0, 0, 1)), angle)
     shift = gp_Trsf()
