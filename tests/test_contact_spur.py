@@ -86,3 +86,22 @@ def test_bias_crown_adds_its_centre_shift():
     _, rows = run(case, slope=0.001)
     for r in rows:
         assert r["face_position_mm"] == pytest.approx(2.5 + 4.0, rel=0.01)
+
+
+def test_spur_case_reports_positions_and_summary(tmp_path):
+    """The bundled crowned spur case: 21 positions, contact R·theta = 3.2 mm toward end B,
+    the result keys of the contact issue present, and the corner contact at the pinion tip
+    at the ends of the path reported as such."""
+    from toothcontact.runner import analyse_file, bundled_cases_dir
+
+    doc = analyse_file(bundled_cases_dir() / "spur_crowned_20_60.toml")
+    rows = doc["positions"]
+    keys = {"roll_deg", "pair", "contact_radius_pinion_mm", "face_position_mm", "A_per_mm",
+            "B_per_mm", "a_mm", "b_mm", "p_max_MPa", "approach_mm", "rigid_a_mm", "rigid_b_mm",
+            "edge_margin_mm", "edge_contact", "transmission_error_urad"}
+    assert all(keys <= set(r) for r in rows)
+    assert len({r["roll_deg"] for r in rows}) == 21
+    assert all(r["face_position_mm"] == pytest.approx(3.2, rel=0.01) for r in rows)
+    summary = doc["summary"]
+    assert summary["worst_face_edge_margin_mm"] > 0
+    assert summary["worst_profile_edge"] == "pinion_tip"

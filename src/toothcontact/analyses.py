@@ -326,7 +326,55 @@ def spur_geometry_case(case: schema.SpurCase) -> Result:
         "rho1_lpstc_mm": mesh.lpstc()}
     result.checks.append(Check("transverse contact ratio above 1", mesh.contact_ratio > 1.0,
                                f"{mesh.contact_ratio:.3f}"))
+    if case.load is not None:
+        _spur_contact(case, pair, result)
     return result
+
+
+def _spur_contact(case: schema.SpurCase, pair, result: Result) -> None:
+    """Contact by surface separation over the mesh cycle (contact.cycle)."""
+    from .assembly import Misalignment, ParallelMesh
+    from .contact.cycle import LOAD_SHARING_RULE, CycleSettings, parallel_cycle
+    from .surfaces.generation import generate_side
+    from .surfaces.modified import ModifiedFlank
+
+    m = case.misalignment
+    mesh = ParallelMesh(pair, Misalignment(m.slope, m.slope_normal, m.center_distance_error,
+                                           m.axial_shift))
+
+    def flank(gear, mods, side):
+        base = gear.flank(side, None if gear.internal else generate_side(gear).form_radius)
+        return base if mods.empty else ModifiedFlank(base, mods)
+
+    pinion = flank(pair.pinion, pair.pinion_loaded_modifications, 1)
+    gear = flank(pair.gear, pair.gear_modifications, mesh.gear_side)
+    wt = case.load.tangential_load or case.load.torque / pair.operating_pitch_radius
+    normal_load = wt / (math.cos(pair.working_pressure_angle) * math.cos(pair.pinion.base_helix_angle))
+    gear_material = case.gear_material or case.material
+    C_E = hertz.compliance(case.material.E, case.material.nu, gear_material.E, gear_material.nu)
+    a = case.analysis
+    try:
+        rows = parallel_cycle(mesh, pinion, gear, normal_load, C_E,
+                              CycleSettings(a.positions, a.grid, a.approach))
+    except (ValueError, RuntimeError) as exc:
+        raise CaseError(f"misalignment / load: no contact could be found: {exc}") from None
+    te = [r["transmission_error_urad"] for r in rows]
+    result.sections["positions"] = rows
+    summary = {"tangential_load_N": wt, "normal_load_N": normal_load,
+               "max_p_max_MPa": max(r["p_max_MPa"] for r in rows),
+               "transmission_error_peak_to_peak_urad": max(te) - min(te),
+               "face_position_range_mm": [min(r["face_position_mm"] for r in rows),
+                                          max(r["face_position_mm"] for r in rows)],
+               "load_sharing": LOAD_SHARING_RULE}
+    for kind, label in (("face", "at the face ends (edge loading)"),
+                        ("profile", "at the tip and form edges (corner contact)")):
+        margin, edge, roll = min((v, k, r["roll_deg"]) for r in rows
+                                 for k, v in r["edge_margins_mm"].items()
+                                 if ("end_" in k) == (kind == "face"))
+        summary[f"worst_{kind}_edge_margin_mm"], summary[f"worst_{kind}_edge"] = margin, edge
+        result.checks.append(Check(f"contact ellipse clear of the edges {label}", margin >= 0,
+                                   f"worst margin {margin:.3f} mm ({edge}) at roll {roll:.2f} deg"))
+    result.sections["summary"] = summary
 
 
 def spline_geometry_case(case: schema.SplineCase) -> Result:

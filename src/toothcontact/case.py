@@ -199,6 +199,42 @@ class ExportSpec(Model):
     stl_tolerance: Length = Field(0.01, description="chordal deviation of the STL, e.g. '0.01 mm'")
 
 
+class MisalignmentSpec(Model):
+    slope: Slope = Field(0.0, description="tilt in the plane of action, rad; + closes end B")
+    slope_normal: Slope = Field(0.0, description="tilt normal to the plane of action, rad")
+    center_distance_error: quantity("length") = Field(0.0, description="e.g. '0.02 mm'")
+    axial_shift: quantity("length") = Field(0.0, description="of the gear, e.g. '0.5 mm'")
+
+
+class DeflectionSpec(Model):
+    """Pinion deflection along the face, toward the gear (positive closes the gap)."""
+
+    slope: Slope = Field(0.0, description="linear: equivalent slope, rad")
+    bending: quantity("length") = Field(0.0, description="parabolic: value at the face ends")
+    table: list[tuple[quantity("length"), quantity("length")]] = Field(
+        [], description="[[face position, deflection], ...], e.g. [['-15 mm', '0 um']]")
+
+
+class LoadSpec(Model):
+    tangential_load: Force | None = Field(None, description="at the pinion's operating pitch circle")
+    torque: Torque | None = Field(None, description="on the pinion, e.g. '240 N*m'")
+
+    @model_validator(mode="after")
+    def _one(self):
+        if (self.tangential_load is None) == (self.torque is None):
+            raise ValueError("load.tangential_load / load.torque: give exactly one of them")
+        return self
+
+
+class AnalysisSpec(Model):
+    positions: int = Field(21, ge=1, le=401, description="mesh positions over one pitch")
+    grid: tuple[int, int] = Field((25, 41), description="[profile, face] search grid")
+    approach: Length = Field(0.00632, description="rigid approach for the pattern")
+
+
+STEEL = {"E": "206 GPa", "nu": 0.3}
+
+
 class SpurCase(GearPairGeometry):
     """A parallel-axis pair, spur or helical (helix_angle), external or internal."""
 
@@ -210,6 +246,12 @@ class SpurCase(GearPairGeometry):
     rack: Rack = Rack()
     pinion: Member = Member()
     gear: Member = Member()
+    material: Material = Field(Material.model_validate(STEEL), description="default steel")
+    gear_material: Material | None = None
+    misalignment: MisalignmentSpec = MisalignmentSpec()
+    deflection: DeflectionSpec | None = None
+    load: LoadSpec | None = Field(None, description="with a load, run analyses the contact")
+    analysis: AnalysisSpec = AnalysisSpec()
     export: ExportSpec = ExportSpec()
 
     @model_validator(mode="after")

@@ -9,13 +9,13 @@ a = (r2 ± r1)·cos(alpha_t)/cos(alpha_wt) and the overlap ratio b·sin(beta)/(�
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 
 from scipy.optimize import brentq
 
 from .analytic.spur_mesh import SpurMesh
 from .case import Member, SplineCase, SpurCase, WormCase
-from .modify import EndRelief, FlankModifications, LeadCrown, ProfileCrown, TipRelief
+from .modify import Deflection, EndRelief, FlankModifications, LeadCrown, ProfileCrown, TipRelief
 from .surfaces.involute import CylindricalGear, inv
 from .surfaces.spline import InvoluteSpline
 from .surfaces.wheel import WormWheelFlank
@@ -30,10 +30,22 @@ class GearPair:
     gear_modifications: FlankModifications
     center_distance: float
     working_pressure_angle: float
+    pinion_deflection: Deflection | None = None
 
     @property
     def internal(self) -> bool:
         return self.gear.internal
+
+    @property
+    def pinion_loaded_modifications(self) -> FlankModifications:
+        """The pinion's modifications with its deflection added (for the loaded contact)."""
+        return replace(self.pinion_modifications, deflection=self.pinion_deflection)
+
+    @property
+    def operating_pitch_radius(self) -> float:
+        """Pinion operating pitch radius a/(u ± 1) (mm)."""
+        u = self.gear.teeth / self.pinion.teeth
+        return self.center_distance / (u - 1.0 if self.internal else u + 1.0)
 
     def transverse_mesh(self) -> SpurMesh:
         """The transverse line-of-action geometry (contact ratio, LPSTC, ...)."""
@@ -73,8 +85,10 @@ def gear_pair(case: SpurCase) -> GearPair:
         alpha_w = math.acos(abs(r_sum) * math.cos(alpha_t) / center)
     else:
         center = zero_backlash
+    d = case.deflection
+    deflection = None if d is None else Deflection(d.slope, d.bending, tuple(d.table))
     return GearPair(pinion, gear, modifications(case.pinion, pinion, "pinion"),
-                    modifications(case.gear, gear, "gear"), center, alpha_w)
+                    modifications(case.gear, gear, "gear"), center, alpha_w, deflection)
 
 
 def modifications(member: Member, gear: CylindricalGear, name: str) -> FlankModifications:

@@ -1,4 +1,4 @@
-"""Flank modifications as normal displacements (DESIGN.md principle 2).
+"""Flank modifications and deflections as normal displacements (DESIGN.md principle 2).
 
 Each modification is a drop (material removed, mm) as a function of the face position w
 (mm from mid-face, positive toward end B) and the roll length s = rb·t (mm along the
@@ -113,6 +113,39 @@ class EndRelief:
 
 
 @dataclass(frozen=True)
+class Deflection:
+    """Deflection of a flank along the face, as a displacement toward the mating flank
+    (mm, positive closes the gap): `slope`·w (rad; an equivalent misalignment), plus a
+    parabolic bending whose value is `bending` at the face ends and zero mid-face, plus a
+    table of (w, displacement) points interpolated linearly (held beyond its ends)."""
+
+    slope: float = 0.0
+    bending: float = 0.0
+    table: tuple[tuple[float, float], ...] = ()
+
+    def drop(self, w, face_width: float):
+        x = w / (0.5 * face_width)
+        d = self.slope * w + self.bending * x * x
+        if self.table:
+            positions, values = np.array(self.table, float).T
+            order = np.argsort(positions)
+            # piecewise linear in w, exact for jets as well: sum of hat functions
+            d = d + _piecewise_linear(w, positions[order], values[order])
+        return -d  # a drop removes material: moving toward the mate is a negative drop
+
+
+def _piecewise_linear(w, xs: np.ndarray, ys: np.ndarray):
+    """Linear interpolation through (xs, ys), held constant beyond the ends (jet-friendly)."""
+    out = ys[0] + 0.0 * w
+    for i in range(len(xs) - 1):
+        slope = (ys[i + 1] - ys[i]) / (xs[i + 1] - xs[i])
+        inside = (value(w) > xs[i]) & (value(w) <= xs[i + 1])
+        beyond = value(w) > xs[i + 1]
+        out = out + where(inside, slope * (w - xs[i]), where(beyond, ys[i + 1] - ys[i], 0.0))
+    return out
+
+
+@dataclass(frozen=True)
 class FlankModifications:
     """All modifications of one flank; `drop` is their sum (transverse amount, mm)."""
 
@@ -120,9 +153,12 @@ class FlankModifications:
     profile_crown: ProfileCrown | None = None
     tip_relief: TipRelief | None = None
     end_relief: EndRelief | None = None
+    deflection: Deflection | None = None
 
     def drop(self, w, s, face_width: float, s_form: float, s_tip: float):
         total = 0.0 * w + 0.0 * s
+        if self.deflection is not None:
+            total = total + self.deflection.drop(w, face_width)
         if self.lead_crown is not None:
             total = total + self.lead_crown.drop(w, face_width)
         if self.end_relief is not None:
@@ -136,4 +172,4 @@ class FlankModifications:
     @property
     def empty(self) -> bool:
         return all(m is None for m in (self.lead_crown, self.profile_crown, self.tip_relief,
-                                       self.end_relief))
+                                       self.end_relief, self.deflection))
