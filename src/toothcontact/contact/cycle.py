@@ -21,9 +21,11 @@ from ..assembly import ParallelMesh
 from ..surfaces.base import Flank
 from .ellipse import edge_margins
 from .local import analytic_gap, fit_gap, tangent_plane
-from .search import least_separation, separation, solve_transmission_error
+from .search import grid_minimum, refine_minimum, separation, solve_transmission_error
 
 LOAD_SHARING_RULE = "equal split of the normal load among the tooth pairs in contact"
+#: allowance (mm) for a pair's grid minimum lying above its true minimum
+CELL_GAP = 0.02
 #: gap (mm) up to which the fit patch reaches: about half the default approach, where the
 #: quartic fit recovers A and B to better than 0.1 % even where the profile curvature varies fast
 FIT_GAP = 0.003
@@ -46,22 +48,35 @@ def parallel_cycle(mesh: ParallelMesh, pinion: Flank, gear: Flank, normal_load: 
     grid = np.meshgrid(np.linspace(u0, u1, settings.grid[0]), np.linspace(v0, v1, settings.grid[1]),
                        indexing="ij")
     pitch = 2.0 * math.pi / z1
+    half = ((u1 - u0) / (settings.grid[0] - 1), (v1 - v0) / (settings.grid[1] - 1))
     rows, delta = [], 0.0
     for phi in np.linspace(-0.5 * pitch, 0.5 * pitch, settings.positions):
-        def grid_minimum(d, phi=phi):
-            values = [np.nanmin(s) for j in settings.pairs
-                      if np.isfinite(s := separation(pinion, gear, mesh.pinion_frame(phi, j),
-                                                     mesh.gear_frame(phi, j, d), *grid).s).any()]
-            return min(values)
+        frames = {j: mesh.pinion_frame(phi, j) for j in settings.pairs}
+        # the whole grid once; the lag is then solved on each pair's best grid points only
+        # (turning the gear shifts every separation alike, so the minimum stays among them)
+        best = {j: found for j in settings.pairs
+                if (found := grid_minimum(pinion, gear, frames[j], mesh.gear_frame(phi, j, delta),
+                                          grid)) is not None}
+        if not best:
+            raise ValueError(f"no tooth pair faces another at roll {math.degrees(phi):.3f} deg")
 
-        delta, _ = solve_transmission_error(grid_minimum, delta)
-        contacts = {}
-        for j in settings.pairs:
-            cp = least_separation(pinion, gear, mesh.pinion_frame(phi, j), mesh.gear_frame(phi, j, delta),
-                                  grid)
-            if cp is not None:
-                contacts[j] = cp
-        # refine the lag on the refined minimum (the grid minimum is a little above it)
+        def least_at(j, phi, d):
+            bu, bv, _ = best[j]
+            return np.nanmin(separation(pinion, gear, frames[j], mesh.gear_frame(phi, j, d),
+                                        bu, bv).s)
+
+        def least(d, phi=phi):
+            return min(least_at(j, phi, d) for j in best)
+
+        delta, s_grid = solve_transmission_error(least, delta)
+        # refine the pairs that may be in contact: the grid minimum can overstate a pair's
+        # least separation by about the gap across one grid cell
+        lag_shift = {j: least_at(j, phi, delta) for j in best}
+        contacts = {j: refine_minimum(pinion, gear, frames[j], mesh.gear_frame(phi, j, delta),
+                                      (bu[0], bv[0]), half)
+                    for j, (bu, bv, _) in best.items()
+                    if lag_shift[j] - s_grid <= settings.approach + CELL_GAP}
+        # the lag on the refined minimum (a little below the best grid point)
         slope = _lag_slope(mesh, pinion, gear, phi, delta, contacts)
         s_min = min(cp.s for cp in contacts.values())
         delta -= s_min / slope

@@ -50,50 +50,56 @@ class ContactPoint:
     s: float
 
 
-def least_separation(pinion: Flank, gear: Flank, pinion_frame: Frame, gear_frame: Frame,
-                     grid: tuple[np.ndarray, np.ndarray], refinements: int = 6) -> ContactPoint | None:
-    """The pinion point of least separation (None if the flanks do not face each other).
-
-    The best grid point is refined by fitting a quadratic to the separation on a 5 × 5 patch
-    around it and moving to the fitted minimum (kept inside the flank's domain), with the
-    patch shrinking each time: a handful of vectorised evaluations instead of a point-by-point
-    search."""
+def grid_minimum(pinion: Flank, gear: Flank, pinion_frame: Frame, gear_frame: Frame,
+                 grid: tuple[np.ndarray, np.ndarray], keep: int = 9):
+    """The `keep` pinion grid points of least separation, as (u, v, s) arrays (None when the
+    flanks do not face each other)."""
     u, v = grid
-    field = separation(pinion, gear, pinion_frame, gear_frame, u, v).s
-    if not np.isfinite(field).any():
+    field = separation(pinion, gear, pinion_frame, gear_frame, u, v).s.ravel()
+    finite = np.flatnonzero(np.isfinite(field))
+    if finite.size == 0:
         return None
-    i = np.nanargmin(field)
+    best = finite[np.argsort(field[finite])[:keep]]
+    return u.ravel()[best], v.ravel()[best], field[best]
+
+
+def refine_minimum(pinion: Flank, gear: Flank, pinion_frame: Frame, gear_frame: Frame,
+                   start: tuple[float, float], half: tuple[float, float],
+                   refinements: int = 6) -> ContactPoint:
+    """The pinion point of least separation near `start`: a quadratic is fitted to the
+    separation on a 5 × 5 patch (half-sizes `half`) and the patch moves to its minimum (kept
+    inside the flank's domain), shrinking each time: a handful of vectorised evaluations.
+    The best point seen (patch points and the final fitted minimum) is returned."""
     (u0, u1), (v0, v1) = pinion.domain
-    centre = np.array([u.flat[i], v.flat[i]])
-    half = np.array([(u1 - u0) / max(u.shape[0] - 1, 1), (v1 - v0) / max(u.shape[1] - 1, 1)])
-    best_s = field.flat[i]
+    centre, half = np.array(start, float), np.array(half, float)
     offsets = np.linspace(-1.0, 1.0, 5)
     du, dv = np.meshgrid(offsets, offsets, indexing="ij")
-    design = np.stack([np.ones(25), du.ravel(), dv.ravel(), du.ravel() ** 2,
-                       (du * dv).ravel(), dv.ravel() ** 2], axis=-1)
+    du, dv = du.ravel(), dv.ravel()
+    design = np.stack([np.ones(25), du, dv, du**2, du * dv, dv**2], axis=-1)
+    best_uv, best_s = centre.copy(), np.inf
     for _ in range(refinements):
         pu = np.clip(centre[0] + half[0] * du, u0, u1)
         pv = np.clip(centre[1] + half[1] * dv, v0, v1)
         values = separation(pinion, gear, pinion_frame, gear_frame, pu, pv).s
+        ok = np.isfinite(values)
+        if not ok.any():
+            break
         k = np.nanargmin(values)
-        candidate = np.array([pu.flat[k], pv.flat[k]])
-        ok = np.isfinite(values.ravel())
+        if values[k] < best_s:
+            best_uv, best_s = np.array([pu[k], pv[k]]), values[k]
+        centre = best_uv
         if ok.sum() >= 6:
-            c, *_ = np.linalg.lstsq(design[ok], values.ravel()[ok], rcond=None)
+            c, *_ = np.linalg.lstsq(design[ok], values[ok], rcond=None)
             hessian = np.array([[2 * c[3], c[4]], [c[4], 2 * c[5]]])
             if np.all(np.linalg.eigvalsh(hessian) > 0):
-                step = np.linalg.solve(hessian, -c[1:3])
-                vertex = np.clip(centre + np.clip(step, -1.5, 1.5) * half, [u0, v0], [u1, v1])
-                candidate = vertex
-        trial = separation(pinion, gear, pinion_frame, gear_frame, np.array([candidate[0]]),
-                           np.array([candidate[1]])).s[0]
-        if np.isfinite(trial) and trial <= min(best_s, np.nanmin(values)):
-            centre, best_s = candidate, trial
-        elif np.nanmin(values) < best_s:
-            centre, best_s = np.array([pu.flat[k], pv.flat[k]]), values.flat[k]
+                step = np.clip(np.linalg.solve(hessian, -c[1:3]), -1.5, 1.5)
+                patch_centre = np.array([pu[12], pv[12]])
+                centre = np.clip(patch_centre + step * half, [u0, v0], [u1, v1])
         half = 0.3 * half
-    hit = separation(pinion, gear, pinion_frame, gear_frame, np.array([centre[0]]),
-                     np.array([centre[1]]))
+    hit = separation(pinion, gear, pinion_frame, gear_frame, centre[:1], centre[1:])
+    if not (np.isfinite(hit.s[0]) and hit.s[0] <= best_s):
+        hit = separation(pinion, gear, pinion_frame, gear_frame, best_uv[:1], best_uv[1:])
+        centre = best_uv
     return ContactPoint(float(centre[0]), float(centre[1]), float(hit.gear_u[0]),
                         float(hit.gear_v[0]), float(hit.s[0]))
 

@@ -33,32 +33,36 @@ class Jet:
 
     # --- composition with a scalar function: phi(f) given phi, phi', phi'' at f ---------
     def _chain(self, p0, p1, p2) -> "Jet":
-        return Jet(p0, p1 * self.u, p1 * self.v, p2 * self.u * self.u + p1 * self.uu,
-                   p2 * self.u * self.v + p1 * self.uv, p2 * self.v * self.v + p1 * self.vv)
+        return _new(p0, p1 * self.u, p1 * self.v, p2 * self.u * self.u + p1 * self.uu,
+                    p2 * self.u * self.v + p1 * self.uv, p2 * self.v * self.v + p1 * self.vv)
 
-    # --- arithmetic -----------------------------------------------------------------------
+    # --- arithmetic (a plain number or array operand is a constant: cheaper rules) --------
     def __add__(self, other):
-        o = _lift(other)
-        return Jet(self.f + o.f, self.u + o.u, self.v + o.v, self.uu + o.uu, self.uv + o.uv,
-                   self.vv + o.vv)
+        if not isinstance(other, Jet):
+            return _new(self.f + other, self.u, self.v, self.uu, self.uv, self.vv)
+        return _new(self.f + other.f, self.u + other.u, self.v + other.v, self.uu + other.uu,
+                    self.uv + other.uv, self.vv + other.vv)
 
     __radd__ = __add__
 
     def __neg__(self):
-        return Jet(-self.f, -self.u, -self.v, -self.uu, -self.uv, -self.vv)
+        return _new(-self.f, -self.u, -self.v, -self.uu, -self.uv, -self.vv)
 
     def __sub__(self, other):
-        return self + (-_lift(other))
+        return self + (-other)
 
     def __rsub__(self, other):
-        return _lift(other) + (-self)
+        return (-self) + other
 
     def __mul__(self, other):
-        o = _lift(other)
-        return Jet(self.f * o.f, self.u * o.f + self.f * o.u, self.v * o.f + self.f * o.v,
-                   self.uu * o.f + 2 * self.u * o.u + self.f * o.uu,
-                   self.uv * o.f + self.u * o.v + self.v * o.u + self.f * o.uv,
-                   self.vv * o.f + 2 * self.v * o.v + self.f * o.vv)
+        if not isinstance(other, Jet):
+            c = other
+            return _new(self.f * c, self.u * c, self.v * c, self.uu * c, self.uv * c, self.vv * c)
+        o = other
+        return _new(self.f * o.f, self.u * o.f + self.f * o.u, self.v * o.f + self.f * o.v,
+                    self.uu * o.f + 2 * self.u * o.u + self.f * o.uu,
+                    self.uv * o.f + self.u * o.v + self.v * o.u + self.f * o.uv,
+                    self.vv * o.f + 2 * self.v * o.v + self.f * o.vv)
 
     __rmul__ = __mul__
 
@@ -67,7 +71,9 @@ class Jet:
         return self._chain(r, -r * r, 2 * r * r * r)
 
     def __truediv__(self, other):
-        return self * _lift(other).reciprocal()
+        if not isinstance(other, Jet):
+            return self * (1.0 / np.asarray(other, float))
+        return self * other.reciprocal()
 
     def __rtruediv__(self, other):
         return _lift(other) * self.reciprocal()
@@ -91,6 +97,13 @@ class Jet:
 
 def _lift(x) -> Jet:
     return x if isinstance(x, Jet) else Jet(x)
+
+
+def _new(f, u, v, uu, uv, vv) -> Jet:
+    """A jet from arrays already computed (no conversion: the hot path of every operation)."""
+    jet = object.__new__(Jet)
+    jet.f, jet.u, jet.v, jet.uu, jet.uv, jet.vv = f, u, v, uu, uv, vv
+    return jet
 
 
 def _arctan2(y: Jet, x: Jet) -> Jet:
