@@ -3,8 +3,11 @@
     .venv/bin/python benchmarks/run.py
 
 Times the analytic building blocks (an exact Hertz solve, a crown design), every bundled
-analytic case end to end (load, validate, analyse), and the CLI start-up, which must not
-import the heavy 3D stack.
+case end to end (load, validate, analyse; the spur case includes its 21-position contact
+cycle), the solids of the issue-3 benchmark parts (crowned spur gear z = 20, m = 3 mm,
+F = 30 mm, all teeth; the seed 000 worm wheel z2 = 40) with their flank deviation, and the
+CLI start-up, which must not import the heavy 3D stack. The side-by-side comparison with
+other gear generators is benchmarks/geometry_peers.py.
 """
 
 from __future__ import annotations
@@ -48,6 +51,8 @@ def main() -> None:
         rows.append((f"case {path.stem}", best_of(lambda: analyse_file(path), number=3),
                      "load + validate + analyse"))
 
+    rows.extend(_solids())
+
     probe = ("import sys, time; t = time.perf_counter(); from toothcontact.cli import app\n"
              "try:\n    app(['--help'])\nexcept SystemExit:\n    pass\n"
              "print(time.perf_counter() - t); print(sorted({'cadquery', 'pyvista', 'vtk', 'OCP'}"
@@ -69,6 +74,44 @@ def main() -> None:
               "results": [{"name": n, "seconds": s, "note": note} for n, s, note in rows]}
     (HERE / "results.json").write_text(json.dumps(record, indent=2) + "\n")
     print(f"wrote {HERE / 'results.json'}")
+
+
+def _solids():
+    """Build + STEP time and flank deviation of the issue-3 benchmark parts."""
+    import tempfile
+
+    from toothcontact import cad
+    from toothcontact.modify import FlankModifications, LeadCrown
+    from toothcontact.surfaces.involute import CylindricalGear
+    from toothcontact.surfaces.wheel import WormWheelFlank
+    from toothcontact.surfaces.worm import WormFlank
+
+    out = []
+    tmp = Path(tempfile.mkdtemp())
+    gear = CylindricalGear(20, 3.0, math.radians(20), 30.0)
+    crown = FlankModifications(lead_crown=LeadCrown(radius=4000.0))
+    t0 = time.perf_counter()
+    body = cad.build_gear(gear, crown)
+    t1 = time.perf_counter()
+    cad.write_step(body.solid, tmp / "spur.step")
+    t2 = time.perf_counter()
+    out.append(("crowned spur z=20 m=3 F=30: build", t1 - t0,
+                f"flank deviation {1000 * body.flank_deviation():.3f} um"))
+    out.append(("crowned spur z=20: STEP export", t2 - t1, f"{(tmp / 'spur.step').stat().st_size / 1e6:.1f} MB"))
+
+    kw = dict(form="ZI", starts=1, lead_angle=math.radians(4.1), normal_module=1.1, length=40.0)
+    t0 = time.perf_counter()
+    flanks = {s: WormWheelFlank(WormFlank.from_lead_angle(side=s, **kw), 40) for s in ("left", "right")}
+    t1 = time.perf_counter()
+    wheel = cad.build_wheel(flanks["left"], flanks["right"])
+    t2 = time.perf_counter()
+    cad.write_step(wheel.solid, tmp / "wheel.step")
+    t3 = time.perf_counter()
+    out.append(("seed-000 wheel z2=40: exact envelope flanks", t1 - t0, "equation of meshing, closed form"))
+    out.append(("seed-000 wheel z2=40: solid (25 sections)", t2 - t1,
+                f"flank deviation {1000 * wheel.flank_deviation():.3f} um"))
+    out.append(("seed-000 wheel z2=40: STEP export", t3 - t2, f"{(tmp / 'wheel.step').stat().st_size / 1e6:.1f} MB"))
+    return out
 
 
 if __name__ == "__main__":
