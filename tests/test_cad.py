@@ -8,7 +8,7 @@ import pytest
 
 from toothcontact import cad
 from toothcontact.modify import FlankModifications, LeadCrown, TipRelief
-from toothcontact.surfaces.generation import generate_side
+from toothcontact.surfaces.generation import generate_ring_side, generate_side
 from toothcontact.surfaces.involute import CylindricalGear
 
 
@@ -16,27 +16,19 @@ def transverse_area(gear: CylindricalGear) -> float:
     """Shoelace area of a densely sampled exact transverse outline (no OCC involved)."""
     pitch = 2 * math.pi / gear.teeth
     outline = []
+    side = generate_ring_side(gear) if gear.internal else generate_side(gear)
+    flank = {s: gear.flank(s, side.form_radius) for s in (1, -1)}
+    t = np.linspace(*flank[1].domain[0], 400)
     if gear.internal:
-        flank = {s: gear.flank(s) for s in (1, -1)}
-        t = np.linspace(*flank[1].domain[0], 400)
-        minus = np.stack(flank[-1].transverse_point(t[::-1]), -1)  # root -> tip
-        plus = np.stack(flank[1].transverse_point(t), -1)          # tip -> root
-        tip = _arc(gear.tip_radius, math.atan2(*minus[-1][::-1]), math.atan2(*plus[0][::-1]))
-        root = _arc(gear.root_radius_value, math.atan2(*plus[-1][::-1]),
-                    math.atan2(*minus[0][::-1]) + pitch)
-        tooth = np.concatenate([minus, tip, plus, root])
-    else:
-        side = generate_side(gear)
-        flank = {s: gear.flank(s, side.form_radius) for s in (1, -1)}
-        t = np.linspace(*flank[1].domain[0], 400)
-        fil_m = side.fillet * [1, -1]
-        minus = np.stack(flank[-1].transverse_point(t), -1)
-        plus = np.stack(flank[1].transverse_point(t[::-1]), -1)
-        tip = _arc(gear.tip_radius, math.atan2(*minus[-1][::-1]), math.atan2(*plus[0][::-1]))
-        fil_p = side.fillet[::-1]
-        root = _arc(gear.root_radius_value, math.atan2(*fil_p[-1][::-1]),
-                    math.atan2(*fil_m[0][::-1]) + pitch)
-        tooth = np.concatenate([fil_m, minus, tip, plus, fil_p, root])
+        t = t[::-1]  # from the form end to the tip
+    fil_m = side.fillet * [1, -1]
+    minus = np.stack(flank[-1].transverse_point(t), -1)
+    plus = np.stack(flank[1].transverse_point(t[::-1]), -1)
+    tip = _arc(gear.tip_radius, math.atan2(*minus[-1][::-1]), math.atan2(*plus[0][::-1]))
+    fil_p = side.fillet[::-1]
+    root = _arc(gear.root_radius_value, math.atan2(*fil_p[-1][::-1]),
+                math.atan2(*fil_m[0][::-1]) + pitch)
+    tooth = np.concatenate([fil_m, minus, tip, plus, fil_p, root])
     for k in range(gear.teeth):
         c, s = math.cos(k * pitch), math.sin(k * pitch)
         outline.append(tooth @ np.array([[c, s], [-s, c]]))

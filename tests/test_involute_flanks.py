@@ -183,3 +183,40 @@ def test_profile_crown_tip_relief_and_end_relief_amounts():
                   0.5 * (s_form + s_tip), 0.5 * (s_form + s_tip)])
     drop = mods.drop(w, s, F, s_form, s_tip)
     np.testing.assert_allclose(drop, [0.004, 0.0, 0.004 + 0.010, 0.008, 0.004, 0.0], atol=1e-12)
+
+
+@pytest.mark.parametrize("name", ["ring", "helical ring"])
+def test_shaper_cut_ring_fillet_joins_the_involute(name):
+    """The shaper cutter's flank generates the ring's exact involute (checked on cutter
+    involute points through the same Willis solve), and its tip rounding a fillet from the
+    root circle to the form circle, tangent to the flank there."""
+    import math as m
+
+    from toothcontact.surfaces.generation import _shaped, generate_ring_side, shaper_cutter_teeth
+
+    gear = GEARS[name]
+    side = generate_ring_side(gear)
+    assert np.hypot(*side.fillet[0]) == pytest.approx(gear.root_radius_value, rel=1e-12)
+    flank = gear.flank(1, side.form_radius)
+    form_end = np.array(flank.transverse_point(flank.domain[0][1]))
+    np.testing.assert_allclose(side.fillet[-1], form_end, atol=1e-9)
+    n_flank = np.array(flank.unit_normal(flank.domain[0][1], 0.0))[:2]
+    n_flank /= np.linalg.norm(n_flank)
+    assert np.dot(side.fillet_normals[-1], n_flank) == pytest.approx(1.0, abs=1e-9)
+    # cutter involute points generate points on the ring's involute (same base circle)
+    zc = shaper_cutter_teeth(gear.teeth)
+    mt, a = gear.transverse_module, gear.transverse_pressure_angle
+    rc, r2 = 0.5 * zc * mt, gear.pitch_radius
+    rbc = rc * m.cos(a)
+    psi = (m.pi * mt - gear.tooth_thickness) / (2 * rc) + m.tan(a) - a
+    t = np.linspace(0.3, 0.5, 5)
+    ang = psi - t
+    pts = rbc * np.stack([np.cos(ang) - t * np.sin(ang), np.sin(ang) + t * np.cos(ang)], -1)
+    nrm = np.stack([np.sin(ang), -np.cos(ang)], -1)  # out of the cutter tooth (side +1)
+    ring_pts, _ = _shaped(pts, nrm, r2 - rc, r2, rc)
+    r = np.hypot(ring_pts[:, 0], ring_pts[:, 1])
+    alpha = np.arccos(gear.base_radius / r)
+    polar = np.arctan2(ring_pts[:, 1], ring_pts[:, 0])
+    # the space centred on 0: its + side is the ring tooth's side -1 flank at +pi/z
+    expected = m.pi / gear.teeth - (gear.base_half_angle + (np.tan(alpha) - alpha))
+    np.testing.assert_allclose(polar, expected, atol=1e-12)

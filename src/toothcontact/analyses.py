@@ -335,19 +335,14 @@ def _spur_contact(case: schema.SpurCase, pair, result: Result) -> None:
     """Contact by surface separation over the mesh cycle (contact.cycle)."""
     from .assembly import Misalignment, ParallelMesh
     from .contact.cycle import LOAD_SHARING_RULE, CycleSettings, parallel_cycle
-    from .surfaces.generation import generate_side
-    from .surfaces.modified import ModifiedFlank
+    from .gearset import working_flank
 
     m = case.misalignment
     mesh = ParallelMesh(pair, Misalignment(m.slope, m.slope_normal, m.center_distance_error,
                                            m.axial_shift))
 
-    def flank(gear, mods, side):
-        base = gear.flank(side, None if gear.internal else generate_side(gear).form_radius)
-        return base if mods.empty else ModifiedFlank(base, mods)
-
-    pinion = flank(pair.pinion, pair.pinion_loaded_modifications, 1)
-    gear = flank(pair.gear, pair.gear_modifications, mesh.gear_side)
+    pinion = working_flank(pair.pinion, pair.pinion_loaded_modifications, 1)
+    gear = working_flank(pair.gear, pair.gear_modifications, mesh.gear_side)
     wt = case.load.tangential_load or case.load.torque / pair.operating_pitch_radius
     normal_load = wt / (math.cos(pair.working_pressure_angle) * math.cos(pair.pinion.base_helix_angle))
     gear_material = case.gear_material or case.material

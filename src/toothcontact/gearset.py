@@ -61,6 +61,17 @@ class GearPair:
         return face * math.sin(self.pinion.helix_angle) / (math.pi * self.pinion.normal_module)
 
 
+def working_flank(gear: CylindricalGear, modifications: FlankModifications, side: int):
+    """The active flank of tooth 0 on `side`: from the generated form circle (rack or shaper
+    cutter) to the tip, with its modifications."""
+    from .surfaces.generation import generate_ring_side, generate_side
+    from .surfaces.modified import ModifiedFlank
+
+    generated = generate_ring_side(gear) if gear.internal else generate_side(gear)
+    flank = gear.flank(side, generated.form_radius)
+    return flank if modifications.empty else ModifiedFlank(flank, modifications)
+
+
 def gear_pair(case: SpurCase) -> GearPair:
     z1, z2 = case.teeth
     internal = z2 < 0

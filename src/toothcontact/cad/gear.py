@@ -1,8 +1,8 @@
 """B-spline solids of cylindrical gears and splines from their exact flanks.
 
 A cylindrical gear is lofted through transverse sections (see `loft`): in each section the
-tooth outline is the exact (modified) flank, the rack-generated root fillet and the tip and
-root arcs. `loft.flank_deviation` measures how far the flank faces stray from the exact
+tooth outline is the exact (modified) flank, the generated root fillet (by the rack, or by a
+shaper cutter for a ring) and the tip and root arcs. `loft.flank_deviation` measures how far the flank faces stray from the exact
 surface between the fitting points.
 """
 
@@ -15,7 +15,7 @@ import numpy as np
 
 from ..modify import FlankModifications
 from ..surfaces.base import Flank
-from ..surfaces.generation import generate_side
+from ..surfaces.generation import generate_ring_side, generate_side, shaper_cutter_teeth
 from ..surfaces.involute import CylindricalGear
 from ..surfaces.modified import ModifiedFlank
 from .loft import (arc, chord_parameters, flank_deviation, generated_face, half_root_arc,
@@ -56,15 +56,15 @@ def build_gear(gear: CylindricalGear, modifications: FlankModifications | None =
     mods = modifications or FlankModifications()
     notes = []
     if gear.internal:
-        generated, form_radius = None, None
-        notes.append("ring gear: the root is a sharp corner (no pinion-cutter fillet yet)")
+        generated = generate_ring_side(gear)
+        notes.append(f"ring gear: root fillet cut by a {shaper_cutter_teeth(gear.teeth)}-tooth "
+                     "shaper cutter")
     else:
         generated = generate_side(gear)
-        form_radius = generated.form_radius
         if generated.undercut:
             raise ValueError(f"the {gear.teeth}-tooth gear is undercut by its rack at profile shift "
                              f"{gear.profile_shift:g}: increase the profile shift")
-    flanks = {side: _apply(gear.flank(side, form_radius), mods) for side in (1, -1)}
+    flanks = {side: _apply(gear.flank(side, generated.form_radius), mods) for side in (1, -1)}
     if sections is None:
         twist = abs(gear.twist_per_length) * gear.face_width
         curved = mods.lead_crown is not None or mods.end_relief is not None
@@ -73,9 +73,9 @@ def build_gear(gear: CylindricalGear, modifications: FlankModifications | None =
     fit_u = np.linspace(u0, u1, profile_points)
     fit_v = np.linspace(v0, v1, sections)
 
-    params = {"flank": chord_parameters(np.stack(gear.flank(1, form_radius).transverse_point(fit_u), -1))}
-    if generated is not None:
-        params["fillet"] = chord_parameters(generated.fillet)
+    params = {"flank": chord_parameters(np.stack(
+                  gear.flank(1, generated.form_radius).transverse_point(fit_u), -1)),
+              "fillet": chord_parameters(generated.fillet)}
     wires, flank_index = [], {}
     for z in fit_v:
         wire, flank_index = _section_wire(gear, flanks, generated, params, fit_u, float(z),
@@ -116,7 +116,9 @@ def _fillet_section(gear: CylindricalGear, flank: Flank, generated, side: int, z
     rotation = np.array([[c, s], [-s, c]])
     pts = (generated.fillet * mirror) @ rotation
     if isinstance(flank, ModifiedFlank):
-        drop = float(np.asarray(flank.drop(np.array([flank.domain[0][0]]), np.array([z])))[0])
+        (u0, u1), _ = flank.domain
+        form_end = u1 if gear.internal else u0
+        drop = float(np.asarray(flank.drop(np.array([form_end]), np.array([z])))[0])
         normals = (generated.fillet_normals * mirror) @ rotation
         pts = pts - drop * math.cos(gear.base_helix_angle) * normals
     pts = np.column_stack([pts, np.full(len(pts), z)])
@@ -130,25 +132,22 @@ def _section_wire(gear: CylindricalGear, flanks: dict, generated, params: dict, 
     toward the axis), and the positions of tooth 0's flank edges in it (side -> index).
 
     Each tooth runs from the centre of the space before it to the centre of the space after
-    it: half root arc, (fillet,) flank, tip arc, flank, (fillet,) half root arc."""
-    minus = _flank_section(flanks[-1], u, z)
-    plus = _flank_section(flanks[1], u, z)[::-1]
+    it: half root arc, fillet, flank, tip arc, flank, fillet, half root arc."""
+    # each flank from its form end to its tip (u runs from the tip on a ring)
+    forward = slice(None, None, -1) if gear.internal else slice(None)
+    minus = _flank_section(flanks[-1], u, z)[forward]
+    plus = _flank_section(flanks[1], u, z)[forward]
+    f = params["flank"][forward]
+    f = 1.0 - f if gear.internal else f
+    g = params["fillet"]
     turn = gear.twist_per_length * z
     pitch = 2.0 * math.pi / gear.teeth
-    tip = arc(minus[-1] if not gear.internal else minus[0], polar(gear.tip_radius, turn, z),
-               plus[0] if not gear.internal else plus[-1])
-    if gear.internal:  # ring: root (outer) -> tip (inner) along side -1, back out along +1
-        f = params["flank"]
-        side_minus = [interpolated(minus[::-1], 1.0 - f[::-1])]
-        side_plus = [interpolated(plus[::-1], f)]
-        start, end = minus[-1], plus[0]
-    else:
-        fil_minus = _fillet_section(gear, flanks[-1], generated, -1, z, minus[0])
-        fil_plus = _fillet_section(gear, flanks[1], generated, 1, z, plus[-1])[::-1]
-        f, g = params["flank"], params["fillet"]
-        side_minus = [interpolated(fil_minus, g), interpolated(minus, f)]
-        side_plus = [interpolated(plus, 1.0 - f[::-1]), interpolated(fil_plus, 1.0 - g[::-1])]
-        start, end = fil_minus[0], fil_plus[-1]
+    fil_minus = _fillet_section(gear, flanks[-1], generated, -1, z, minus[0])     # root -> form
+    fil_plus = _fillet_section(gear, flanks[1], generated, 1, z, plus[0])[::-1]   # form -> root
+    side_minus = [interpolated(fil_minus, g), interpolated(minus, f)]
+    tip = arc(minus[-1], polar(gear.tip_radius, turn, z), plus[-1])
+    side_plus = [interpolated(plus[::-1], 1.0 - f[::-1]), interpolated(fil_plus, 1.0 - g[::-1])]
+    start, end = fil_minus[0], fil_plus[-1]
     root = 0.5 * (np.hypot(*start[:2]) + np.hypot(*end[:2]))
     space_before, space_after = turn - 0.5 * pitch, turn + 0.5 * pitch
     edges = [half_root_arc(root, space_before, start, z), *side_minus, tip, *side_plus,

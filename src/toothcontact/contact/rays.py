@@ -39,8 +39,12 @@ def intersect(flank: Flank, points: np.ndarray, directions: np.ndarray, u0: np.n
         sample = flank.evaluate(u, v)
         residual = sample.points - points - s[..., None] * directions
         jac = np.stack([sample.r_u, sample.r_v, -directions], axis=-1)
+        # a ray along the flank, or a singular point of it (an involute at its base circle),
+        # has no Newton step: park it (identity) and let it end unconverged
+        singular = ~(np.abs(np.linalg.det(jac)) > 1e-14)
+        jac = np.where(singular[..., None, None], np.eye(3), jac)
         step = np.linalg.solve(jac, -residual[..., None])[..., 0]
-        step = np.where(np.isfinite(step), step, 0.0)
+        step = np.where(np.isfinite(step) & ~singular[..., None], step, 0.0)
         u, v, s = u + step[..., 0], v + step[..., 1], s + step[..., 2]
         converged = np.linalg.norm(residual, axis=-1) < tolerance
         if np.all(converged | ~np.isfinite(residual).all(axis=-1)):

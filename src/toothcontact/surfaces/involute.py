@@ -205,10 +205,11 @@ class InvoluteFlank(Flank):
 
     def parameters_near(self, points):
         """Starting parameters (u, v) for points near the flank (own frame): the roll angle
-        of their radius and their z."""
+        of their radius (at least 0.05) and their z."""
         r = np.hypot(points[..., 0], points[..., 1])
         t = np.sqrt(np.maximum(r * r / self.gear.base_radius**2 - 1.0, 0.0))
-        return t, points[..., 2].copy()
+        # never start at the involute's cusp on the base circle (t = 0), where r_u vanishes
+        return np.maximum(t, 0.05), points[..., 2].copy()
 
     def transverse_point(self, t):
         """The flank's transverse profile at z = 0: arrays x, y (mm) at roll angles t."""
