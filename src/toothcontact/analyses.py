@@ -363,9 +363,11 @@ def _spur_contact(case: schema.SpurCase, pair, result: Result) -> None:
                "load_sharing": LOAD_SHARING_RULE}
     for kind, label in (("face", "at the face ends (edge loading)"),
                         ("profile", "at the tip and form edges (corner contact)")):
-        margin, edge, roll = min((v, k, r["roll_deg"]) for r in rows
-                                 for k, v in r["edge_margins_mm"].items()
-                                 if ("end_" in k) == (kind == "face"))
+        candidates = [(v, k, r["roll_deg"]) for r in rows for k, v in r["edge_margins_mm"].items()
+                      if ("end_" in k) == (kind == "face")]
+        if not candidates:  # line contact only: no ellipse to hold against the edges
+            continue
+        margin, edge, roll = min(candidates)
         summary[f"worst_{kind}_edge_margin_mm"], summary[f"worst_{kind}_edge"] = margin, edge
         result.checks.append(Check(f"contact ellipse clear of the edges {label}", margin >= 0,
                                    f"worst margin {margin:.3f} mm ({edge}) at roll {roll:.2f} deg"))

@@ -80,6 +80,11 @@ class ParallelMesh:
         self.plane_normal = np.cross(self.line_of_action, [0.0, 0.0, 1.0])
         self._tilt = self._tilt_rotation()
 
+    @property
+    def driver_pitch(self) -> float:
+        """The pinion's angular pitch (rad): one mesh cycle."""
+        return 2.0 * math.pi / self.pair.pinion.teeth
+
     def pinion_frame(self, phi1: float, tooth: int = 0) -> Frame:
         angle = phi1 + tooth * 2.0 * math.pi / self.pair.pinion.teeth
         return Frame(rotation([0, 0, 1], angle), np.zeros(3))
@@ -100,3 +105,43 @@ class ParallelMesh:
         for an external and a ring gear alike."""
         m = self.misalignment
         return rotation(self.plane_normal, m.slope) @ rotation(self.line_of_action, m.slope_normal)
+
+
+@dataclass(frozen=True)
+class WormMisalignment:
+    """Misalignment of a worm set: centre_distance_error (mm, + = apart), shaft_angle_error
+    (rad, crossing angle 90° + error), wheel_axial_shift (mm, along the wheel axis)."""
+
+    centre_distance_error: float = 0.0
+    shaft_angle_error: float = 0.0
+    wheel_axial_shift: float = 0.0
+
+
+class WormMesh:
+    """A worm and its wheel in mesh. World = the worm's frame (the worm turned by phi1); the
+    wheel is placed by its own generating kinematics (surfaces.wheel.wheel_from_hob) at the
+    worm set's centre distance and crossing angle, plus the misalignment; wheel tooth j is
+    tooth 0 turned by j pitches, and the wheel lags by delta (transmission error)."""
+
+    def __init__(self, wheel_flank, misalignment: WormMisalignment = WormMisalignment()):
+        self.wheel, self.misalignment = wheel_flank, misalignment
+        self.centre_distance = wheel_flank.centre_distance + misalignment.centre_distance_error
+        self.crossing_angle = 0.5 * math.pi + misalignment.shaft_angle_error
+
+    @property
+    def driver_pitch(self) -> float:
+        """The worm's turn per wheel tooth (rad): one mesh cycle."""
+        return 2.0 * math.pi / self.wheel.worm.starts
+
+    def pinion_frame(self, phi1: float, tooth: int = 0) -> Frame:
+        return Frame(np.eye(3), np.zeros(3))
+
+    def gear_frame(self, phi1: float, tooth: int = 0, delta: float = 0.0) -> Frame:
+        M = self.wheel.wheel_from_hob(phi1, centre_distance=self.centre_distance,
+                                      crossing_angle=self.crossing_angle)
+        # wheel-attached -> worm-attached; tooth j and the lag turn the wheel about its axis
+        turn = rotation([0, 0, 1], 2.0 * math.pi * tooth / self.wheel.teeth - delta)
+        shift = np.array([0.0, 0.0, self.misalignment.wheel_axial_shift])
+        R = M[:3, :3].T @ turn
+        origin = M[:3, :3].T @ (shift - M[:3, 3])
+        return Frame(R, origin)

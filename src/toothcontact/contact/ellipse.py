@@ -19,7 +19,8 @@ from .rays import intersect
 def edge_margins(flank: Flank, frame: Frame, plane: TangentPlane, a: float, b: float,
                  angle: float, guess, samples: int = 72) -> dict[str, float]:
     """Margin (mm) from the ellipse (semi-axes a along `angle` from e1, b across) to each of
-    the flank's edges, named as in flank.edges."""
+    the flank's edges, named as in flank.edges; "beyond_surface" (-b) when part of the ellipse
+    lies where the flank surface does not exist (outside the region a hob generated)."""
     theta = np.linspace(0.0, 2.0 * np.pi, samples, endpoint=False)
     da = np.cos(angle) * plane.e1 + np.sin(angle) * plane.e2
     db = np.cross(plane.normal, da)
@@ -38,4 +39,8 @@ def edge_margins(flank: Flank, frame: Frame, plane: TangentPlane, a: float, b: f
         flank.edges["v0"]: (hits.v - v0) * speed_v,
         flank.edges["v1"]: (v1 - hits.v) * speed_v,
     }
-    return {name: float(np.min(value)) for name, value in margins.items()}
+    on = hits.converged & np.isfinite(hits.u)
+    out = {name: float(np.min(value[on])) if on.any() else -b for name, value in margins.items()}
+    if not np.all(on):
+        out["beyond_surface"] = -b
+    return out

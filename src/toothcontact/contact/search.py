@@ -28,15 +28,29 @@ class Separation:
     gear_v: np.ndarray
 
 
+#: farthest separation (mm) taken as the two flanks facing each other; beyond it the normal
+#: line has met another part of the (long) mating surface, not the flank opposite
+REACH = 2.0
+
+
 def separation(pinion: Flank, gear: Flank, pinion_frame: Frame, gear_frame: Frame,
                u: np.ndarray, v: np.ndarray) -> Separation:
-    """Separation at pinion parameters (u, v) with both flanks placed by their frames."""
-    sample = pinion.evaluate(u, v)
-    points = gear_frame.to_local(pinion_frame.to_world(sample.points))
-    normals = gear_frame.vectors_to_local(pinion_frame.vectors_to_world(sample.normals))
-    u0, v0 = gear.parameters_near(points)
-    hits = intersect(gear, points, normals, u0, v0)
-    return Separation(np.where(hits.inside, hits.s, np.nan), hits.u, hits.v)
+    """Separation at pinion parameters (u, v) with both flanks placed by their frames.
+
+    NaN where the normal line meets no gear flank inside its domain, meets it from behind
+    (the two normals must oppose), or farther than REACH."""
+    with np.errstate(all="ignore"):  # probes beyond a surface's existence give NaN there
+        sample = pinion.evaluate(u, v)
+        points = gear_frame.to_local(pinion_frame.to_world(sample.points))
+        normals = gear_frame.vectors_to_local(pinion_frame.vectors_to_world(sample.normals))
+        u0, v0 = gear.parameters_near(points)
+        hits = intersect(gear, points, normals, u0, v0)
+        facing = hits.inside & (np.abs(hits.s) <= REACH)
+        if facing.any():
+            mate = gear.evaluate(np.where(facing, hits.u, gear.domain[0][0]),
+                                 np.where(facing, hits.v, gear.domain[1][0])).normals
+            facing &= np.einsum("...i,...i->...", mate, normals) < 0.0
+    return Separation(np.where(facing, hits.s, np.nan), hits.u, hits.v)
 
 
 @dataclass(frozen=True)

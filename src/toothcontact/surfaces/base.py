@@ -44,6 +44,21 @@ class Flank:
         return FlankSample(stack("f"), stack("u"), stack("v"), stack("uu"), stack("uv"),
                            stack("vv"), self.orientation)
 
+    def parameters_near(self, points):
+        """Starting parameters (u, v) for points near the flank (own frame): those of the
+        nearest point of a 33 × 33 grid over the domain. Flanks with a closed-form guess
+        override this."""
+        from scipy.spatial import cKDTree
+
+        if getattr(self, "_guess_tree", None) is None:
+            u, v = self.grid(33, 33)
+            self._guess_tree = (cKDTree(np.stack(self.point(u, v), axis=-1).reshape(-1, 3)),
+                                u.ravel(), v.ravel())
+        tree, u, v = self._guess_tree
+        _, index = tree.query(np.asarray(points).reshape(-1, 3))
+        shape = np.shape(points)[:-1]
+        return u[index].reshape(shape), v[index].reshape(shape)
+
     def grid(self, nu: int, nv: int):
         """A regular (nu × nv) grid over the domain: arrays u, v of shape (nu, nv)."""
         (u0, u1), (v0, v1) = self.domain
