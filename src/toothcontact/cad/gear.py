@@ -9,7 +9,7 @@ surface between the fitting points.
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass, field
+from dataclasses import dataclass
 
 import numpy as np
 
@@ -18,7 +18,7 @@ from ..surfaces.base import Flank
 from ..surfaces.generation import generate_ring_side, generate_side, shaper_cutter_teeth
 from ..surfaces.involute import CylindricalGear
 from ..surfaces.modified import ModifiedFlank
-from .loft import (arc, chord_parameters, flank_deviation, generated_face, half_root_arc,
+from .loft import (LoftedBody, arc, chord_parameters, generated_face, half_root_arc,
                    interpolated, loft, patterned_wire, polar, sector_closure)
 
 #: radial thickness of a ring gear's rim below its root circle, in normal modules
@@ -26,26 +26,10 @@ RING_RIM_MODULES = 3.0
 
 
 @dataclass
-class GearBody:
-    """A built gear: the OCP solid and, per flank side of tooth 0, the exact flank, its
-    B-spline face and the fitting parameters (for deviation checks)."""
+class GearBody(LoftedBody):
+    """A built gear (flanks keyed by side +1/-1)."""
 
-    gear: CylindricalGear
-    solid: object
-    flanks: dict[int, Flank]
-    faces: dict[int, object]
-    fit_u: np.ndarray
-    fit_v: np.ndarray
-    teeth_built: int
-    notes: list[str] = field(default_factory=list)
-
-    @property
-    def description(self) -> str:
-        return f"{self.teeth_built} of {self.gear.teeth} teeth"
-
-    def flank_deviation(self) -> float:
-        """Largest distance (mm) from tooth 0's exact flanks to their B-spline faces."""
-        return flank_deviation(self)
+    gear: CylindricalGear | None = None
 
 
 def build_gear(gear: CylindricalGear, modifications: FlankModifications | None = None,
@@ -86,7 +70,8 @@ def build_gear(gear: CylindricalGear, modifications: FlankModifications | None =
     solid = maker.Shape()
     if gear.internal:
         solid = _ring_from_hole(gear, solid)
-    return GearBody(gear, solid, flanks, faces, fit_u, fit_v, teeth or gear.teeth, notes)
+    return GearBody(solid, flanks, faces, fit_u, fit_v, gear.teeth, teeth or gear.teeth, notes,
+                    gear=gear)
 
 
 def _apply(flank: Flank, mods: FlankModifications) -> Flank:

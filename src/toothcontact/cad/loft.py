@@ -9,6 +9,7 @@ exact surface at the fitting points. OCP is imported lazily.
 from __future__ import annotations
 
 import math
+from dataclasses import dataclass, field
 
 import numpy as np
 
@@ -122,6 +123,29 @@ def generated_face(loft, key):
     if face.IsNull():
         raise RuntimeError("the loft lost track of a flank face")
     return TopoDS.Face_s(face)
+
+
+@dataclass
+class LoftedBody:
+    """A lofted solid and, per flank of tooth 0, the exact flank, its B-spline face and the
+    fitting parameters; `teeth` of the part, `teeth_built` of them in the solid."""
+
+    solid: object
+    flanks: dict
+    faces: dict
+    fit_u: np.ndarray
+    fit_v: np.ndarray
+    teeth: int
+    teeth_built: int
+    notes: list[str] = field(default_factory=list)
+
+    @property
+    def description(self) -> str:
+        return f"{self.teeth_built} of {self.teeth} teeth"
+
+    def flank_deviation(self) -> float:
+        """Largest distance (mm) from tooth 0's exact flanks to their B-spline faces."""
+        return flank_deviation(self)
 
 
 def flank_deviation(body, per_interval: int = 2) -> float:

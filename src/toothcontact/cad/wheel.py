@@ -10,33 +10,16 @@ wheel's toothed rim, one B-spline face per flank; there is no hub or bore.
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
 
 import numpy as np
 
 from ..surfaces.wheel import WormWheelFlank
-from .loft import (arc, chord_parameters, flank_deviation, generated_face, half_root_arc,
+from .loft import (LoftedBody, arc, chord_parameters, generated_face, half_root_arc,
                    interpolated, loft, patterned_wire, polar, sector_closure)
 
 
-@dataclass
-class WheelBody:
-    """A built wheel: the OCP solid and, per side of tooth 0, the exact flank and its face."""
-
-    solid: object
-    flanks: dict[str, WormWheelFlank]
-    faces: dict[str, object]
-    fit_u: np.ndarray
-    fit_v: np.ndarray
-    teeth_built: int
-
-    @property
-    def description(self) -> str:
-        return f"{self.teeth_built} of {next(iter(self.flanks.values())).teeth} teeth"
-
-    def flank_deviation(self) -> float:
-        """Largest distance (mm) from tooth 0's exact flanks to their B-spline faces."""
-        return flank_deviation(self)
+class WheelBody(LoftedBody):
+    """A built worm wheel (flanks keyed by side "left"/"right")."""
 
 
 def build_wheel(left: WormWheelFlank, right: WormWheelFlank, profile_points: int = 17,
@@ -76,7 +59,7 @@ def build_wheel(left: WormWheelFlank, right: WormWheelFlank, profile_points: int
     faces = {name: generated_face(maker, (wires[0], index))
              for name, index in ((flanks["minus"].side, 1), (flanks["plus"].side, 3))}
     return WheelBody(maker.Shape(), {left.side: left, right.side: right}, faces, fit_u, fit_v,
-                     teeth or left.teeth)
+                     left.teeth, teeth or left.teeth)
 
 
 def _ordered(left: WormWheelFlank, right: WormWheelFlank) -> dict[str, WormWheelFlank]:
