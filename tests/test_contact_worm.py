@@ -53,3 +53,30 @@ def test_the_contact_point_moves_with_centre_distance_and_shaft_angle(oversized,
                         shifted["contact_radius_pinion_mm"] - nominal["contact_radius_pinion_mm"])
     # the refined contact point repeats to < 1 µm; these errors move it by 20-30 µm
     assert travel > 0.01
+
+
+def test_worm_case_with_load_and_anti_rattle_spring():
+    """A worm case with an output torque and seed 001's spring: the spring force and shaft
+    tilt follow eqs (20)-(21), the normal load eq (3), and the contact is found."""
+    import tomllib
+
+    from toothcontact.analyses import analyse
+    from toothcontact.analytic import worm_efficiency as w
+    from toothcontact.case import parse_case
+
+    raw = tomllib.loads((bundled_cases_dir() / "worm_eps_oversized_hob.toml").read_text())
+    raw.update(load={"output_torque": "10 N*m"}, analysis={"positions": 1, "grid": [9, 61]},
+               anti_rattle_spring={"stiffness": "30 N/mm", "d1": "103.97 mm", "d2": "20 mm",
+                                   "mount_moment": "4091.0 N*mm"},
+               wheel_material={"E": "100 GPa", "nu": 0.35})
+    doc = analyse(parse_case(raw)).as_dict()
+    summary = doc["summary"]
+    gamma = math.atan(2 * 1.75 / 20.0)
+    Rp = 0.5 * 40 * 1.75
+    alpha_n = math.atan(math.tan(math.radians(20)) * math.cos(gamma))
+    force = w.anti_rattle_spring_force(10000.0, 4091.0, 103.97, 20.0, Rp, alpha_n, gamma)
+    assert summary["spring_force_N"] == pytest.approx(force, rel=1e-12)
+    assert summary["worm_tilt_rad"] == pytest.approx(force / 30.0 / 123.97, rel=1e-12)
+    assert summary["normal_load_N"] == pytest.approx(
+        w.normal_tooth_load(10000.0, Rp, gamma, alpha_n), rel=1e-12)
+    assert doc["positions"] and all(math.isfinite(r["p_max_MPa"]) for r in doc["positions"])

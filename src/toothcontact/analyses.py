@@ -334,7 +334,7 @@ def spur_geometry_case(case: schema.SpurCase) -> Result:
 def _spur_contact(case: schema.SpurCase, pair, result: Result) -> None:
     """Contact by surface separation over the mesh cycle (contact.cycle)."""
     from .assembly import Misalignment, ParallelMesh
-    from .contact.cycle import LOAD_SHARING_RULE, CycleSettings, parallel_cycle
+    from .contact.cycle import CycleSettings, parallel_cycle
     from .gearset import working_flank
 
     m = case.misalignment
@@ -353,13 +353,20 @@ def _spur_contact(case: schema.SpurCase, pair, result: Result) -> None:
                               CycleSettings(a.positions, a.grid, a.approach))
     except (ValueError, RuntimeError) as exc:
         raise CaseError(f"misalignment / load: no contact could be found: {exc}") from None
+    _contact_sections(rows, {"tangential_load_N": wt, "normal_load_N": normal_load}, result)
+
+
+def _contact_sections(rows: list[dict], loads: dict, result: Result) -> None:
+    """positions, summary and the edge checks of a contact cycle."""
+    from .contact.cycle import LOAD_SHARING_RULE
+
     te = [r["transmission_error_urad"] for r in rows]
     result.sections["positions"] = rows
-    summary = {"tangential_load_N": wt, "normal_load_N": normal_load,
-               "max_p_max_MPa": max(r["p_max_MPa"] for r in rows),
+    summary = {**loads, "max_p_max_MPa": max(r["p_max_MPa"] for r in rows),
                "transmission_error_peak_to_peak_urad": max(te) - min(te),
                "face_position_range_mm": [min(r["face_position_mm"] for r in rows),
                                           max(r["face_position_mm"] for r in rows)],
+               "line_contact": any(r["line_contact"] for r in rows),
                "load_sharing": LOAD_SHARING_RULE}
     for kind, label in (("face", "at the face ends (edge loading)"),
                         ("profile", "at the tip and form edges (corner contact)")):
@@ -439,4 +446,46 @@ def worm_geometry_case(case: schema.WormCase) -> Result:
                   "center_distance_mm": wheel.centre_distance},
     }, notes=["the wheel flank is the exact envelope of the hob thread (equation of meshing); "
               "the blank follows DIN 3975 guideline proportions"])
+    if case.load is not None:
+        _worm_contact(case, parts, result)
     return result
+
+
+def _worm_contact(case: schema.WormCase, parts, result: Result) -> None:
+    """Contact of the loaded flank pair (the left flanks) over one mesh cycle, with seed 001's
+    anti-rattle-spring tilt of the worm shaft when a spring is given."""
+    from .assembly import WormMesh, WormMisalignment
+    from .contact.cycle import CycleSettings, parallel_cycle
+
+    worm, wheel = parts.worm["left"], parts.wheel["left"]
+    torque = case.load.output_torque
+    gamma, Rp = worm.lead_angle, wheel.reference_radius
+    alpha_n = case.worm.pressure_angle if case.worm.form != "ZA" else math.atan(
+        math.tan(case.worm.pressure_angle) * math.cos(gamma))
+    normal_load = worm_efficiency.normal_tooth_load(torque, Rp, gamma, alpha_n)
+    m = case.misalignment
+    tilt, pivot = m.worm_tilt, m.mount
+    loads = {"output_torque_Nm": torque / 1000.0, "normal_load_N": normal_load}
+    spring = case.anti_rattle_spring
+    if spring is not None:
+        force = worm_efficiency.anti_rattle_spring_force(torque, spring.mount_moment, spring.d1,
+                                                         spring.d2, Rp, alpha_n, gamma)
+        x = worm_efficiency.anti_rattle_misalignment(force, spring.stiffness)
+        tilt += x / (spring.d1 + spring.d2)
+        pivot = -spring.d2
+        loads.update(spring_force_N=force, shaft_end_height_mm=x)
+        result.notes.append("anti-rattle spring: the worm shaft pivots at its mount, d2 = "
+                            f"{spring.d2:g} mm on the -z side of the mesh; the shaft end height "
+                            "x (seed 001 eq 21) tilts it by x/(d1 + d2), positive toward the wheel")
+    loads["worm_tilt_rad"] = tilt
+    mesh = WormMesh(wheel, WormMisalignment(m.center_distance_error, m.shaft_angle_error,
+                                            m.wheel_axial_shift, tilt, pivot))
+    wheel_material = case.wheel_material or case.material
+    C_E = hertz.compliance(case.material.E, case.material.nu, wheel_material.E, wheel_material.nu)
+    a = case.analysis
+    try:
+        rows = parallel_cycle(mesh, worm, wheel, normal_load, C_E,
+                              CycleSettings(a.positions, a.grid, a.approach, pairs=(-2, -1, 0, 1, 2)))
+    except (ValueError, RuntimeError) as exc:
+        raise CaseError(f"misalignment / load: no contact could be found: {exc}") from None
+    _contact_sections(rows, loads, result)

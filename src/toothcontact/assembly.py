@@ -110,23 +110,35 @@ class ParallelMesh:
 @dataclass(frozen=True)
 class WormMisalignment:
     """Misalignment of a worm set: centre_distance_error (mm, + = apart), shaft_angle_error
-    (rad, crossing angle 90° + error), wheel_axial_shift (mm, along the wheel axis)."""
+    (rad, crossing angle 90° + error), wheel_axial_shift (mm, along the wheel axis), and a
+    tilt of the worm shaft (rad) about its mount, a pivot `pivot` mm along the worm axis from
+    the mesh (negative: on the -z side), in the plane of the worm axis and the centre line
+    (positive: the far end of the shaft moves toward the wheel) - seed 001's anti-rattle-
+    spring misalignment (eqs 20-21)."""
 
     centre_distance_error: float = 0.0
     shaft_angle_error: float = 0.0
     wheel_axial_shift: float = 0.0
+    worm_tilt: float = 0.0
+    pivot: float = 0.0
 
 
 class WormMesh:
-    """A worm and its wheel in mesh. World = the worm's frame (the worm turned by phi1); the
-    wheel is placed by its own generating kinematics (surfaces.wheel.wheel_from_hob) at the
-    worm set's centre distance and crossing angle, plus the misalignment; wheel tooth j is
-    tooth 0 turned by j pitches, and the wheel lags by delta (transmission error)."""
+    """A worm and its wheel in mesh. World = the housing: the worm turns by phi1 about z (its
+    axis), the wheel centre lies on +x; the wheel is placed by its own generating kinematics
+    (surfaces.wheel.wheel_from_hob) at the set's centre distance and crossing angle plus the
+    misalignment; wheel tooth j is tooth 0 turned by j pitches, and the wheel lags by delta
+    (transmission error)."""
 
     def __init__(self, wheel_flank, misalignment: WormMisalignment = WormMisalignment()):
         self.wheel, self.misalignment = wheel_flank, misalignment
         self.centre_distance = wheel_flank.centre_distance + misalignment.centre_distance_error
         self.crossing_angle = 0.5 * math.pi + misalignment.shaft_angle_error
+        # the shaft tilt: about the y axis through the pivot (0, 0, pivot); a positive tilt
+        # moves the shaft's end at z > pivot toward +x (the wheel)
+        pivot = np.array([0.0, 0.0, misalignment.pivot])
+        tilt = rotation([0.0, 1.0, 0.0], misalignment.worm_tilt)
+        self._tilt = Frame(tilt, pivot - tilt @ pivot)
 
     @property
     def driver_pitch(self) -> float:
@@ -134,14 +146,16 @@ class WormMesh:
         return 2.0 * math.pi / self.wheel.worm.starts
 
     def pinion_frame(self, phi1: float, tooth: int = 0) -> Frame:
-        return Frame(np.eye(3), np.zeros(3))
+        turn = rotation([0.0, 0.0, 1.0], phi1)
+        return Frame(self._tilt.R @ turn, self._tilt.origin)
 
     def gear_frame(self, phi1: float, tooth: int = 0, delta: float = 0.0) -> Frame:
         M = self.wheel.wheel_from_hob(phi1, centre_distance=self.centre_distance,
                                       crossing_angle=self.crossing_angle)
-        # wheel-attached -> worm-attached; tooth j and the lag turn the wheel about its axis
+        # wheel-attached -> worm-attached (M inverse) -> housing (the worm's turn)
         turn = rotation([0, 0, 1], 2.0 * math.pi * tooth / self.wheel.teeth - delta)
         shift = np.array([0.0, 0.0, self.misalignment.wheel_axial_shift])
-        R = M[:3, :3].T @ turn
-        origin = M[:3, :3].T @ (shift - M[:3, 3])
+        worm_turn = rotation([0.0, 0.0, 1.0], phi1)
+        R = worm_turn @ M[:3, :3].T @ turn
+        origin = worm_turn @ (M[:3, :3].T @ (shift - M[:3, 3]))
         return Frame(R, origin)

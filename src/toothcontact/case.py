@@ -329,12 +329,42 @@ class WheelSpec(Model):
     align_hob_thread: bool = Field(False, description="tilt an oversized hob to the worm's thread")
 
 
+class WormMisalignmentSpec(Model):
+    center_distance_error: quantity("length") = Field(0.0, description="e.g. '0.05 mm'")
+    shaft_angle_error: Slope = Field(0.0, description="crossing angle - 90 deg, rad")
+    wheel_axial_shift: quantity("length") = Field(0.0, description="along the wheel axis")
+    worm_tilt: Slope = Field(0.0, description="worm shaft tilt about its mount, rad")
+    mount: quantity("length") = Field(0.0, description="the mount's axial position on the "
+                                                         "worm, from the mesh")
+
+
+class WormLoadSpec(Model):
+    output_torque: Torque = Field(description="on the wheel, e.g. '20 N*m'")
+
+
+class SpringSpec(Model):
+    """Seed 001's anti-rattle spring: it tilts the worm shaft by its force (eqs 20-21)."""
+
+    stiffness: Stiffness = Field(description="spring rate, e.g. '30 N/mm'")
+    d1: Length = Field(description="mesh to spring, along the worm shaft")
+    d2: Length = Field(description="mount to mesh, along the worm shaft")
+    mount_moment: quantity("torque") = Field(description="moment held at the mount")
+
+
 class WormCase(CaseInfo):
-    """A worm set: the worm's flanks and the wheel enveloped by the hob."""
+    """A worm set: the worm's flanks and the wheel enveloped by the hob; with a load, the
+    contact over the mesh cycle."""
 
     kind: Literal["worm"]
     worm: WormSpec
     wheel: WheelSpec
+    material: Material = Field(Material.model_validate(STEEL), description="worm, default steel")
+    wheel_material: Material | None = None
+    misalignment: WormMisalignmentSpec = WormMisalignmentSpec()
+    anti_rattle_spring: SpringSpec | None = None
+    load: WormLoadSpec | None = None
+    analysis: AnalysisSpec = Field(AnalysisSpec(positions=7, grid=(11, 121)),
+                                   description="positions per worm turn/start, grid")
     export: ExportSpec = ExportSpec()
 
 

@@ -20,15 +20,22 @@ def edge_margins(flank: Flank, frame: Frame, plane: TangentPlane, a: float, b: f
                  angle: float, guess, samples: int = 72) -> dict[str, float]:
     """Margin (mm) from the ellipse (semi-axes a along `angle` from e1, b across) to each of
     the flank's edges, named as in flank.edges; "beyond_surface" (-b) when part of the ellipse
-    lies where the flank surface does not exist (outside the region a hob generated)."""
+    lies where the flank surface does not exist (outside the region a hob generated), where
+    its normal line meets the flank more than 0.5 mm from the tangent plane, or more than a
+    domain's span beyond an edge."""
     theta = np.linspace(0.0, 2.0 * np.pi, samples, endpoint=False)
     da = np.cos(angle) * plane.e1 + np.sin(angle) * plane.e2
     db = np.cross(plane.normal, da)
-    points = plane.point + a * np.cos(theta)[:, None] * da + b * np.sin(theta)[:, None] * db
-    local = frame.to_local(points)
-    direction = np.broadcast_to(frame.vectors_to_local(plane.normal), local.shape)
-    hits = intersect(flank, local, direction, np.full(samples, guess[0]),
-                     np.full(samples, guess[1]), iterations=40)
+    direction = np.broadcast_to(frame.vectors_to_local(plane.normal), (samples, 3))
+    u, v = np.full(samples, float(guess[0])), np.full(samples, float(guess[1]))
+    # march out from the contact point, each step starting where the last one landed, so
+    # that the hits follow the flank here and not a far branch of a long surface
+    for fraction in (0.25, 0.5, 0.75, 1.0):
+        points = plane.point + fraction * (a * np.cos(theta)[:, None] * da
+                                           + b * np.sin(theta)[:, None] * db)
+        hits = intersect(flank, frame.to_local(points), direction, u, v, iterations=40)
+        u = np.where(hits.converged, hits.u, u)
+        v = np.where(hits.converged, hits.v, v)
     sample = flank.evaluate(hits.u, hits.v)
     speed_u = np.linalg.norm(sample.r_u, axis=-1)
     speed_v = np.linalg.norm(sample.r_v, axis=-1)
@@ -39,7 +46,11 @@ def edge_margins(flank: Flank, frame: Frame, plane: TangentPlane, a: float, b: f
         flank.edges["v0"]: (hits.v - v0) * speed_v,
         flank.edges["v1"]: (v1 - hits.v) * speed_v,
     }
-    on = hits.converged & np.isfinite(hits.u)
+    # a hit far off the tangent plane, or parameters more than a domain's span beyond its
+    # edges, is another part of a long (continued) surface, not the flank here
+    du, dv = u1 - u0, v1 - v0
+    on = (hits.converged & np.isfinite(hits.u) & (np.abs(hits.s) < 0.5)
+          & (hits.u > u0 - du) & (hits.u < u1 + du) & (hits.v > v0 - dv) & (hits.v < v1 + dv))
     out = {name: float(np.min(value[on])) if on.any() else -b for name, value in margins.items()}
     if not np.all(on):
         out["beyond_surface"] = -b
