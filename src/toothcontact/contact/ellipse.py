@@ -36,10 +36,13 @@ def edge_margins(flank: Flank, frame: Frame, plane: TangentPlane, a: float, b: f
         hits = intersect(flank, frame.to_local(points), direction, u, v, iterations=40)
         u = np.where(hits.converged, hits.u, u)
         v = np.where(hits.converged, hits.v, v)
-    sample = flank.evaluate(hits.u, hits.v)
+    (u0, u1), (v0, v1) = flank.domain
+    # parameter distances become lengths with the flank's speed at the nearest domain point:
+    # beyond the edges a continued parameterisation may stretch without meaning
+    sample = flank.evaluate(np.clip(np.nan_to_num(hits.u), u0, u1),
+                            np.clip(np.nan_to_num(hits.v), v0, v1))
     speed_u = np.linalg.norm(sample.r_u, axis=-1)
     speed_v = np.linalg.norm(sample.r_v, axis=-1)
-    (u0, u1), (v0, v1) = flank.domain
     margins = {
         flank.edges["u0"]: (hits.u - u0) * speed_u,
         flank.edges["u1"]: (u1 - hits.u) * speed_u,
