@@ -112,3 +112,14 @@ def test_ring_gear_pair_crowned_planet():
         assert r["A_per_mm"] == pytest.approx(r["A_analytic_per_mm"], rel=5e-3)
         assert r["B_per_mm"] == pytest.approx(r["B_analytic_per_mm"], rel=5e-3)
         assert r["face_position_mm"] == pytest.approx(2.5, rel=0.01)
+
+
+def test_crowned_helical_pair_gap_fit_agrees_with_curvatures():
+    case = {"kind": "spur", "teeth": [23, 57], "module": "2.5 mm", "pressure_angle": "20 deg",
+            "helix_angle": "20 deg", "face_width": "25 mm",
+            "pinion": {"crown": {"height": "12 um", "shape": "parabolic"}}}
+    _, rows = run(case)
+    assert rows
+    for r in rows:
+        assert r["A_per_mm"] == pytest.approx(r["A_analytic_per_mm"], rel=5e-3)
+        assert r["B_per_mm"] == pytest.approx(r["B_analytic_per_mm"], rel=5e-3)
