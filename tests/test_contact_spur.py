@@ -1,6 +1,7 @@
 """Contact by surface separation on a crowned spur pair, against closed forms."""
 
 import math
+from pathlib import Path
 
 import numpy as np
 import pytest
@@ -123,3 +124,32 @@ def test_crowned_helical_pair_gap_fit_agrees_with_curvatures():
     for r in rows:
         assert r["A_per_mm"] == pytest.approx(r["A_analytic_per_mm"], rel=5e-3)
         assert r["B_per_mm"] == pytest.approx(r["B_analytic_per_mm"], rel=5e-3)
+
+
+@pytest.mark.parametrize("tilt", [0.0, 0.0017])
+def test_spline_contact_all_teeth(tilt):
+    """Coaxial spline, ratio 1: aligned, every tooth closes its clearance at once and the lag
+    is the clearance turned into an angle, (dT/2)·cos(alpha)/rb; tilted, the teeth in the
+    plane of the tilt (teeth 0 and 9, half a turn apart, where the tilt only slides the contact
+    along the crown) touch and those a quarter turn away (teeth 4-5, 13-14) are farthest."""
+    import tomllib
+
+    from toothcontact.analyses import analyse
+
+    raw = tomllib.loads((Path(__file__).parents[1] / "cases" / "spline_crowned_18t.toml").read_text())
+    raw.update(misalignment=tilt, analysis={"positions": 1, "grid": [9, 41]})
+    doc = analyse(parse_case(raw)).as_dict()
+    rows = doc["positions"]
+    gaps = {r["pair"]: r["separation_mm"] for r in rows}
+    if tilt == 0.0:
+        assert sorted(gaps) == list(range(18))
+        assert max(gaps.values()) < 1e-7
+        dT, alpha = 0.002 * 25.4, math.radians(30)
+        rb = 0.5 * 18 * 25.4 / 32 * math.cos(alpha)
+        assert rows[0]["transmission_error_urad"] == pytest.approx(
+            0.5 * dT * math.cos(alpha) / rb * 1e6, rel=1e-4)
+    else:
+        assert gaps[0] < 1e-9 and gaps[9] < 1e-9
+        farthest = max(gaps, key=gaps.get)
+        assert farthest in (4, 5, 13, 14)
+        assert gaps[farthest] > 1e-3  # mm: the clearance there stays open

@@ -411,7 +411,40 @@ def spline_geometry_case(case: schema.SplineCase) -> Result:
         section["crown_radius_mm"] = radius
         section["crown_height_mm"] = float(crown.drop(0.5 * case.engaged_length, case.engaged_length)
                                            / math.cos(case.pressure_angle))
+    if case.torque is not None:
+        _spline_contact(case, pair, result)
     return result
+
+
+def _spline_contact(case: schema.SplineCase, pair, result: Result) -> None:
+    """Every tooth of the spline under the angular misalignment: a coaxial pair of ratio 1
+    (assembly.ParallelMesh with zero centre distance), the sleeve tilted about the normal of
+    tooth 0's plane of action; the lag closes the clearance."""
+    from .assembly import Misalignment, ParallelMesh
+    from .contact.cycle import CycleSettings, parallel_cycle
+    from .gearset import GearPair, working_flank
+    from .modify import FlankModifications
+
+    coaxial = GearPair(pair.hub, pair.sleeve, pair.hub_modifications, FlankModifications(), 0.0,
+                       case.pressure_angle)
+    mesh = ParallelMesh(coaxial, Misalignment(slope=case.misalignment))
+    hub = working_flank(pair.hub, pair.hub_modifications, 1)
+    sleeve = working_flank(pair.sleeve, FlankModifications(), mesh.gear_side)
+    wt = case.torque / (0.5 * pair.spline.pitch_diameter)
+    normal_load = wt / math.cos(case.pressure_angle)
+    C_E = hertz.compliance(case.material.E, case.material.nu, case.material.E, case.material.nu)
+    a = case.analysis
+    try:
+        rows = parallel_cycle(mesh, hub, sleeve, normal_load, C_E,
+                              CycleSettings(a.positions, a.grid, a.approach,
+                                            pairs=tuple(range(case.teeth))))
+    except (ValueError, RuntimeError) as exc:
+        raise CaseError(f"misalignment / torque: no contact could be found: {exc}") from None
+    _contact_sections(rows, {"tangential_load_N": wt, "normal_load_N": normal_load}, result)
+    per_position = {}
+    for r in rows:
+        per_position.setdefault(r["roll_deg"], []).append(r["pair"])
+    result.sections["summary"]["teeth_in_contact"] = {f"{k:.3f}": v for k, v in per_position.items()}
 
 
 def worm_geometry_case(case: schema.WormCase) -> Result:

@@ -278,6 +278,11 @@ class SplineCase(CaseInfo):
     clearance: quantity("length") = Field(description="dT: sleeve space width minus T_mod")
     crown: CrownSpec | None = Field(None, description="lead crown of the hub teeth, measured in "
                                                       "the tooth-thickness direction (seed 003)")
+    material: Material = Field(Material.model_validate(STEEL), description="default steel")
+    misalignment: Slope = Field(0.0, description="angular misalignment of the sleeve, rad")
+    torque: Torque | None = Field(None, description="with a torque, run analyses the contact")
+    analysis: AnalysisSpec = Field(AnalysisSpec(positions=3, grid=(9, 41)),
+                                   description="positions over one tooth pitch, grid")
     export: ExportSpec = ExportSpec()
 
     @model_validator(mode="after")

@@ -41,8 +41,7 @@ def run_case(path: str | Path, out_dir: str | Path | None = None) -> tuple[dict,
     return document, report.write_run(target, document)
 
 
-#: case kinds with solids to export (kept here so the CLI need not import OCP to know)
-GEOMETRY_KINDS = ("spur", "spline", "worm")
+from .cad.parts import SOLID_KINDS as GEOMETRY_KINDS  # noqa: E402 - OCP loads lazily
 
 
 def export_case(path: str | Path, out_dir: str | Path | None = None,
