@@ -153,3 +153,19 @@ def test_spline_contact_all_teeth(tilt):
         farthest = max(gaps, key=gaps.get)
         assert farthest in (4, 5, 13, 14)
         assert gaps[farthest] > 1e-3  # mm: the clearance there stays open
+
+
+def test_tip_interference_is_found_when_the_centre_distance_is_too_short():
+    """Pulling the gear 1 mm closer drives the tips into the mates' roots: python-fcl on
+    the placed bodies reports it; at the nominal centre distance there is none."""
+    from toothcontact.analyses import analyse
+
+    base = {**CASE, "load": {"tangential_load": "8000 N"},
+            "analysis": {"positions": 3, "grid": [15, 21]}}
+    nominal = analyse(parse_case(base)).as_dict()
+    assert nominal["interference"]["found"] == []
+    close = analyse(parse_case({**base, "center_distance": "119 mm"})).as_dict()
+    assert close["interference"]["found"]
+    points = np.array(close["interference"]["found"][0]["points_mm"])
+    radii = np.hypot(points[:, 0], points[:, 1])
+    assert np.all((radii > 32.5) | (radii < 27.0))  # at the pinion tip or deep at its root

@@ -11,6 +11,8 @@ import math
 import warnings
 from dataclasses import dataclass, field
 
+import numpy as np
+
 from . import case as schema
 from .analytic import agma, crown, hertz, spline, worm_efficiency
 from .analytic.spur_mesh import SpurMesh
@@ -354,6 +356,61 @@ def _spur_contact(case: schema.SpurCase, pair, result: Result) -> None:
     except (ValueError, RuntimeError) as exc:
         raise CaseError(f"misalignment / load: no contact could be found: {exc}") from None
     _contact_sections(rows, {"tangential_load_N": wt, "normal_load_N": normal_load}, result)
+    if case.analysis.interference:
+        _spur_interference(mesh, pair, rows, result)
+
+
+#: a collision point counts as interference when it lies this close (mm) to a member's tip
+#: or root circle, or beyond them: contact between the involute flanks (the loaded ones, or
+#: the back flanks of a pair without backlash) is not interference
+INTERFERENCE_BAND = 0.05
+
+
+def _spur_interference(mesh, pair, rows: list[dict], result: Result) -> None:
+    """Tip and root interference of the placed bodies (python-fcl, meshes of sectors of five
+    teeth, 5 µm STL tolerance) at every mesh position."""
+    from . import cad
+    from .mesh import interference, placed_model
+    from .surfaces.generation import generate_ring_side, generate_side
+
+    models, bands = {}, {}
+    for name, gear, mods in (("pinion", pair.pinion, pair.pinion_modifications),
+                             ("gear", pair.gear, pair.gear_modifications)):
+        sector = None if gear.internal else min(5, gear.teeth)
+        body = cad.build_gear(gear, mods, teeth=sector)
+        mesh_ = cad.tessellate(body.solid, 0.005)
+        vertices = mesh_.vertices
+        if sector is not None:  # centre the sector on tooth 0
+            turn = -2.0 * 2.0 * math.pi / gear.teeth
+            c, sn = math.cos(turn), math.sin(turn)
+            vertices = vertices @ np.array([[c, sn, 0.0], [-sn, c, 0.0], [0.0, 0.0, 1.0]])
+        models[name] = (vertices, mesh_.faces)
+        form = (generate_ring_side(gear) if gear.internal else generate_side(gear)).form_radius
+        bands[name] = tuple(sorted((form, gear.tip_radius)))
+    found = []
+    for roll in sorted({r["roll_deg"] for r in rows}):
+        lag = next(r["transmission_error_urad"] for r in rows if r["roll_deg"] == roll) * 1e-6
+        phi = math.radians(roll)
+        frames = {"pinion": mesh.pinion_frame(phi), "gear": mesh.gear_frame(phi, 0, lag)}
+        hit = interference(*(placed_model(*models[n], frames[n].R, frames[n].origin)
+                             for n in ("pinion", "gear")))
+        if not hit.found:
+            continue
+        on_flanks = np.ones(len(hit.points), bool)
+        for name, frame in frames.items():
+            r = np.hypot(*frame.to_local(hit.points)[:, :2].T)
+            lo, hi = bands[name]
+            on_flanks &= (r > lo + INTERFERENCE_BAND) & (r < hi - INTERFERENCE_BAND)
+        if not on_flanks.all():
+            found.append({"roll_deg": roll,
+                          "points_mm": hit.points[~on_flanks][:5].round(4).tolist()})
+    result.sections["interference"] = {
+        "checked_positions": len({r["roll_deg"] for r in rows}), "band_mm": INTERFERENCE_BAND,
+        "found": found}
+    result.checks.append(Check("no tip or root interference of the bodies", not found,
+                               f"{len(found)} positions with interference"
+                               + (f", first at roll {found[0]['roll_deg']:.2f} deg near "
+                                  f"{found[0]['points_mm'][0]} mm" if found else "")))
 
 
 def _contact_sections(rows: list[dict], loads: dict, result: Result) -> None:

@@ -230,6 +230,7 @@ class AnalysisSpec(Model):
     positions: int = Field(21, ge=1, le=401, description="mesh positions over one pitch")
     grid: tuple[int, int] = Field((25, 41), description="[profile, face] search grid")
     approach: Length = Field(0.00632, description="rigid approach for the pattern")
+    interference: bool = Field(True, description="collide the bodies (python-fcl)")
 
 
 STEEL = {"E": "206 GPa", "nu": 0.3}
