@@ -65,7 +65,8 @@ def test_worm_case_with_load_and_anti_rattle_spring():
     from toothcontact.case import parse_case
 
     raw = tomllib.loads((bundled_cases_dir() / "worm_eps_oversized_hob.toml").read_text())
-    raw.update(load={"output_torque": "10 N*m"}, analysis={"positions": 1, "grid": [9, 61]},
+    raw.update(load={"output_torque": "10 N*m", "flank": "right"},
+               analysis={"positions": 1, "grid": [9, 61]},
                anti_rattle_spring={"stiffness": "30 N/mm", "d1": "103.97 mm", "d2": "20 mm",
                                    "mount_moment": "4091.0 N*mm"},
                wheel_material={"E": "100 GPa", "nu": 0.35})

@@ -542,12 +542,12 @@ def worm_geometry_case(case: schema.WormCase) -> Result:
 
 
 def _worm_contact(case: schema.WormCase, parts, result: Result) -> None:
-    """Contact of the loaded flank pair (the left flanks) over one mesh cycle, with seed 001's
+    """Contact of the loaded flank pair (`[load] flank`) over one mesh cycle, with seed 001's
     anti-rattle-spring tilt of the worm shaft when a spring is given."""
     from .assembly import WormMesh, WormMisalignment
     from .contact.cycle import CycleSettings, parallel_cycle
 
-    worm, wheel = parts.worm["left"], parts.wheel["left"]
+    worm, wheel = parts.worm[case.load.flank], parts.wheel[case.load.flank]
     torque = case.load.output_torque
     gamma, Rp = worm.lead_angle, wheel.reference_radius
     alpha_n = case.worm.pressure_angle if case.worm.form != "ZA" else math.atan(
@@ -555,7 +555,8 @@ def _worm_contact(case: schema.WormCase, parts, result: Result) -> None:
     normal_load = worm_efficiency.normal_tooth_load(torque, Rp, gamma, alpha_n)
     m = case.misalignment
     tilt, pivot = m.worm_tilt, m.mount
-    loads = {"output_torque_Nm": torque / 1000.0, "normal_load_N": normal_load}
+    loads = {"output_torque_Nm": torque / 1000.0, "normal_load_N": normal_load,
+             "loaded_flank": case.load.flank}
     spring = case.anti_rattle_spring
     if spring is not None:
         force = worm_efficiency.anti_rattle_spring_force(torque, spring.mount_moment, spring.d1,

@@ -346,6 +346,8 @@ class WormMisalignmentSpec(Model):
 
 class WormLoadSpec(Model):
     output_torque: Torque = Field(description="on the wheel, e.g. '20 N*m'")
+    flank: Literal["left", "right"] = Field(
+        "left", description="the loaded worm flank: 'left' faces -z, 'right' faces +z")
 
 
 class SpringSpec(Model):
