@@ -36,7 +36,7 @@ def intersect(flank: Flank, points: np.ndarray, directions: np.ndarray, u0: np.n
     s = np.zeros(u.shape)
     converged = np.zeros(u.shape, bool)
     for _ in range(iterations):
-        sample = flank.evaluate(u, v)
+        sample = flank.evaluate(u, v, order=1)
         residual = sample.points - points - s[..., None] * directions
         jac = np.stack([sample.r_u, sample.r_v, -directions], axis=-1)
         # a ray along the flank, or a singular point of it (an involute at its base circle),

@@ -40,7 +40,7 @@ def separation(pinion: Flank, gear: Flank, pinion_frame: Frame, gear_frame: Fram
     NaN where the normal line meets no gear flank inside its domain, meets it from behind
     (the two normals must oppose), or farther than REACH."""
     with np.errstate(all="ignore"):  # probes beyond a surface's existence give NaN there
-        sample = pinion.evaluate(u, v)
+        sample = pinion.evaluate(u, v, order=1)
         points = gear_frame.to_local(pinion_frame.to_world(sample.points))
         normals = gear_frame.vectors_to_local(pinion_frame.vectors_to_world(sample.normals))
         u0, v0 = gear.parameters_near(points)
@@ -48,7 +48,7 @@ def separation(pinion: Flank, gear: Flank, pinion_frame: Frame, gear_frame: Fram
         facing = hits.inside & (np.abs(hits.s) <= REACH)
         if facing.any():
             mate = gear.evaluate(np.where(facing, hits.u, gear.domain[0][0]),
-                                 np.where(facing, hits.v, gear.domain[1][0])).normals
+                                 np.where(facing, hits.v, gear.domain[1][0]), order=1).normals
             facing &= np.einsum("...i,...i->...", mate, normals) < 0.0
     return Separation(np.where(facing, hits.s, np.nan), hits.u, hits.v)
 

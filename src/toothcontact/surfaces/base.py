@@ -32,13 +32,16 @@ class Flank:
     def point(self, u, v):  # pragma: no cover - interface
         raise NotImplementedError
 
-    def evaluate(self, u, v) -> "FlankSample":
-        """Points and exact derivatives at arrays of (u, v) (broadcast together)."""
-        U, V = Jet.variables(u, v)
+    def evaluate(self, u, v, order: int = 2) -> "FlankSample":
+        """Points and exact derivatives at arrays of (u, v) (broadcast together); with
+        order 1 only the first derivatives (r_uu, r_uv, r_vv are None)."""
+        U, V = Jet.variables(u, v, order)
         x, y, z = self.point(U, V)
         comps = [x if isinstance(x, Jet) else Jet(np.broadcast_to(x, U.f.shape)) for x in (x, y, z)]
 
         def stack(field):
+            if order == 1 and field in ("uu", "uv", "vv"):
+                return None
             return np.stack([np.broadcast_to(getattr(c, field), U.f.shape) for c in comps], axis=-1)
 
         return FlankSample(stack("f"), stack("u"), stack("v"), stack("uu"), stack("uv"),

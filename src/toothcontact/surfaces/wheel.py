@@ -228,10 +228,7 @@ _BINARY3 = {
 
 def _compose(u, p0, p1, p2):
     """phi(u) for a jet u, given phi, phi', phi'' at u's value (plain arrays)."""
-    if not isinstance(u, Jet):
-        return p0
-    return Jet(p0, p1 * u.u, p1 * u.v, p2 * u.u * u.u + p1 * u.uu,
-               p2 * u.u * u.v + p1 * u.uv, p2 * u.v * u.v + p1 * u.vv)
+    return u._chain(p0, p1, p2) if isinstance(u, Jet) else p0
 
 
 # --- the wheel flank --------------------------------------------------------------------------
