@@ -51,6 +51,8 @@ def main() -> None:
         rows.append((f"case {path.stem}", best_of(lambda: analyse_file(path), number=3),
                      "load + validate + analyse"))
 
+    rows.append(("spur contact cycle (21 positions, 25x41 grid)", best_of(_spur_cycle(), repeat=2),
+                 "issue 4 target: 0.5 s on a 201x201 grid"))
     rows.extend(_solids())
 
     probe = ("import sys, time; t = time.perf_counter(); from toothcontact.cli import app\n"
@@ -74,6 +76,20 @@ def main() -> None:
               "results": [{"name": n, "seconds": s, "note": note} for n, s, note in rows]}
     (HERE / "results.json").write_text(json.dumps(record, indent=2) + "\n")
     print(f"wrote {HERE / 'results.json'}")
+
+
+def _spur_cycle():
+    """The bundled crowned spur case's contact over the mesh cycle, without interference."""
+    import tomllib
+
+    from toothcontact.analyses import analyse
+    from toothcontact.case import parse_case
+    from toothcontact.runner import bundled_cases_dir
+
+    raw = tomllib.loads((bundled_cases_dir() / "spur_crowned_20_60.toml").read_text())
+    raw["analysis"]["interference"] = False
+    case = parse_case(raw)
+    return lambda: analyse(case)
 
 
 def _solids():
