@@ -82,12 +82,21 @@ class HertzCase(CaseInfo):
     body2: Body
 
 
-class GearPairGeometry(CaseInfo):
+class ModuleOrPitch(Model):
+    """A tooth size given as a module or as a diametral pitch (the module is its inverse)."""
+
+    module: Length | None = Field(None, description="module, e.g. '3 mm'")
+    diametral_pitch: InverseLength | None = Field(None, description="e.g. '10 1/in'")
+
+    @property
+    def module_mm(self) -> float:
+        return self.module if self.module is not None else 1.0 / self.diametral_pitch
+
+
+class GearPairGeometry(CaseInfo, ModuleOrPitch):
     """Teeth and module of a spur pair; the gear's count is negative for an internal gear."""
 
     teeth: tuple[int, int] = Field(description="[pinion, gear] teeth, gear < 0 = internal")
-    module: Length | None = Field(None, description="module, e.g. '3 mm'")
-    diametral_pitch: InverseLength | None = Field(None, description="e.g. '10 1/in'")
     pressure_angle: Angle = Field(description="e.g. '20 deg' (crown_design: operating; "
                                               "spur: normal, of the rack)")
 
@@ -104,10 +113,6 @@ class GearPairGeometry(CaseInfo):
             raise ValueError(f"pressure_angle: {math.degrees(self.pressure_angle):.4g} deg "
                              "must lie between 0 and 45 deg")
         return self
-
-    @property
-    def module_mm(self) -> float:
-        return self.module if self.module is not None else 1.0 / self.diametral_pitch
 
 
 class CrownDesignCase(GearPairGeometry):
@@ -265,13 +270,11 @@ class SpurCase(GearPairGeometry):
         return self
 
 
-class SplineCase(CaseInfo):
+class SplineCase(CaseInfo, ModuleOrPitch):
     """An involute spline (hub and sleeve) with an optional lead crown on the hub teeth."""
 
     kind: Literal["spline"]
     teeth: int = Field(ge=6, description="spline teeth (>= 6)")
-    module: Length | None = None
-    diametral_pitch: InverseLength | None = None
     pressure_angle: Angle = Field(description="30, 37.5 or 45 deg")
     root: Literal["flat", "fillet"] = "fillet"
     engaged_length: Length
@@ -291,10 +294,6 @@ class SplineCase(CaseInfo):
         if (self.module is None) == (self.diametral_pitch is None):
             raise ValueError("module / diametral_pitch: give exactly one of them")
         return self
-
-    @property
-    def module_mm(self) -> float:
-        return self.module if self.module is not None else 1.0 / self.diametral_pitch
 
 
 class WormSpec(Model):
@@ -434,12 +433,10 @@ class WormEfficiencyCase(CaseInfo):
         return self
 
 
-class SplineCrownCase(CaseInfo):
+class SplineCrownCase(CaseInfo, ModuleOrPitch):
     kind: Literal["spline_crown"]
     teeth: int = Field(ge=6, description="spline teeth (>= 6)")
     pitch_diameter: Length | None = None
-    module: Length | None = None
-    diametral_pitch: InverseLength | None = None
     pressure_angle: Angle = Field(description="30, 37.5 or 45 deg")
     torque: Torque
     misalignment: Angle = Field(description="angular misalignment, e.g. '0.1 deg'")
@@ -465,8 +462,7 @@ class SplineCrownCase(CaseInfo):
     def pitch_diameter_mm(self) -> float:
         if self.pitch_diameter is not None:
             return self.pitch_diameter
-        module = self.module if self.module is not None else 1.0 / self.diametral_pitch
-        return module * self.teeth
+        return self.module_mm * self.teeth
 
 
 KINDS: dict[str, type[CaseInfo]] = {

@@ -104,13 +104,19 @@ class Jet:
 
     # --- numpy functions on jets ----------------------------------------------------------
     def __array_ufunc__(self, ufunc, method, *inputs, **kwargs):
-        if method != "__call__" or kwargs:
-            return NotImplemented
-        if ufunc in _BINARY:
-            return _BINARY[ufunc](*(_lift(x) for x in inputs))
-        if ufunc in _UNARY:
-            return _UNARY[ufunc](_lift(inputs[0]))
+        return dispatch_ufunc(ufunc, method, inputs, kwargs, _UNARY, _BINARY, _lift)
+
+
+def dispatch_ufunc(ufunc, method, inputs, kwargs, unary: dict, binary: dict, lift):
+    """numpy's ufunc protocol for a Taylor-number class: plain calls of the ufuncs in its
+    `unary` and `binary` tables, operands lifted to the class; anything else declined."""
+    if method != "__call__" or kwargs:
         return NotImplemented
+    if ufunc in binary:
+        return binary[ufunc](*(lift(x) for x in inputs))
+    if ufunc in unary:
+        return unary[ufunc](lift(inputs[0]))
+    return NotImplemented
 
 
 def _lift(x) -> Jet:

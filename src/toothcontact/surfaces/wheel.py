@@ -85,7 +85,7 @@ import math
 import numpy as np
 
 from .base import Flank
-from .jet import Jet, value, where
+from .jet import Jet, dispatch_ufunc, value, where
 from .worm import WormFlank
 
 
@@ -147,13 +147,7 @@ class _Taylor3:
                            q * (q - 1) * (q - 2) * x ** (q - 3))
 
     def __array_ufunc__(self, ufunc, method, *inputs, **kwargs):
-        if method != "__call__" or kwargs:
-            return NotImplemented
-        if ufunc in _BINARY3:
-            return _BINARY3[ufunc](*(_lift3(x) for x in inputs))
-        if ufunc in _UNARY3:
-            return _UNARY3[ufunc](_lift3(inputs[0]))
-        return NotImplemented
+        return dispatch_ufunc(ufunc, method, inputs, kwargs, _UNARY3, _BINARY3, _lift3)
 
 
 def _lift3(x) -> _Taylor3:
