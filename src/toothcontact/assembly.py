@@ -26,16 +26,29 @@ def rotation(axis, angle: float) -> np.ndarray:
 
 @dataclass(frozen=True)
 class Frame:
-    """world = R·local + origin."""
+    """world = R·local + origin. A stack of frames (R of shape (..., 3, 3), origin of shape
+    (..., 1, 3)) maps points (..., n, 3) frame by frame; see `stack`."""
 
     R: np.ndarray
     origin: np.ndarray
 
+    @classmethod
+    def stack(cls, frames) -> "Frame":
+        """Frames in a nested list (shape S) as one stacked frame of batch shape S."""
+        R = np.array([f.R for f in np.ravel(frames)])
+        origin = np.array([f.origin for f in np.ravel(frames)])
+        shape = np.shape(frames)
+        return cls(R.reshape(shape + (3, 3)), origin.reshape(shape + (1, 3)))
+
+    def __getitem__(self, index) -> "Frame":
+        """The stacked frames at `index` (batch axes only)."""
+        return Frame(self.R[index], self.origin[index])
+
     def to_world(self, p):
-        return p @ self.R.T + self.origin
+        return p @ np.swapaxes(self.R, -1, -2) + self.origin
 
     def vectors_to_world(self, n):
-        return n @ self.R.T
+        return n @ np.swapaxes(self.R, -1, -2)
 
     def to_local(self, p):
         return (p - self.origin) @ self.R

@@ -12,15 +12,16 @@ split equally among the pairs in contact. Units: mm, N, MPa, rad.
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
+from dataclasses import dataclass, fields
 
 import numpy as np
 
 from ..analytic.hertz import hertz_line, hertz_point
+from ..assembly import Frame
 from ..surfaces.base import Flank
 from .ellipse import edge_margins
-from .local import analytic_gap, fit_gap, tangent_plane
-from .search import grid_minimum, refine_minimum, separation, solve_transmission_error
+from .local import analytic_gaps, fit_gaps, planes_at, tangent_planes
+from .search import ContactPoints, lowest, refine_minima, separation, solve_transmission_error
 
 LOAD_SHARING_RULE = "equal split of the normal load among the tooth pairs in contact"
 #: allowance (mm) for a pair's grid minimum lying above its true minimum
@@ -44,117 +45,142 @@ def parallel_cycle(mesh, pinion: Flank, gear: Flank, normal_load: float,
     """One entry per mesh position and tooth pair in contact (see module docstring).
 
     `mesh` places the driver ("pinion": a pinion or a worm) and the driven member ("gear":
-    a gear or a worm wheel): assembly.ParallelMesh or assembly.WormMesh."""
+    a gear or a worm wheel): assembly.ParallelMesh or assembly.WormMesh. The search runs on
+    all positions and pairs at once."""
     (u0, u1), (v0, v1) = pinion.domain
     grid = np.meshgrid(np.linspace(u0, u1, settings.grid[0]), np.linspace(v0, v1, settings.grid[1]),
                        indexing="ij")
     pitch = mesh.driver_pitch
     half = ((u1 - u0) / (settings.grid[0] - 1), (v1 - v0) / (settings.grid[1] - 1))
-    rows, delta = [], 0.0
-    for phi in np.linspace(-0.5 * pitch, 0.5 * pitch, settings.positions):
-        frames = {j: mesh.pinion_frame(phi, j) for j in settings.pairs}
-        # the whole grid once; the lag is then solved on each pair's best grid points only
-        # (turning the gear shifts every separation alike, so the minimum stays among them)
-        best = {j: found for j in settings.pairs
-                if (found := grid_minimum(pinion, gear, frames[j], mesh.gear_frame(phi, j, delta),
-                                          grid)) is not None}
-        if not best:
-            raise ValueError(f"no tooth pair faces another at roll {math.degrees(phi):.3f} deg")
+    phis = np.linspace(-0.5 * pitch, 0.5 * pitch, settings.positions)
+    pairs = np.array(settings.pairs)
+    pinion_frames = Frame.stack([[mesh.pinion_frame(phi, j) for j in pairs] for phi in phis])
 
-        def least_at(j, phi, d):
-            bu, bv, _ = best[j]
-            s = separation(pinion, gear, frames[j], mesh.gear_frame(phi, j, d), bu, bv).s
-            return float(np.min(s[np.isfinite(s)])) if np.isfinite(s).any() else math.inf
+    def gear_frames(p, j, delta):
+        return Frame.stack([mesh.gear_frame(phis[a], pairs[b], d) for a, b, d in zip(p, j, delta)])
 
-        def least(d, phi=phi):
-            return min(least_at(j, phi, d) for j in best)
+    P, J = np.meshgrid(np.arange(len(phis)), np.arange(len(pairs)), indexing="ij")
+    P, J = P.ravel(), J.ravel()
+    delta = np.zeros(len(phis))
+    # the whole grid once (turning the gear shifts every separation alike, so the least ones
+    # stay among the best grid points); the lag is then solved on those points only
+    field = separation(pinion, gear, pinion_frames[P, J], gear_frames(P, J, delta[P]),
+                       grid[0].ravel(), grid[1].ravel()).s
+    best_u, best_v, best_s = lowest(field, *grid)
+    facing = np.isfinite(best_s[:, 0])
+    lonely = [math.degrees(phis[p]) for p in range(len(phis)) if not facing[P == p].any()]
+    if lonely:
+        raise ValueError(f"no tooth pair faces another at roll {lonely[0]:.3f} deg")
+    P, J, best_u, best_v = P[facing], J[facing], best_u[facing], best_v[facing]
+    (ua, ub), (va, vb) = pinion.domain
 
-        delta, s_grid = solve_transmission_error(least, delta)
-        # refine the pairs that may be in contact: the grid minimum can overstate a pair's
-        # least separation by about the gap across one grid cell
-        lag_shift = {j: least_at(j, phi, delta) for j in best}
-        contacts = {j: refine_minimum(pinion, gear, frames[j], mesh.gear_frame(phi, j, delta),
-                                      (bu[0], bv[0]), half)
-                    for j, (bu, bv, _) in best.items()
-                    if lag_shift[j] - s_grid <= settings.approach + CELL_GAP}
-        # the lag on the refined minimum (a little below the best grid point)
-        slope = _lag_slope(mesh, pinion, gear, phi, delta, contacts)
-        s_min = min(cp.s for cp in contacts.values())
-        delta -= s_min / slope
-        in_contact = {j: cp for j, cp in contacts.items() if cp.s - s_min <= settings.approach}
-        share = normal_load / len(in_contact)
-        for j, cp in sorted(in_contact.items()):
-            rows.append(_pair_result(mesh, pinion, gear, phi, j, delta, cp, share, C_E, settings,
-                                     gap=cp.s - s_min))
-    return rows
+    def pair_least(delta):
+        s = separation(pinion, gear, pinion_frames[P, J], gear_frames(P, J, delta[P]),
+                       best_u, best_v).s
+        return np.min(np.where(np.isfinite(s), s, np.inf), axis=-1)
+
+    def least(delta):
+        out = np.full(len(phis), np.inf)
+        np.minimum.at(out, P, pair_least(delta))
+        return out
+
+    delta, s_grid = solve_transmission_error(least, delta)
+    # refine the pairs that may be in contact: the grid minimum can overstate a pair's
+    # least separation by about the gap across one grid cell
+    near = pair_least(delta) - s_grid[P] <= settings.approach + CELL_GAP
+    P, J = P[near], J[near]
+    contacts = refine_minima(pinion, gear, pinion_frames[P, J], gear_frames(P, J, delta[P]),
+                             best_u[near, 0], best_v[near, 0], half)
+    # the lag on the refined minimum (a little below the best grid point)
+    s_min = np.full(len(phis), np.inf)
+    np.minimum.at(s_min, P, contacts.s)
+    delta -= s_min / _lag_slope(mesh, pinion, gear, phis, pairs, P, J, delta, contacts)
+    gaps = contacts.s - s_min[P]
+    keep = np.lexsort((pairs[J], P))
+    keep = keep[gaps[keep] <= settings.approach]
+    P, J = P[keep], J[keep]
+    share = normal_load / np.bincount(P, minlength=len(phis))[P]
+    with np.errstate(all="ignore"):
+        return _pair_results(pinion, gear, pinion_frames[P, J], gear_frames(P, J, delta[P]),
+                             np.degrees(phis[P]), pairs[J], delta[P], _take(contacts, keep),
+                             gaps[keep], share, C_E, settings)
 
 
-def _lag_slope(mesh, pinion, gear, phi, delta, contacts, step=1e-6) -> float:
-    """d(separation)/d(lag) at the contact points (mm/rad)."""
-    j, cp = min(contacts.items(), key=lambda item: item[1].s)
-    u, v = np.array([cp.pinion_u]), np.array([cp.pinion_v])
-    s0 = separation(pinion, gear, mesh.pinion_frame(phi, j), mesh.gear_frame(phi, j, delta), u, v).s[0]
-    s1 = separation(pinion, gear, mesh.pinion_frame(phi, j), mesh.gear_frame(phi, j, delta + step),
-                    u, v).s[0]
+def _take(contacts: ContactPoints, index) -> ContactPoints:
+    return ContactPoints(*(getattr(contacts, f.name)[index] for f in fields(ContactPoints)))
+
+
+def _lag_slope(mesh, pinion, gear, phis, pairs, P, J, delta, contacts, step=1e-6) -> np.ndarray:
+    """d(separation)/d(lag) (mm/rad) at each position's contact point of least separation."""
+    s = np.where(np.isfinite(contacts.s), contacts.s, np.inf)
+    least = np.array([np.flatnonzero(P == p)[np.argmin(s[P == p])] for p in range(len(phis))])
+    u, v = contacts.pinion_u[least, None], contacts.pinion_v[least, None]
+    pf = Frame.stack([mesh.pinion_frame(phis[p], pairs[J[k]]) for p, k in enumerate(least)])
+    s0, s1 = (separation(pinion, gear, pf, Frame.stack(
+        [mesh.gear_frame(phis[p], pairs[J[k]], delta[p] + d) for p, k in enumerate(least)]),
+        u, v).s[:, 0] for d in (0.0, step))
     return (s1 - s0) / step
 
 
-def _pair_result(mesh, pinion, gear, phi, j, delta, cp, load, C_E, settings, gap) -> dict:
-    with np.errstate(all="ignore"):
-        return _pair_result_checked(mesh, pinion, gear, phi, j, delta, cp, load, C_E, settings, gap)
-
-
-def _pair_result_checked(mesh, pinion, gear, phi, j, delta, cp, load, C_E, settings, gap) -> dict:
-    pf, gf = mesh.pinion_frame(phi, j), mesh.gear_frame(phi, j, delta)
+def _pair_results(pinion, gear, pf, gf, roll_deg, pairs, delta, cp: ContactPoints, gaps,
+                  loads, C_E, settings) -> list[dict]:
+    """The result rows of K contacts (frames stacked (K,)): the gap fitted and from the
+    curvatures, Hertz (ellipse, or a line along the face), rigid ellipse and edge margins."""
     p_uv, g_uv = (cp.pinion_u, cp.pinion_v), (cp.gear_u, cp.gear_v)
-    plane = tangent_plane(pinion, pf, *p_uv)
-    analytic = analytic_gap(pinion, gear, pf, gf, plane, p_uv, g_uv)
+    planes = tangent_planes(pinion, pf, *p_uv)
+    analytic = analytic_gaps(pinion, gear, pf, gf, planes, p_uv, g_uv)
+    A = np.array([g.A for g in analytic])
+    B = np.array([g.B for g in analytic])
+    angle = np.array([g.angle for g in analytic])
     # line contact: the rigid pattern would be longer than the shorter flank's face
-    face = min(_face_length(pinion, p_uv), _face_length(gear, g_uv))
-    line = analytic.A <= settings.approach / (0.5 * face) ** 2
-    extent = (_fit_extent(analytic, pinion, p_uv), math.sqrt(FIT_GAP / analytic.B))
-    fit = fit_gap(pinion, gear, pf, gf, plane, p_uv, g_uv, extent, settings.fit_points)
-    row = {"roll_deg": math.degrees(phi), "pair": j,
-           "contact_radius_pinion_mm": float(np.hypot(*pinion.evaluate(
-               np.array([cp.pinion_u]), np.array([cp.pinion_v])).points[0, :2])),
-           "face_position_mm": float(pinion.point(np.array(cp.pinion_u), np.array(cp.pinion_v))[2]),
-           "separation_mm": gap,
-           "A_per_mm": fit.curvature.A, "B_per_mm": fit.curvature.B,
-           "A_analytic_per_mm": analytic.A, "B_analytic_per_mm": analytic.B,
-           "fit_rms_mm": fit.rms, "transmission_error_urad": delta * 1e6,
-           "normal_load_N": load}
-    if line:
-        contact = hertz_line(load / face, 1.0 / (2.0 * analytic.B), C_E)
-        a, b, p0, approach = 0.5 * face, contact.b, contact.p0, float("nan")
-        row["line_contact"] = True
-    else:
-        ellipse = hertz_point(analytic.A, analytic.B, load, C_E)
-        a, b, p0, approach = ellipse.a, ellipse.b, ellipse.p0, ellipse.approach
-        row["line_contact"] = False
+    face = np.minimum(_face_length(pinion, p_uv), _face_length(gear, g_uv))
+    line = A <= settings.approach / (0.5 * face) ** 2
+    fit_limit = np.minimum(_face_length(pinion, p_uv) / 3.0, 10.0 * np.sqrt(FIT_GAP / B))
+    extent = np.stack([np.where(A > 0, np.minimum(np.sqrt(FIT_GAP / A), fit_limit), fit_limit),
+                       np.sqrt(FIT_GAP / B)], axis=-1)
+    fit = fit_gaps(pinion, gear, pf, gf, planes, p_uv, g_uv, extent, settings.fit_points)
+    points = pinion.evaluate(p_uv[0], p_uv[1], order=1).points
+    a, b, p0, approach = (np.empty(len(A)) for _ in range(4))
+    for k in range(len(A)):
+        if line[k]:
+            contact = hertz_line(loads[k] / face[k], 1.0 / (2.0 * B[k]), C_E)
+            a[k], b[k], p0[k], approach[k] = 0.5 * face[k], contact.b, contact.p0, np.nan
+        else:
+            e = hertz_point(A[k], B[k], loads[k], C_E)
+            a[k], b[k], p0[k], approach[k] = e.a, e.b, e.p0, e.approach
+    # a contact line has no ellipse to hold against the edges
+    point = np.flatnonzero(~line)
     margins = {}
-    if not line:  # a contact line has no ellipse to hold against the edges
-        margins = {f"pinion_{k}": v for k, v in edge_margins(pinion, pf, plane, a, b,
-                                                             analytic.angle, p_uv).items()}
-        margins.update({f"gear_{k}": v for k, v in edge_margins(gear, gf, plane, a, b,
-                                                                analytic.angle, g_uv).items()})
-    worst = min(margins.values()) if margins else float("nan")
-    row.update({"a_mm": a, "b_mm": b, "p_max_MPa": p0, "approach_mm": approach,
-                "rigid_a_mm": math.sqrt(settings.approach / analytic.A) if not line else float("inf"),
-                "rigid_b_mm": math.sqrt(settings.approach / analytic.B),
-                "edge_margin_mm": worst, "edge_contact": bool(worst < 0.0),
-                "edge_margins_mm": margins})
-    return row
+    for name, flank, frames, uv in (("pinion", pinion, pf, p_uv), ("gear", gear, gf, g_uv)):
+        found = edge_margins(flank, frames[point], planes_at(planes, point), a[point], b[point],
+                             angle[point], uv[0][point], uv[1][point])
+        margins.update({f"{name}_{edge}": value for edge, value in found.items()})
+    rows = []
+    for k in range(len(A)):
+        own = {}
+        if not line[k]:
+            i = int(np.searchsorted(point, k))
+            own = {name: float(value[i]) for name, value in margins.items() if np.isfinite(value[i])}
+        worst = min(own.values()) if own else float("nan")
+        rows.append({
+            "roll_deg": float(roll_deg[k]), "pair": int(pairs[k]),
+            "contact_radius_pinion_mm": float(np.hypot(*points[k, :2])),
+            "face_position_mm": float(points[k, 2]),
+            "separation_mm": float(gaps[k]),
+            "A_per_mm": float(fit.A[k]), "B_per_mm": float(fit.B[k]),
+            "A_analytic_per_mm": float(A[k]), "B_analytic_per_mm": float(B[k]),
+            "fit_rms_mm": float(fit.rms[k]), "transmission_error_urad": float(delta[k] * 1e6),
+            "normal_load_N": float(loads[k]), "line_contact": bool(line[k]),
+            "a_mm": float(a[k]), "b_mm": float(b[k]), "p_max_MPa": float(p0[k]),
+            "approach_mm": float(approach[k]),
+            "rigid_a_mm": math.sqrt(settings.approach / A[k]) if not line[k] else float("inf"),
+            "rigid_b_mm": math.sqrt(settings.approach / B[k]),
+            "edge_margin_mm": worst, "edge_contact": bool(worst < 0.0),
+            "edge_margins_mm": own})
+    return rows
 
 
-def _fit_extent(gap, flank: Flank, uv) -> float:
-    """Half-extent (mm) of the fit patch along e1: where the gap reaches FIT_GAP, at most a
-    third of the flank's face length, and at most ten times the patch's width (line contact)."""
-    limit = min(_face_length(flank, uv) / 3.0, 10.0 * math.sqrt(FIT_GAP / gap.B))
-    return limit if gap.A <= 0 else min(math.sqrt(FIT_GAP / gap.A), limit)
-
-
-def _face_length(flank: Flank, uv) -> float:
-    """Length (mm) of the flank along its v parameter at the point uv."""
+def _face_length(flank: Flank, uv) -> np.ndarray:
+    """Length (mm) of the flank along its v parameter at the points uv ((K,) arrays)."""
     (_, _), (v0, v1) = flank.domain
-    speed = np.linalg.norm(flank.evaluate(np.array([uv[0]]), np.array([uv[1]])).r_v[0])
-    return float((v1 - v0) * speed)
+    return (v1 - v0) * np.linalg.norm(flank.evaluate(uv[0], uv[1], order=1).r_v, axis=-1)

@@ -12,35 +12,39 @@ import numpy as np
 
 from ..assembly import Frame
 from ..surfaces.base import Flank
-from .local import TangentPlane
+from .local import TangentPlanes
 from .rays import intersect
 
 
-def edge_margins(flank: Flank, frame: Frame, plane: TangentPlane, a: float, b: float,
-                 angle: float, guess, samples: int = 72) -> dict[str, float]:
-    """Margin (mm) from the ellipse (semi-axes a along `angle` from e1, b across) to each of
-    the flank's edges, named as in flank.edges; "beyond_surface" (-b) when part of the ellipse
-    lies where the flank surface does not exist (outside the region a hob generated), where
-    its normal line meets the flank more than 0.5 mm from the tangent plane, or more than a
-    domain's span beyond an edge."""
+def edge_margins(flank: Flank, frames: Frame, planes: TangentPlanes, a: np.ndarray,
+                 b: np.ndarray, angle: np.ndarray, guess_u: np.ndarray, guess_v: np.ndarray,
+                 samples: int = 72) -> dict[str, np.ndarray]:
+    """Margins (mm) from K ellipses (semi-axes a along `angle` from e1, b across; (K,)
+    arrays, frames stacked (K,)) to each of the flank's edges, named as in flank.edges;
+    "beyond_surface" is -b where part of the ellipse lies where the flank surface does not
+    exist (outside the region a hob generated), where its normal line meets the flank more
+    than 0.5 mm from the tangent plane, or more than a domain's span beyond an edge, and
+    NaN where the whole ellipse lies on the surface."""
     theta = np.linspace(0.0, 2.0 * np.pi, samples, endpoint=False)
-    da = np.cos(angle) * plane.e1 + np.sin(angle) * plane.e2
-    db = np.cross(plane.normal, da)
-    direction = np.broadcast_to(frame.vectors_to_local(plane.normal), (samples, 3))
-    u, v = np.full(samples, float(guess[0])), np.full(samples, float(guess[1]))
+    da = planes.direction(angle)
+    db = np.cross(planes.normal, da)
+    direction = frames.vectors_to_local(planes.normal[:, None, :])
+    u = np.repeat(np.asarray(guess_u, float)[:, None], samples, axis=1)
+    v = np.repeat(np.asarray(guess_v, float)[:, None], samples, axis=1)
+    along = a[:, None, None] * np.cos(theta)[:, None] * da[:, None, :]
+    across = b[:, None, None] * np.sin(theta)[:, None] * db[:, None, :]
     # march out from the contact point, each step starting where the last one landed, so
     # that the hits follow the flank here and not a far branch of a long surface
     for fraction in (0.25, 0.5, 0.75, 1.0):
-        points = plane.point + fraction * (a * np.cos(theta)[:, None] * da
-                                           + b * np.sin(theta)[:, None] * db)
-        hits = intersect(flank, frame.to_local(points), direction, u, v, iterations=40)
+        points = planes.point[:, None, :] + fraction * (along + across)
+        hits = intersect(flank, frames.to_local(points), direction, u, v, iterations=40)
         u = np.where(hits.converged, hits.u, u)
         v = np.where(hits.converged, hits.v, v)
     (u0, u1), (v0, v1) = flank.domain
     # parameter distances become lengths with the flank's speed at the nearest domain point:
     # beyond the edges a continued parameterisation may stretch without meaning
     sample = flank.evaluate(np.clip(np.nan_to_num(hits.u), u0, u1),
-                            np.clip(np.nan_to_num(hits.v), v0, v1))
+                            np.clip(np.nan_to_num(hits.v), v0, v1), order=1)
     speed_u = np.linalg.norm(sample.r_u, axis=-1)
     speed_v = np.linalg.norm(sample.r_v, axis=-1)
     margins = {
@@ -54,7 +58,7 @@ def edge_margins(flank: Flank, frame: Frame, plane: TangentPlane, a: float, b: f
     du, dv = u1 - u0, v1 - v0
     on = (hits.converged & np.isfinite(hits.u) & (np.abs(hits.s) < 0.5)
           & (hits.u > u0 - du) & (hits.u < u1 + du) & (hits.v > v0 - dv) & (hits.v < v1 + dv))
-    out = {name: float(np.min(value[on])) if on.any() else -b for name, value in margins.items()}
-    if not np.all(on):
-        out["beyond_surface"] = -b
+    out = {name: np.where(on.any(axis=-1), np.min(np.where(on, value, np.inf), axis=-1), -b)
+           for name, value in margins.items()}
+    out["beyond_surface"] = np.where(on.all(axis=-1), np.nan, -b)
     return out

@@ -17,98 +17,127 @@ import numpy as np
 from ..analytic.hertz import RelativeCurvature, relative_curvature
 from ..assembly import Frame
 from ..surfaces.base import Flank
-from .rays import intersect
+from .rays import RayHits, intersect
 
 
 @dataclass(frozen=True)
-class TangentPlane:
-    """Contact point (world), unit normal (out of the pinion), and tangent basis e1, e2
-    (e1 along the pinion's face direction)."""
+class TangentPlanes:
+    """For a batch of K contacts: contact point (world), unit normal (out of the pinion),
+    and tangent basis e1, e2 (e1 along the pinion's face direction), arrays (K, 3)."""
 
     point: np.ndarray
     normal: np.ndarray
     e1: np.ndarray
     e2: np.ndarray
 
-    def direction(self, angle: float) -> np.ndarray:
-        return np.cos(angle) * self.e1 + np.sin(angle) * self.e2
+    def direction(self, angle: np.ndarray) -> np.ndarray:
+        """Unit tangents at `angle` (rad, (K,)) from e1."""
+        return np.cos(angle)[:, None] * self.e1 + np.sin(angle)[:, None] * self.e2
+
+    def at(self, x: np.ndarray, y: np.ndarray) -> np.ndarray:
+        """World points of the plane coordinates x, y (mm, shape (K, ...))."""
+        def lift(vector):
+            return vector.reshape(vector.shape[:1] + (1,) * (x.ndim - 1) + (3,))
+        return lift(self.point) + x[..., None] * lift(self.e1) + y[..., None] * lift(self.e2)
 
 
 @dataclass(frozen=True)
-class GapFit:
-    """Gap h = A x² + B y² in the principal axes of the fit; `angle` (rad) from e1 to the A
-    axis; `rms` of the residual (mm); the half-extents of the fitted patch (mm)."""
+class GapFits:
+    """Gap h = A x² + B y² in the principal axes of each fit ((K,) arrays A <= B, `angle`
+    (rad) from e1 to the A axis); `rms` of the residual (mm); the half-extents of each
+    fitted patch (mm, (K, 2))."""
 
-    curvature: RelativeCurvature
-    rms: float
-    extent: tuple[float, float]
-
-
-def tangent_plane(pinion: Flank, frame: Frame, u: float, v: float) -> TangentPlane:
-    s = pinion.evaluate(np.array([u]), np.array([v]))
-    n = frame.vectors_to_world(s.normals[0])
-    face = frame.vectors_to_world(s.r_v[0])
-    e1 = face - np.dot(face, n) * n
-    e1 /= np.linalg.norm(e1)
-    return TangentPlane(frame.to_world(s.points[0]), n, e1, np.cross(n, e1))
+    A: np.ndarray
+    B: np.ndarray
+    angle: np.ndarray
+    rms: np.ndarray
+    extent: np.ndarray
 
 
-def heights(flank: Flank, frame: Frame, plane: TangentPlane, x: np.ndarray, y: np.ndarray,
-            guess: tuple[float, float]):
-    """Distance t along the plane's normal from the plane point (x, y) to the flank, and
-    whether the line meets the flank's surface (continued beyond its edges where it exists)."""
-    points = plane.point + x[..., None] * plane.e1 + y[..., None] * plane.e2
-    local = frame.to_local(points)
-    direction = np.broadcast_to(frame.vectors_to_local(plane.normal), local.shape)
-    hits = intersect(flank, local, direction, np.full(x.shape, guess[0]), np.full(x.shape, guess[1]))
-    return hits.s, hits.converged
+def tangent_planes(pinion: Flank, frames: Frame, u: np.ndarray, v: np.ndarray) -> TangentPlanes:
+    """The common tangent planes at pinion parameters (u, v) ((K,)), frames stacked (K,)."""
+    s = pinion.evaluate(u[:, None], v[:, None], order=1)
+    n = frames.vectors_to_world(s.normals)[:, 0]
+    face = frames.vectors_to_world(s.r_v)[:, 0]
+    e1 = face - np.einsum("ki,ki->k", face, n)[:, None] * n
+    e1 /= np.linalg.norm(e1, axis=-1, keepdims=True)
+    return TangentPlanes(frames.to_world(s.points)[:, 0], n, e1, np.cross(n, e1))
 
 
-def fit_gap(pinion: Flank, gear: Flank, pinion_frame: Frame, gear_frame: Frame,
-            plane: TangentPlane, pinion_uv, gear_uv, extent: tuple[float, float],
-            n: int = 21) -> GapFit:
-    """Least-squares fit of the gap on an n × n grid of half-extents `extent`, shrunk until
-    the lines of the whole patch meet both surfaces (continued beyond the flank edges, where
-    the contact may sit). The fit carries the cubic and quartic terms too, so that the
-    flank's changing curvature does not leak into A and B; A and B are the quadratic part,
-    diagonalised."""
+def heights(flank: Flank, frames: Frame, planes: TangentPlanes, x: np.ndarray, y: np.ndarray,
+            guess_u: np.ndarray, guess_v: np.ndarray) -> RayHits:
+    """Where the lines along each plane's normal through its points (x, y) (mm, shape
+    (K, m)) meet the flank (continued beyond its edges where it exists): hits.s is the
+    height t above the plane, hits.inside says whether the flank has material there."""
+    local = frames.to_local(planes.at(x, y))
+    direction = frames.vectors_to_local(planes.normal[:, None, :])
+    start = (np.broadcast_to(guess_u[:, None], x.shape), np.broadcast_to(guess_v[:, None], x.shape))
+    return intersect(flank, local, direction, *start)
+
+
+#: exponents (i, j) of the quartic gap polynomial fitted around a contact point
+_POWERS = [(i, k - i) for k in range(5) for i in range(k + 1)]
+
+
+def fit_gaps(pinion: Flank, gear: Flank, pinion_frames: Frame, gear_frames: Frame,
+             planes: TangentPlanes, pinion_uv, gear_uv, extent: np.ndarray, n: int = 21) -> GapFits:
+    """Least-squares fit of each contact's gap on an n × n grid of half-extents `extent`
+    ((K, 2), mm), each shrunk until the lines of its whole patch meet both surfaces
+    (continued beyond the flank edges, where the contact may sit). The fit carries the cubic
+    and quartic terms too, so that the flank's changing curvature does not leak into A and
+    B; A and B are the quadratic part, diagonalised."""
+    extent = np.array(extent, float)
+    unit = np.linspace(-1.0, 1.0, n)
+    X, Y = (a.ravel() for a in np.meshgrid(unit, unit, indexing="ij"))
+    h = np.empty((len(extent), n * n))
+    todo = np.arange(len(extent))
     for _ in range(12):
-        x, y = np.meshgrid(np.linspace(-extent[0], extent[0], n),
-                           np.linspace(-extent[1], extent[1], n), indexing="ij")
-        tp, in_p = heights(pinion, pinion_frame, plane, x, y, pinion_uv)
-        tg, in_g = heights(gear, gear_frame, plane, x, y, gear_uv)
-        if np.all(in_p & in_g):
+        x, y = extent[todo, :1] * X, extent[todo, 1:] * Y
+        hp = heights(pinion, pinion_frames[todo], planes_at(planes, todo), x, y,
+                     pinion_uv[0][todo], pinion_uv[1][todo])
+        hg = heights(gear, gear_frames[todo], planes_at(planes, todo), x, y,
+                     gear_uv[0][todo], gear_uv[1][todo])
+        met = np.all(hp.converged & hg.converged, axis=-1)
+        h[todo[met]] = (hg.s - hp.s)[met]
+        extent[todo[~met]] *= 0.7
+        todo = todo[~met]
+        if todo.size == 0:
             break
-        extent = (0.7 * extent[0], 0.7 * extent[1])
     else:
         raise ValueError("the gap cannot be fitted here: the surfaces end (base circle)")
-    h = (tg - tp).ravel()
-    X, Y = x.ravel() / extent[0], y.ravel() / extent[1]
-    powers = [(i, k - i) for k in range(5) for i in range(k + 1)]
-    design = np.stack([X**i * Y**j for i, j in powers], axis=-1)
-    coef, *_ = np.linalg.lstsq(design, h, rcond=None)
-    rms = float(np.sqrt(np.mean((design @ coef - h) ** 2)))
-    c = dict(zip(powers, coef))
-    quad = np.array([[c[(2, 0)] / extent[0] ** 2, 0.5 * c[(1, 1)] / (extent[0] * extent[1])],
-                     [0.5 * c[(1, 1)] / (extent[0] * extent[1]), c[(0, 2)] / extent[1] ** 2]])
+    design = np.stack([X**i * Y**j for i, j in _POWERS], axis=-1)
+    coef = h @ np.linalg.pinv(design).T                                  # (K, 15)
+    rms = np.sqrt(np.mean((coef @ design.T - h) ** 2, axis=-1))
+    c = dict(zip(_POWERS, coef.T))
+    ex, ey = extent[:, 0], extent[:, 1]
+    quad = np.stack([np.stack([c[(2, 0)] / ex**2, 0.5 * c[(1, 1)] / (ex * ey)], axis=-1),
+                     np.stack([0.5 * c[(1, 1)] / (ex * ey), c[(0, 2)] / ey**2], axis=-1)], axis=-2)
     values, vectors = np.linalg.eigh(quad)
-    angle = float(np.arctan2(vectors[1, 0], vectors[0, 0]))
-    return GapFit(RelativeCurvature(A=float(values[0]), B=float(values[1]), angle=angle), rms,
-                  extent)
+    angle = np.arctan2(vectors[:, 1, 0], vectors[:, 0, 0])
+    return GapFits(values[:, 0], values[:, 1], angle, rms, extent)
 
 
-def analytic_gap(pinion: Flank, gear: Flank, pinion_frame: Frame, gear_frame: Frame,
-                 plane: TangentPlane, pinion_uv, gear_uv) -> RelativeCurvature:
+def planes_at(planes: TangentPlanes, index) -> TangentPlanes:
+    """The planes of a sub-batch."""
+    return TangentPlanes(planes.point[index], planes.normal[index], planes.e1[index], planes.e2[index])
+
+
+def analytic_gaps(pinion: Flank, gear: Flank, pinion_frames: Frame, gear_frames: Frame,
+                  planes: TangentPlanes, pinion_uv, gear_uv) -> list[RelativeCurvature]:
     """A, B and the direction of A from the principal curvatures of both flanks (convex
     positive for each, along its own outward normal), expressed with `angle` from e1."""
-    sp = pinion.evaluate(np.array([pinion_uv[0]]), np.array([pinion_uv[1]]))
-    sg = gear.evaluate(np.array([gear_uv[0]]), np.array([gear_uv[1]]))
-    kp1, kp2, dp1, _ = (np.asarray(x)[0] for x in sp.principal_curvatures())
-    kg1, kg2, dg1, _ = (np.asarray(x)[0] for x in sg.principal_curvatures())
-    dp1 = pinion_frame.vectors_to_world(dp1)
-    dg1 = gear_frame.vectors_to_world(dg1)
-    angle_p = np.arctan2(np.dot(dp1, plane.e2), np.dot(dp1, plane.e1))
-    angle_g = np.arctan2(np.dot(dg1, plane.e2), np.dot(dg1, plane.e1))
-    rc = relative_curvature((float(kp1), float(kp2)), (float(kg1), float(kg2)),
-                            float(angle_g - angle_p), point_contact=False)
-    return RelativeCurvature(rc.A, rc.B, float(angle_p + rc.angle))
+    sp = pinion.evaluate(pinion_uv[0][:, None], pinion_uv[1][:, None])
+    sg = gear.evaluate(gear_uv[0][:, None], gear_uv[1][:, None])
+    kp1, kp2, dp1, _ = (x[:, 0] for x in sp.principal_curvatures())
+    kg1, kg2, dg1, _ = (x[:, 0] for x in sg.principal_curvatures())
+    dp1 = pinion_frames.vectors_to_world(dp1[:, None])[:, 0]
+    dg1 = gear_frames.vectors_to_world(dg1[:, None])[:, 0]
+    dot = lambda a, b: np.einsum("ki,ki->k", a, b)  # noqa: E731
+    angle_p = np.arctan2(dot(dp1, planes.e2), dot(dp1, planes.e1))
+    angle_g = np.arctan2(dot(dg1, planes.e2), dot(dg1, planes.e1))
+    out = []
+    for k in range(len(angle_p)):
+        rc = relative_curvature((float(kp1[k]), float(kp2[k])), (float(kg1[k]), float(kg2[k])),
+                                float(angle_g[k] - angle_p[k]), point_contact=False)
+        out.append(RelativeCurvature(rc.A, rc.B, float(angle_p[k] + rc.angle)))
+    return out

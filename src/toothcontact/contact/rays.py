@@ -13,6 +13,10 @@ import numpy as np
 
 from ..surfaces.base import Flank
 
+#: a ray whose parameters wander this many domain spans beyond the flank has met no part of
+#: it worth following (another branch of a long surface, or none): it stops, unconverged
+LOST_SPANS = 5.0
+
 
 @dataclass(frozen=True)
 class RayHits:
@@ -31,25 +35,39 @@ def intersect(flank: Flank, points: np.ndarray, directions: np.ndarray, u0: np.n
               v0: np.ndarray, iterations: int = 30, tolerance: float = 1e-11) -> RayHits:
     """Newton solve of r(u, v) - P - s·n = 0 from the starting parameters (u0, v0).
 
-    points, directions: (..., 3) in the flank's frame; u0, v0: starting guesses (...)."""
-    u, v = np.array(u0, float, copy=True), np.array(v0, float, copy=True)
+    points, directions: (..., 3) in the flank's frame; u0, v0: starting guesses (...).
+    Each iteration works on the rays still running only: a ray stops when its residual is
+    below `tolerance` (converged), or when it has no Newton step or wanders off."""
+    shape = np.broadcast_shapes(np.shape(u0), np.shape(v0), np.shape(points)[:-1],
+                                np.shape(directions)[:-1])
+    P = np.broadcast_to(points, shape + (3,)).reshape(-1, 3)
+    D = np.broadcast_to(directions, shape + (3,)).reshape(-1, 3)
+    u = np.array(np.broadcast_to(u0, shape), float).ravel()
+    v = np.array(np.broadcast_to(v0, shape), float).ravel()
     s = np.zeros(u.shape)
     converged = np.zeros(u.shape, bool)
-    for _ in range(iterations):
-        sample = flank.evaluate(u, v, order=1)
-        residual = sample.points - points - s[..., None] * directions
-        jac = np.stack([sample.r_u, sample.r_v, -directions], axis=-1)
-        # a ray along the flank, or a singular point of it (an involute at its base circle),
-        # has no Newton step: park it (identity) and let it end unconverged
-        singular = ~(np.abs(np.linalg.det(jac)) > 1e-14)
-        jac = np.where(singular[..., None, None], np.eye(3), jac)
-        step = np.linalg.solve(jac, -residual[..., None])[..., 0]
-        step = np.where(np.isfinite(step) & ~singular[..., None], step, 0.0)
-        u, v, s = u + step[..., 0], v + step[..., 1], s + step[..., 2]
-        converged = np.linalg.norm(residual, axis=-1) < tolerance
-        if np.all(converged | ~np.isfinite(residual).all(axis=-1)):
-            break
     (ua, ub), (va, vb) = flank.domain
+    reach_u, reach_v = LOST_SPANS * (ub - ua), LOST_SPANS * (vb - va)
+    active = np.flatnonzero(np.isfinite(u) & np.isfinite(v))
+    for _ in range(iterations):
+        if active.size == 0:
+            break
+        sample = flank.evaluate(u[active], v[active], order=1)
+        residual = sample.points - P[active] - s[active, None] * D[active]
+        done = np.linalg.norm(residual, axis=-1) < tolerance
+        converged[active[done]] = True
+        jac = np.stack([sample.r_u, sample.r_v, -D[active]], axis=-1)
+        # a ray along the flank, or a singular point of it (an involute at its base circle),
+        # has no Newton step: it ends unconverged
+        running = ~done & (np.abs(np.linalg.det(jac)) > 1e-14) & np.isfinite(residual).all(axis=-1)
+        step = np.linalg.solve(jac[running], -residual[running][..., None])[..., 0]
+        active = active[running]
+        u[active] += step[:, 0]
+        v[active] += step[:, 1]
+        s[active] += step[:, 2]
+        on = (np.isfinite(step).all(axis=-1) & (u[active] > ua - reach_u) & (u[active] < ub + reach_u)
+              & (v[active] > va - reach_v) & (v[active] < vb + reach_v))
+        active = active[on]
     slack = 1e-9
     inside = converged & (u >= ua - slack) & (u <= ub + slack) & (v >= va - slack) & (v <= vb + slack)
-    return RayHits(u, v, s, converged, inside)
+    return RayHits(*(x.reshape(shape) for x in (u, v, s, converged, inside)))
