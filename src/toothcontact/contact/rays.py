@@ -11,7 +11,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ..surfaces.base import Flank
+from ..surfaces.base import Flank, cross, dot
 
 #: a ray whose parameters wander this many domain spans beyond the flank has met no part of
 #: it worth following (another branch of a long surface, or none): it stops, unconverged
@@ -56,11 +56,17 @@ def intersect(flank: Flank, points: np.ndarray, directions: np.ndarray, u0: np.n
         residual = sample.points - P[active] - s[active, None] * D[active]
         done = np.linalg.norm(residual, axis=-1) < tolerance
         converged[active[done]] = True
-        jac = np.stack([sample.r_u, sample.r_v, -D[active]], axis=-1)
+        # Newton step: [r_u r_v -n]·(du, dv, ds) = -residual, by Cramer's rule
+        ru, rv, n = sample.r_u, sample.r_v, -D[active]
+        rv_n = cross(rv, n)
+        det = dot(ru, rv_n)
         # a ray along the flank, or a singular point of it (an involute at its base circle),
         # has no Newton step: it ends unconverged
-        running = ~done & (np.abs(np.linalg.det(jac)) > 1e-14) & np.isfinite(residual).all(axis=-1)
-        step = np.linalg.solve(jac[running], -residual[running][..., None])[..., 0]
+        running = ~done & (np.abs(det) > 1e-14) & np.isfinite(residual).all(axis=-1)
+        ru, rv, n, rv_n, det = ru[running], rv[running], n[running], rv_n[running], det[running]
+        y = -residual[running]
+        step = np.stack([dot(y, rv_n), dot(ru, cross(y, n)), dot(ru, cross(rv, y))],
+                        axis=-1) / det[:, None]
         active = active[running]
         u[active] += step[:, 0]
         v[active] += step[:, 1]

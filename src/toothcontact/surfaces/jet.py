@@ -30,7 +30,8 @@ class Jet:
         the second derivatives are not carried (None): about half the work, for searches
         that need only tangents."""
         u, v = np.broadcast_arrays(np.asarray(u, float), np.asarray(v, float))
-        zero, one = np.zeros_like(u), np.ones_like(u)
+        # constant derivatives as 0-d arrays: they broadcast, and cost nothing to multiply
+        zero, one = np.array(0.0), np.array(1.0)
         second = (zero, zero, zero) if order == 2 else (None, None, None)
         return _new(u, one, zero, *second), _new(v, zero, one, *second)
 
@@ -142,10 +143,15 @@ def _arctan2(y: Jet, x: Jet) -> Jet:
     return Jet(np.arctan2(y.f, x.f), du.f, dv.f, du.u, du.v, dv.v)
 
 
+def _sin_cos(a: Jet, value, slope) -> Jet:
+    """sin or cos of a jet from its value and slope (the curvature is -value)."""
+    return a._chain(value, slope, None if a.uu is None else -value)
+
+
 _UNARY = {
     np.negative: lambda a: -a,
-    np.sin: lambda a: a._chain(np.sin(a.f), np.cos(a.f), -np.sin(a.f)),
-    np.cos: lambda a: a._chain(np.cos(a.f), -np.sin(a.f), -np.cos(a.f)),
+    np.sin: lambda a: _sin_cos(a, np.sin(a.f), np.cos(a.f)),
+    np.cos: lambda a: _sin_cos(a, np.cos(a.f), -np.sin(a.f)),
     np.tan: lambda a: a._chain(np.tan(a.f), 1 + np.tan(a.f) ** 2,
                                2 * np.tan(a.f) * (1 + np.tan(a.f) ** 2)),
     np.arctan: lambda a: a._chain(np.arctan(a.f), 1 / (1 + a.f**2), -2 * a.f / (1 + a.f**2) ** 2),
