@@ -15,12 +15,28 @@ STEEL_BRONZE = compliance(206000.0, 0.3, 100000.0, 0.35)
 SETTINGS = CycleSettings(positions=1, grid=(11, 81), pairs=(-1, 0, 1))
 
 
-def contact(name, misalignment=WormMisalignment()):
+def contact(name, misalignment=WormMisalignment(), settings=SETTINGS):
     case, _ = load_case(bundled_cases_dir() / f"{name}.toml")
     parts = gearset.worm_set(case)
     mesh = WormMesh(parts.wheel["left"], misalignment)
     return parallel_cycle(mesh, parts.worm["left"], parts.wheel["left"], 500.0, STEEL_BRONZE,
-                          SETTINGS)
+                          settings)
+
+
+def test_a_two_start_worm_meshes_periodically_over_one_start_pitch():
+    """The cycle's ends are one start's pitch apart: the same mesh, met by the other thread
+    start and the next wheel tooth. Equal transmission error and contact there shows both
+    starts take part (one start's thread alone gives a jump)."""
+    rows = contact("worm_eps_oversized_hob", WormMisalignment(centre_distance_error=0.05),
+                   CycleSettings(positions=3, grid=(11, 81), pairs=(-2, -1, 0, 1, 2)))
+    first = [r for r in rows if r["roll_deg"] == rows[0]["roll_deg"]]
+    last = [r for r in rows if r["roll_deg"] == rows[-1]["roll_deg"]]
+    assert rows[-1]["roll_deg"] - rows[0]["roll_deg"] == pytest.approx(180.0)
+    assert len(first) == len(last)
+    for a, b in zip(first, last):
+        assert b["transmission_error_urad"] == pytest.approx(a["transmission_error_urad"], abs=0.05)
+        assert b["pair"] == a["pair"] - 1
+        assert b["p_max_MPa"] == pytest.approx(a["p_max_MPa"], rel=1e-4)
 
 
 def test_hob_identical_to_the_worm_gives_line_contact_without_transmission_error():

@@ -10,6 +10,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
+from functools import cached_property
 
 import numpy as np
 
@@ -159,8 +160,19 @@ class WormMesh:
         return 2.0 * math.pi / self.wheel.worm.starts
 
     def pinion_frame(self, phi1: float, tooth: int = 0) -> Frame:
-        turn = rotation([0.0, 0.0, 1.0], phi1)
+        """The worm's frame, turned to the thread start that meets wheel tooth `tooth`: the
+        flank is one start's thread, start k is that thread turned by 2πk/starts, and a
+        turn of one start's pitch brings the next wheel tooth into start 0's place."""
+        start = (self._start_step * tooth) % self.wheel.worm.starts
+        turn = rotation([0.0, 0.0, 1.0], phi1 + 2.0 * math.pi * start / self.wheel.worm.starts)
         return Frame(self._tilt.R @ turn, self._tilt.origin)
+
+    @cached_property
+    def _start_step(self) -> int:
+        """+1 when a turn of the worm by one start's pitch carries wheel tooth j to tooth
+        j + 1's place (start k then meets tooth k), else -1."""
+        ahead = self.gear_frame(self.driver_pitch, 0).R
+        return 1 if np.allclose(ahead, self.gear_frame(0.0, 1).R, atol=1e-9) else -1
 
     def gear_frame(self, phi1: float, tooth: int = 0, delta: float = 0.0) -> Frame:
         M = self.wheel.wheel_from_hob(phi1, centre_distance=self.centre_distance,
