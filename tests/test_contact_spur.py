@@ -24,7 +24,7 @@ def run(case=CASE, slope=0.0, positions=3):
     pinion = gearset.working_flank(pair.pinion, pair.pinion_modifications, 1)
     gear = gearset.working_flank(pair.gear, pair.gear_modifications, mesh.gear_side)
     load = 8000.0 / math.cos(pair.working_pressure_angle)
-    return pair, parallel_cycle(mesh, pinion, gear, load, STEEL, CycleSettings(positions=positions))
+    return pair, parallel_cycle(mesh, pinion, gear, load, STEEL, CycleSettings(positions=positions)).rows
 
 
 @pytest.fixture(scope="module")

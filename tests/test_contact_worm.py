@@ -20,7 +20,7 @@ def contact(name, misalignment=WormMisalignment(), settings=SETTINGS):
     parts = gearset.worm_set(case)
     mesh = WormMesh(parts.wheel["left"], misalignment)
     return parallel_cycle(mesh, parts.worm["left"], parts.wheel["left"], 500.0, STEEL_BRONZE,
-                          settings)
+                          settings).rows
 
 
 def test_a_two_start_worm_meshes_periodically_over_one_start_pitch():

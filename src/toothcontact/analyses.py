@@ -33,9 +33,14 @@ class Check:
 
 @dataclass
 class Result:
+    """What an analysis found: sections, checks and notes go to result.json; `cycle` (a
+    contact.cycle.ContactCycle, for contact cases) stays in memory for pictures and the
+    pressure solver."""
+
     sections: dict = field(default_factory=dict)
     checks: list[Check] = field(default_factory=list)
     notes: list[str] = field(default_factory=list)
+    cycle: object = None
 
     def as_dict(self) -> dict:
         return {**self.sections, "checks": [c.as_dict() for c in self.checks],
@@ -351,13 +356,13 @@ def _spur_contact(case: schema.SpurCase, pair, result: Result) -> None:
     C_E = hertz.compliance(case.material.E, case.material.nu, gear_material.E, gear_material.nu)
     a = case.analysis
     try:
-        rows = parallel_cycle(mesh, pinion, gear, normal_load, C_E,
+        cycle = parallel_cycle(mesh, pinion, gear, normal_load, C_E,
                               CycleSettings(a.positions, a.grid, a.approach))
     except (ValueError, RuntimeError) as exc:
         raise CaseError(f"misalignment / load: no contact could be found: {exc}") from None
-    _contact_sections(rows, {"tangential_load_N": wt, "normal_load_N": normal_load}, result)
+    _contact_sections(cycle, {"tangential_load_N": wt, "normal_load_N": normal_load}, result)
     if case.analysis.interference:
-        _spur_interference(mesh, pair, rows, result)
+        _spur_interference(mesh, pair, cycle.rows, result)
 
 
 #: a collision point counts as interference when it lies this close (mm) to a member's tip
@@ -413,10 +418,18 @@ def _spur_interference(mesh, pair, rows: list[dict], result: Result) -> None:
                                   f"{found[0]['points_mm'][0]} mm" if found else "")))
 
 
-def _contact_sections(rows: list[dict], loads: dict, result: Result) -> None:
-    """positions, summary and the edge checks of a contact cycle."""
+def _contact_sections(cycle, loads: dict, result: Result) -> None:
+    """positions, summary, ease-off and the edge checks of a contact cycle (kept whole in
+    result.cycle for pictures and the pressure solver)."""
     from .contact.cycle import LOAD_SHARING_RULE
 
+    rows, ease = cycle.rows, cycle.ease_off
+    result.cycle = cycle
+    result.sections["ease_off"] = {
+        "face_mm": ease.face_mm.round(4).tolist(), "radius_mm": ease.radius_mm.round(4).tolist(),
+        "separation_um": [[None if not np.isfinite(s) else round(float(s) * 1e3, 3) for s in line]
+                          for line in ease.separation],
+        "approach_um": cycle.settings.approach * 1e3}
     te = [r["transmission_error_urad"] for r in rows]
     result.sections["positions"] = rows
     summary = {**loads, "max_p_max_MPa": max(r["p_max_MPa"] for r in rows),
@@ -492,14 +505,14 @@ def _spline_contact(case: schema.SplineCase, pair, result: Result) -> None:
     C_E = hertz.compliance(case.material.E, case.material.nu, case.material.E, case.material.nu)
     a = case.analysis
     try:
-        rows = parallel_cycle(mesh, hub, sleeve, normal_load, C_E,
+        cycle = parallel_cycle(mesh, hub, sleeve, normal_load, C_E,
                               CycleSettings(a.positions, a.grid, a.approach,
                                             pairs=tuple(range(case.teeth))))
     except (ValueError, RuntimeError) as exc:
         raise CaseError(f"misalignment / torque: no contact could be found: {exc}") from None
-    _contact_sections(rows, {"tangential_load_N": wt, "normal_load_N": normal_load}, result)
+    _contact_sections(cycle, {"tangential_load_N": wt, "normal_load_N": normal_load}, result)
     per_position = {}
-    for r in rows:
+    for r in cycle.rows:
         per_position.setdefault(r["roll_deg"], []).append(r["pair"])
     result.sections["summary"]["teeth_in_contact"] = {f"{k:.3f}": v for k, v in per_position.items()}
 
@@ -575,8 +588,8 @@ def _worm_contact(case: schema.WormCase, parts, result: Result) -> None:
     C_E = hertz.compliance(case.material.E, case.material.nu, wheel_material.E, wheel_material.nu)
     a = case.analysis
     try:
-        rows = parallel_cycle(mesh, worm, wheel, normal_load, C_E,
+        cycle = parallel_cycle(mesh, worm, wheel, normal_load, C_E,
                               CycleSettings(a.positions, a.grid, a.approach, pairs=(-2, -1, 0, 1, 2)))
     except (ValueError, RuntimeError) as exc:
         raise CaseError(f"misalignment / load: no contact could be found: {exc}") from None
-    _contact_sections(rows, loads, result)
+    _contact_sections(cycle, loads, result)

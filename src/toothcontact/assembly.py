@@ -99,9 +99,13 @@ class ParallelMesh:
         """The pinion's angular pitch (rad): one mesh cycle."""
         return 2.0 * math.pi / self.pair.pinion.teeth
 
+    def driver_turn(self, phi1, tooth):
+        """The pinion's turn (rad) at which its tooth 0 stands where tooth `tooth` stands at
+        phi1: its own flank's place in the cycle."""
+        return phi1 + tooth * 2.0 * math.pi / self.pair.pinion.teeth
+
     def pinion_frame(self, phi1: float, tooth: int = 0) -> Frame:
-        angle = phi1 + tooth * 2.0 * math.pi / self.pair.pinion.teeth
-        return Frame(rotation([0, 0, 1], angle), np.zeros(3))
+        return Frame(rotation([0, 0, 1], self.driver_turn(phi1, tooth)), np.zeros(3))
 
     def gear_frame(self, phi1: float, tooth: int = 0, delta: float = 0.0) -> Frame:
         """The gear's frame when the pinion has turned phi1 and the gear lags by delta (rad,
@@ -163,9 +167,14 @@ class WormMesh:
         """The worm's frame, turned to the thread start that meets wheel tooth `tooth`: the
         flank is one start's thread, start k is that thread turned by 2πk/starts, and a
         turn of one start's pitch brings the next wheel tooth into start 0's place."""
-        start = (self._start_step * tooth) % self.wheel.worm.starts
-        turn = rotation([0.0, 0.0, 1.0], phi1 + 2.0 * math.pi * start / self.wheel.worm.starts)
+        turn = rotation([0.0, 0.0, 1.0], self.driver_turn(phi1, tooth))
         return Frame(self._tilt.R @ turn, self._tilt.origin)
+
+    def driver_turn(self, phi1, tooth):
+        """The worm's turn (rad) with the start that meets wheel tooth `tooth` at phi1 in
+        start 0's place: the thread's own place in the cycle."""
+        start = np.mod(self._start_step * np.asarray(tooth), self.wheel.worm.starts)
+        return phi1 + 2.0 * math.pi * start / self.wheel.worm.starts
 
     @cached_property
     def _start_step(self) -> int:

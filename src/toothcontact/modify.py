@@ -10,7 +10,6 @@ curvature change of a modification is exactly its second derivative.
 
 from __future__ import annotations
 
-import math
 from dataclasses import dataclass
 
 import numpy as np

@@ -20,7 +20,8 @@ from ..analytic.hertz import hertz_line, hertz_point
 from ..assembly import Frame
 from ..surfaces.base import Flank
 from .ellipse import edge_margins
-from .local import analytic_gaps, fit_gaps, planes_at, tangent_planes
+from .field import EaseOff, ease_off
+from .local import TangentPlanes, analytic_gaps, fit_gaps, planes_at, tangent_planes
 from .search import ContactPoints, lowest, refine_minima, separation, solve_transmission_error
 
 LOAD_SHARING_RULE = "equal split of the normal load among the tooth pairs in contact"
@@ -38,10 +39,35 @@ class CycleSettings:
     approach: float = 0.00632             # mm, Litvin's rigid approach for the pattern
     fit_points: int = 21
     pairs: tuple[int, ...] = (-2, -1, 0, 1, 2)
+    ease_off_grid: tuple[int, int] = (31, 61)   # pinion flank grid of the ease-off map
+
+
+@dataclass(frozen=True)
+class ContactCycle:
+    """The contact over one mesh cycle: a result row per mesh position and tooth pair in
+    contact, and what a closer look needs (pictures, the pressure solver): the flanks, each
+    row's placed frames (stacked (K,)) and tangent plane, the direction of each row's A axis
+    (rad from e1, the ellipse's long axis) and the ease-off of the pinion flank."""
+
+    rows: list[dict]
+    pinion: Flank
+    gear: Flank
+    pinion_frames: Frame
+    gear_frames: Frame
+    contacts: ContactPoints
+    planes: TangentPlanes
+    axis_angle: np.ndarray
+    ease_off: EaseOff
+    settings: CycleSettings
+
+    def contact_uv(self, member: str, k: int) -> tuple[np.ndarray, np.ndarray]:
+        """Row k's contact point parameters on "pinion" or "gear", as arrays of one."""
+        return (np.atleast_1d(getattr(self.contacts, f"{member}_u")[k]),
+                np.atleast_1d(getattr(self.contacts, f"{member}_v")[k]))
 
 
 def parallel_cycle(mesh, pinion: Flank, gear: Flank, normal_load: float,
-                   C_E: float, settings: CycleSettings = CycleSettings()) -> list[dict]:
+                   C_E: float, settings: CycleSettings = CycleSettings()) -> ContactCycle:
     """One entry per mesh position and tooth pair in contact (see module docstring).
 
     `mesh` places the driver ("pinion": a pinion or a worm) and the driven member ("gear":
@@ -85,6 +111,7 @@ def parallel_cycle(mesh, pinion: Flank, gear: Flank, normal_load: float,
         return out
 
     delta, s_grid = solve_transmission_error(least, delta)
+    facing_pairs = (P, J)
     # refine the pairs that may be in contact: the grid minimum can overstate a pair's
     # least separation by about the gap across one grid cell
     near = pair_least(delta) - s_grid[P] <= settings.approach + CELL_GAP
@@ -100,10 +127,20 @@ def parallel_cycle(mesh, pinion: Flank, gear: Flank, normal_load: float,
     keep = keep[gaps[keep] <= settings.approach]
     P, J = P[keep], J[keep]
     share = normal_load / np.bincount(P, minlength=len(phis))[P]
+    pf, gf, contacts = pinion_frames[P, J], gear_frames(P, J, delta[P]), _take(contacts, keep)
     with np.errstate(all="ignore"):
-        return _pair_results(pinion, gear, pinion_frames[P, J], gear_frames(P, J, delta[P]),
-                             np.degrees(phis[P]), pairs[J], delta[P], _take(contacts, keep),
-                             gaps[keep], share, C_E, settings)
+        rows, planes, angle = _pair_results(pinion, gear, pf, gf, np.degrees(phis[P]), pairs[J],
+                                            delta[P], contacts, gaps[keep], share, C_E, settings)
+        ease = _ease_off(mesh, pinion, gear, phis, pairs, pinion_frames, gear_frames, delta,
+                         *facing_pairs, settings.ease_off_grid)
+    return ContactCycle(rows, pinion, gear, pf, gf, contacts, planes, angle, ease, settings)
+
+
+def _ease_off(mesh, pinion, gear, phis, pairs, pinion_frames, gear_frames, delta, P, J, grid):
+    """The pinion flank's ease-off over every facing pair at every position (the gear at
+    the solved lag; the final lag correction is below a micrometre and left out)."""
+    turns = np.array([mesh.driver_turn(phis[p], pairs[j]) for p, j in zip(P, J)], float)
+    return ease_off(pinion, gear, pinion_frames[P, J], gear_frames(P, J, delta[P]), turns, grid)
 
 
 def _take(contacts: ContactPoints, index) -> ContactPoints:
@@ -123,9 +160,10 @@ def _lag_slope(mesh, pinion, gear, phis, pairs, P, J, delta, contacts, step=1e-6
 
 
 def _pair_results(pinion, gear, pf, gf, roll_deg, pairs, delta, cp: ContactPoints, gaps,
-                  loads, C_E, settings) -> list[dict]:
+                  loads, C_E, settings):
     """The result rows of K contacts (frames stacked (K,)): the gap fitted and from the
-    curvatures, Hertz (ellipse, or a line along the face), rigid ellipse and edge margins."""
+    curvatures, Hertz (ellipse, or a line along the face), rigid ellipse and edge margins;
+    with the tangent planes and the angles of the A axes."""
     p_uv, g_uv = (cp.pinion_u, cp.pinion_v), (cp.gear_u, cp.gear_v)
     planes = tangent_planes(pinion, pf, *p_uv)
     analytic = analytic_gaps(pinion, gear, pf, gf, planes, p_uv, g_uv)
@@ -177,7 +215,7 @@ def _pair_results(pinion, gear, pf, gf, roll_deg, pairs, delta, cp: ContactPoint
             "rigid_b_mm": math.sqrt(settings.approach / B[k]),
             "edge_margin_mm": worst, "edge_contact": bool(worst < 0.0),
             "edge_margins_mm": own})
-    return rows
+    return rows, planes, angle
 
 
 def _face_length(flank: Flank, uv) -> np.ndarray:

@@ -109,7 +109,7 @@ class WormFlank(Flank):
             raise ValueError("need 0 < root_diameter < pitch_diameter < tip_diameter")
         self.wheel_diameter = float(wheel_diameter)
 
-        mx, r1 = self.axial_module, self.reference_radius
+        mx = self.axial_module
         self._p = (1.0 if hand == "right" else -1.0) * self.starts * mx / 2  # = ±r1·tan(gamma)
         gamma = self.lead_angle
         self._sg, self._cg = math.copysign(math.sin(gamma), self._p), math.cos(gamma)
