@@ -1,0 +1,521 @@
+"""Normal contact of two elastic bodies on a grid: the pressure under a gap field.
+
+Two elastic half-spaces are pressed together by a normal load W; the initial separation (gap)
+h between them is known on a uniform rectangular grid in the common tangent plane. The
+pressure p and the rigid-body approach delta satisfy (Polonsky & Keer 1999)
+
+    h - delta + u = 0  where p > 0,    h - delta + u >= 0  where p = 0,
+    p >= 0,    sum(p)·dx·dy = W,
+
+u being the elastic displacement of both surfaces together, u = K * p with
+K = 1/(π E*) · (integral of 1/r over one cell) (Johnson eq 3.25) and
+1/E* = (1-ν1²)/E1 + (1-ν2²)/E2 (Johnson eq 4.22). For a Hertz gap delta is Hertz's approach
+(analytic.hertz.hertz_point).
+
+Grid convention: ``gap[i, j]`` is the gap at x = x0 + i·dx, y = y0 + j·dy: **x along axis 0,
+y along axis 1** (``np.meshgrid(x, y, indexing="ij")``); each value stands for the dx × dy
+cell around its point. ``mask[i, j]`` False marks a cell without material (beyond a face end,
+off the flank): no pressure there, and its gap is not used.
+
+Method:
+- Influence coefficients of uniform pressure on a rectangular cell: Love (1929), as given by
+  Johnson, *Contact Mechanics* (1985) eq (3.25), written with asinh terms
+  (:func:`rectangle_displacement`).
+- u = K * p by DC-FFT: Liu, Wang & Liu, Wear 243 (2000) 101-111: the coefficients laid
+  out on 2N points per axis in wrap-around order, p zero-padded to 2N, so that the cyclic
+  convolution is the linear, non-periodic one. The kernel's spectrum is computed
+  once per grid (:func:`influence_operator`, cached by shape, dx, dy).
+- Solver: the constrained conjugate gradient method of Polonsky & Keer, Wear 231 (1999)
+  206-219, with the load constraint, preconditioned on the contact set by the inverse of
+  the DC-FFT circulant (an FFT approximate inverse of the Toeplitz influence matrix, as in
+  Zhao, Vollebregt & Oosterlee, Numer. Linear Algebra Appl. 21 (2014) 256-274; its use
+  inside the constrained iteration is ours), and started from the Hertz ellipse fitted to
+  the gap (:func:`hertz_start`).
+
+Units: mm, N, MPa.
+"""
+
+from __future__ import annotations
+
+import functools
+import math
+from dataclasses import dataclass
+
+import numpy as np
+import scipy.fft as sfft
+
+from ..analytic.hertz import hertz_point
+
+__all__ = [
+    "ContactSolution",
+    "EdgeLoad",
+    "InfluenceOperator",
+    "hertz_start",
+    "influence_operator",
+    "rectangle_displacement",
+    "solve_contact",
+]
+
+
+# --------------------------------------------------------------------------------------------
+# influence coefficients
+
+
+def _antiderivative(s: np.ndarray, t: np.ndarray) -> np.ndarray:
+    """F(s, t) = s·asinh(t/|s|) + t·asinh(s/|t|) (mm), with ∂²F/∂s∂t = 1/sqrt(s² + t²).
+
+    Johnson eq (3.25)'s s·ln(t + r) + t·ln(s + r) differs from it by terms in s or t alone,
+    which cancel in the double difference; the asinh form has no cancellation where
+    t + r is small."""
+    with np.errstate(divide="ignore", invalid="ignore"):
+        a = np.where(s != 0.0, s * np.arcsinh(t / np.abs(s)), 0.0)
+        b = np.where(t != 0.0, t * np.arcsinh(s / np.abs(t)), 0.0)
+    return a + b
+
+
+def rectangle_displacement(x, y, half_x: float, half_y: float, E_star: float = 1.0):
+    """Normal surface displacement (mm) at (x, y) (mm) of the two bodies together under a
+    uniform pressure of 1 MPa on the rectangle |x'| <= half_x, |y'| <= half_y (mm), composite
+    modulus E_star (MPa).
+
+    Love (1929); Johnson, *Contact Mechanics* (1985) eq (3.25), with (1-ν²)/E of one body
+    replaced by 1/E* for both: u = [F(x+a, y+b) - F(x+a, y-b) - F(x-a, y+b)
+    + F(x-a, y-b)] / (π E*), F(s, t) = s·asinh(t/|s|) + t·asinh(s/|t|)."""
+    x, y = np.asarray(x, dtype=float), np.asarray(y, dtype=float)
+    a, b = float(half_x), float(half_y)
+    total = (_antiderivative(x + a, y + b) - _antiderivative(x + a, y - b)
+             - _antiderivative(x - a, y + b) + _antiderivative(x - a, y - b))
+    return total / (math.pi * E_star)
+
+
+class InfluenceOperator:
+    """u = K * p on an n0 × n1 grid of dx × dy cells (mm), for E* = 1 MPa (divide u by E*).
+
+    DC-FFT (Liu, Wang & Liu 2000): K[k, l], the displacement at cell (k, l) under 1 MPa on
+    cell (0, 0), -n < k < n, is laid out on 2n points per axis in wrap-around order; p is
+    zero-padded to 2n, and the cyclic convolution of the two then equals the
+    linear one on the grid. K is even in both axes, so its spectrum is real; it is stored as
+    such, in float64 and (on first use) float32. The transforms are pruned: rows of the
+    padded p that are all zero are not transformed, nor rows of the result thrown away.
+    """
+
+    def __init__(self, shape: tuple[int, int], dx: float, dy: float):
+        n0, n1 = (int(s) for s in shape)
+        self.shape, self.dx, self.dy = (n0, n1), float(dx), float(dy)
+        self.kernel = self.coefficients(n0, n1, self.dx, self.dy)   # (2n0, 2n1)
+        self._spectrum = {np.float64: np.ascontiguousarray(
+            sfft.rfft2(self.kernel, workers=-1).real)}
+        # the circulant's spectrum is positive for this kernel; the guard only keeps the
+        # preconditioner finite
+        spectrum = self._spectrum[np.float64]
+        self._inverse = {np.float64: 1.0 / np.maximum(spectrum, 1e-12 * spectrum.max())}
+
+    @staticmethod
+    def coefficients(n0: int, n1: int, dx: float, dy: float) -> np.ndarray:
+        """Influence coefficients (mm per MPa, E* = 1 MPa) on the 2n0 × 2n1 wrap-around grid:
+        index k <= n0 is the offset k·dx, index k > n0 the offset (k - 2n0)·dx.
+
+        F is evaluated once on the cell corners (k - 1/2)·dx, (l - 1/2)·dy of the quadrant
+        k, l >= 0; the double difference of neighbours is Johnson eq (3.25) for each cell, and
+        the quadrant is mirrored (K is even in both axes)."""
+        xs = (np.arange(n0 + 2) - 0.5) * dx
+        ys = (np.arange(n1 + 2) - 0.5) * dy
+        F = _antiderivative(xs[:, None], ys[None, :])
+        quadrant = np.diff(np.diff(F, axis=0), axis=1) / math.pi    # (n0 + 1, n1 + 1)
+        half = np.concatenate([quadrant, quadrant[-2:0:-1]], axis=0)
+        return np.concatenate([half, half[:, -2:0:-1]], axis=1)
+
+    def _spectra(self, single: bool):
+        key = np.float32 if single else np.float64
+        if key not in self._spectrum:
+            self._spectrum[key] = self._spectrum[np.float64].astype(np.float32)
+            self._inverse[key] = self._inverse[np.float64].astype(np.float32)
+        return key, self._spectrum[key], self._inverse[key]
+
+    def _convolve(self, p, spectrum, dtype) -> np.ndarray:
+        n0, n1 = self.shape
+        P = sfft.rfft(np.asarray(p, dtype=dtype), n=2 * n1, axis=1, workers=-1)
+        P = sfft.fft(P, n=2 * n0, axis=0, workers=-1, overwrite_x=True)
+        P *= spectrum
+        U = sfft.ifft(P, axis=0, workers=-1, overwrite_x=True)[:n0]
+        return sfft.irfft(U, n=2 * n1, axis=1, workers=-1)[:, :n1]
+
+    def __call__(self, p: np.ndarray, single: bool = False) -> np.ndarray:
+        """Displacement (mm, for E* = 1 MPa) under the pressure p (MPa) on the grid; single:
+        the transforms in float32 (relative error about 1e-7)."""
+        dtype, spectrum, _ = self._spectra(single)
+        return self._convolve(p, spectrum, dtype)
+
+    def approximate_inverse(self, u: np.ndarray, single: bool = False) -> np.ndarray:
+        """Pressure (MPa, E* = 1 MPa) whose padded cyclic displacement is u: the inverse of
+        the 2n0 × 2n1 circulant, restricted to the grid. An approximate inverse of K, used
+        as the preconditioner (Zhao, Vollebregt & Oosterlee 2014)."""
+        dtype, _, inverse = self._spectra(single)
+        return self._convolve(u, inverse, dtype)
+
+
+@functools.lru_cache(maxsize=16)
+def influence_operator(shape: tuple[int, int], dx: float, dy: float) -> InfluenceOperator:
+    """The grid's :class:`InfluenceOperator`, built once per (shape, dx, dy) and kept (the
+    last 16; ``influence_operator.cache_clear()`` forgets them)."""
+    return InfluenceOperator(shape, dx, dy)
+
+
+# --------------------------------------------------------------------------------------------
+# results
+
+
+@dataclass(frozen=True)
+class EdgeLoad:
+    """Load at one edge of the material (a face end), in the strip of cells of each grid line
+    along `axis` from the edge inward over `width_mm` (a partial cell by its covered part).
+
+    edge_pressure_MPa: the pressure averaged across the strip, on the grid line along the
+        edge where that average is largest (MPa; converges as the grid is refined);
+    raw_peak_MPa: the largest pressure in the cells next to the edge (MPa; grows as the grid
+        is refined: the pressure at a sharp end is singular);
+    load_N, load_fraction: the load within the strip (N), and its share of the total;
+    line_index: index along the other axis of the line with edge_pressure_MPa;
+    side: "low" (edge at the lowest index along `axis`) or "high".
+    """
+
+    axis: int
+    side: str
+    width_mm: float
+    edge_pressure_MPa: float
+    raw_peak_MPa: float
+    load_N: float
+    load_fraction: float
+    line_index: int
+
+
+@dataclass(frozen=True)
+class ContactSolution:
+    """A solved contact on the grid (x along axis 0, y along axis 1). Arrays are read-only.
+
+    pressure_MPa: pressure per cell (0 outside the contact and the mask);
+    displacement_mm: elastic displacement u of the two surfaces together;
+    separation_mm: loaded gap h - approach + u on material cells (0 in contact to the
+        solver's tolerance, >= 0 elsewhere; 0 where there is no material);
+    area_mm2: number of cells with p > 0 times dx·dy; mean_pressure_MPa = load / area;
+    approach_mm: rigid-body approach delta (Hertz's approach for a Hertz gap);
+    iterations: conjugate gradient steps;
+    relative_error: max(rms of separation in contact, largest penetration outside it)
+        / largest displacement, computed afresh in float64 at the end.
+    """
+
+    pressure_MPa: np.ndarray
+    displacement_mm: np.ndarray
+    separation_mm: np.ndarray
+    mask: np.ndarray
+    dx_mm: float
+    dy_mm: float
+    load_N: float
+    E_star_MPa: float
+    area_mm2: float
+    peak_pressure_MPa: float
+    mean_pressure_MPa: float
+    approach_mm: float
+    iterations: int
+    relative_error: float
+
+    def edge_loads(self, axis: int = 0, width_mm: float = 0.1) -> tuple[EdgeLoad, EdgeLoad]:
+        """Load at the two edges of the mask along `axis` (0: x), in strips `width_mm` (mm)
+        wide inside the material: (low, high). For face ends, x runs along the face.
+
+        In each grid line along `axis` the low edge is the start of its first material cell
+        and the high edge the end of its last; lines without material are skipped, and the
+        strip holds only material cells."""
+        if axis not in (0, 1):
+            raise ValueError(f"axis: {axis!r} must be 0 (x) or 1 (y)")
+        try:
+            width = float(width_mm)
+        except (TypeError, ValueError):
+            raise ValueError(f"width_mm: {width_mm!r} must be a length > 0 mm") from None
+        if not (math.isfinite(width) and width > 0):
+            raise ValueError(f"width_mm: {width_mm!r} must be a finite length > 0 mm")
+        p, mask = self.pressure_MPa, self.mask
+        step = self.dx_mm if axis == 0 else self.dy_mm
+        if axis == 1:
+            p, mask = p.T, mask.T
+        lines = np.arange(p.shape[1])
+        edges = []
+        for side in ("low", "high"):
+            ps, ms = (p, mask) if side == "low" else (p[::-1], mask[::-1])
+            has = ms.any(axis=0)
+            first = np.argmax(ms, axis=0)                                # per line
+            offset = np.arange(ms.shape[0])[:, None] - first[None, :]   # cells from the edge
+            covered = np.clip(width / step - offset, 0.0, 1.0) * (offset >= 0) * ms * has
+            strip_width = covered.sum(axis=0) * step                     # mm, per line
+            line_load = (covered * ps).sum(axis=0) * step                # MPa·mm per line
+            averaged = np.divide(line_load, strip_width, out=np.zeros_like(line_load),
+                                 where=strip_width > 0)
+            line = int(np.argmax(averaged))
+            load = float(line_load.sum()) * (self.dy_mm if axis == 0 else self.dx_mm)
+            edge_cells = ps[first, lines][has]
+            edges.append(EdgeLoad(
+                axis=axis, side=side, width_mm=width,
+                edge_pressure_MPa=float(averaged[line]),
+                raw_peak_MPa=float(edge_cells.max()) if edge_cells.size else 0.0,
+                load_N=load, load_fraction=load / self.load_N, line_index=line))
+        return edges[0], edges[1]
+
+
+# --------------------------------------------------------------------------------------------
+# input checks
+
+
+def _positive(name: str, value, unit: str) -> float:
+    try:
+        v = float(value)
+    except (TypeError, ValueError):
+        raise ValueError(f"{name}: {value!r} must be a number > 0 {unit}") from None
+    if not (math.isfinite(v) and v > 0):
+        raise ValueError(f"{name}: {value!r} must be a finite number > 0 {unit}")
+    return v
+
+
+def _check_inputs(gap, dx, dy, load, E_star, mask):
+    dx, dy = _positive("dx_mm", dx, "mm"), _positive("dy_mm", dy, "mm")
+    load = _positive("load_N", load, "N")
+    E_star = _positive("E_star_MPa", E_star, "MPa")
+    try:
+        h = np.array(gap, dtype=float)
+    except (TypeError, ValueError):
+        raise ValueError("gap_mm: must be a 2-D array of numbers (mm)") from None
+    if h.ndim != 2 or min(h.shape) < 3:
+        raise ValueError(f"gap_mm: shape {h.shape} must be a 2-D grid of at least 3 × 3 cells")
+    if mask is None:
+        m = np.ones(h.shape, dtype=bool)
+    else:
+        m = np.asarray(mask)
+        if m.shape != h.shape:
+            raise ValueError(f"mask: shape {m.shape} must equal the gap's shape {h.shape}")
+        if m.dtype != bool:
+            if not np.all((m == 0) | (m == 1)):
+                raise ValueError("mask: values must be True (material) or False (none)")
+            m = m.astype(bool)
+    if not m.any():
+        raise ValueError("mask: no cell has material (all False); at least one must be True")
+    bad = m & ~np.isfinite(h)
+    if bad.any():
+        i, j = np.argwhere(bad)[0]
+        raise ValueError(f"gap_mm: {h[i, j]} at cell ({i}, {j}) must be finite where mask is "
+                         "True")
+    return np.where(m, h, 0.0), dx, dy, load, E_star, m.copy()
+
+
+# --------------------------------------------------------------------------------------------
+# warm start
+
+
+def hertz_start(h, dx: float, dy: float, mask, load: float, E_star: float):
+    """Initial pressure (MPa) on the grid: the Hertz ellipse of the quadratic fitted to the gap.
+
+    The gap on material cells near its minimum is fitted by least squares with
+    c0 + c1 x + c2 y + c3 x² + c4 xy + c5 y²; the eigenvalues of the quadratic part are A <= B
+    and analytic.hertz.hertz_point gives a, b and p0 for the load (Johnson eqs 4.36-4.39);
+    the fit is repeated over the rigid interference at Hertz's approach. The start is
+    p0·sqrt(1 - ξ²/a² - η²/b²) about the fitted minimum in the ellipse's axes, on material
+    cells. None when the fit is no bowl or the ellipse covers no material cell."""
+    i0, j0 = np.unravel_index(np.argmin(np.where(mask, h, np.inf)), h.shape)
+    x = ((np.arange(h.shape[0]) - i0) * dx)[:, None]
+    y = ((np.arange(h.shape[1]) - j0) * dy)[None, :]
+    rel = h - h[i0, j0]
+    level = float(np.quantile(rel[mask], min(1.0, max(0.02, 12.0 / mask.sum()))))
+    contact = None
+    for _ in range(2):
+        select = mask & (rel <= level)
+        if select.sum() < 6:
+            return None
+        xs, ys = np.broadcast_to(x, h.shape)[select], np.broadcast_to(y, h.shape)[select]
+        M = np.stack([np.ones_like(xs), xs, ys, xs * xs, xs * ys, ys * ys], axis=1)
+        scale = np.abs(M).max(axis=0)
+        scale[scale == 0] = 1.0
+        M /= scale                          # normal equations, einsum: no BLAS threads
+        c = np.linalg.solve(np.einsum("ki,kj->ij", M, M), np.einsum("ki,k->i", M, rel[select]))
+        c /= scale
+        H = np.array([[c[3], 0.5 * c[4]], [0.5 * c[4], c[5]]])
+        evals, evecs = np.linalg.eigh(H)
+        if not (evals[0] > 0 and evals[1] / evals[0] < 1e8):
+            return None
+        centre = np.linalg.solve(2.0 * H, -c[1:3])
+        contact = hertz_point(evals[0], evals[1], load, 1.0 / E_star)
+        level = max(level, contact.approach)   # the rigid interference holds the ellipse
+    ex, ey = evecs[:, 0]                      # direction of A: the long semi-axis a
+    xi = (x - centre[0]) * ex + (y - centre[1]) * ey
+    eta = (y - centre[1]) * ex - (x - centre[0]) * ey
+    inside = 1.0 - (xi / contact.a) ** 2 - (eta / contact.b) ** 2
+    p = contact.p0 * np.sqrt(np.clip(inside, 0.0, None)) * mask
+    return p if p.sum() > 0 else None
+
+
+# --------------------------------------------------------------------------------------------
+# solver
+
+
+def _error(h, u, p, m):
+    """(relative gap error, approach, separation) of the state p, u: the gap residual's rms in
+    contact and the largest penetration outside it, over the largest displacement."""
+    S = p > 0.0
+    g = h + u
+    approach = float(g[S].mean())
+    separation = np.where(m, g - approach, 0.0)
+    rms = math.sqrt(float(np.mean(separation[S] ** 2)))
+    pen = max(0.0, -float(separation[m & ~S].min(initial=0.0)))
+    return max(rms, pen) / float(u[m].max()), approach, separation
+
+
+def _dot(a: np.ndarray, b: np.ndarray) -> float:
+    """a·b by numpy's pairwise sum, not BLAS: BLAS dot spins its threads, slow on a shared
+    machine."""
+    return float(np.multiply(a, b).sum())
+
+
+def _ccg(h, m, p, u, op, compliance, load, cell, tol, max_iter, single):
+    """Preconditioned constrained conjugate gradients (Polonsky & Keer 1999) from p, u.
+
+    Works on the flattened grid and the index set S of cells in contact. Per step: gap
+    residual g - mean_S(g) (the mean is the approach), preconditioned residual
+    z = P·M·(g - mean) with M the circulant inverse and P the removal of the mean on S,
+    direction t = z + (G/G_old)·t (G = g·z; reset to z when cells joined the contact),
+    r = K t, step tau = g·t / (r - mean r)·t, p -= tau·t, negative pressures cut to 0,
+    penetrating cells outside S joined with -tau·g, and p scaled to carry the load
+    (Polonsky & Keer's sequence, with z for g). u follows p: u -= tau·r, plus one
+    convolution of the cut and joined pressures when there are any. Returns p, u, steps
+    taken, converged."""
+    shape, n = h.shape, h.size
+    hf, mf = h.ravel(), m.ravel()
+    pf, uf = p.ravel().copy(), np.ascontiguousarray(u).ravel().copy()
+    idx = np.flatnonzero(pf > 0.0)
+    free = mf.copy()
+    free[idx] = False
+    buffer = np.zeros(n)
+    t = np.zeros(idx.size)
+    G_old, conjugate = 1.0, False
+
+    def on_grid(values, where):
+        buffer.fill(0.0)
+        buffer[where] = values
+        return buffer.reshape(shape)
+
+    for step in range(max_iter + 1):
+        g = hf + uf
+        gS = g[idx]
+        approach = float(gS.mean())
+        gS -= approach
+        join = np.flatnonzero(free & (g < approach))
+        penetration = approach - float(g[join].min()) if join.size else 0.0
+        error = max(math.sqrt(_dot(gS, gS) / idx.size), penetration) / float(uf.max())
+        if error < tol:
+            return pf.reshape(shape), uf.reshape(shape), step, True
+        if step == max_iter:
+            break
+        z = op.approximate_inverse(on_grid(gS, idx), single).ravel()[idx]
+        z = z - z.mean()
+        G = _dot(gS, z)
+        t = z + (G / G_old) * t if conjugate and G_old > 0 else z
+        G_old = G
+        r = op(on_grid(t, idx), single).ravel() * compliance
+        rS = r[idx]
+        denom = _dot(rS - rS.mean(), t)
+        if not denom > 0:
+            break
+        tau = _dot(gS, t) / denom
+        pS = pf[idx] - tau * t
+        uf -= tau * r
+        cut = pS < 0.0
+        if cut.any() or join.size:
+            corr = np.zeros(n)
+            corr[idx[cut]] = -pS[cut]
+            pS[cut] = 0.0
+            pf[idx] = pS
+            pf[join] = -tau * (g[join] - approach)
+            corr[join] = pf[join]
+            uf += op(corr.reshape(shape), single).ravel() * compliance
+            if join.size or cut.all():
+                idx = np.flatnonzero(pf > 0.0)
+                conjugate = False
+                if not idx.size:                 # everything cut: restart at the lowest gap
+                    idx = np.array([np.argmin(np.where(mf, hf + uf, np.inf))])
+                    pf[idx] = 1.0
+                    uf = op(pf.reshape(shape)).ravel() * compliance
+            else:
+                keep = ~cut
+                idx, t = idx[keep], t[keep]
+                conjugate = True
+            free = mf.copy()
+            free[idx] = False
+        else:
+            pf[idx] = pS
+            conjugate = True
+        scale = load / (cell * float(pf[idx].sum()))
+        pf[idx] *= scale
+        uf *= scale
+    return pf.reshape(shape), uf.reshape(shape), step, False
+
+
+def solve_contact(gap_mm, dx_mm: float, dy_mm: float, load_N: float, E_star_MPa: float,
+                  mask=None, *, tol: float = 1e-8, max_iter: int = 500,
+                  warm_start: bool = True, dtype=np.float64) -> ContactSolution:
+    """Pressure between two elastic bodies with initial gap `gap_mm` (mm; x along axis 0 in
+    steps dx_mm, y along axis 1 in steps dy_mm) under the normal load `load_N` (N), composite
+    modulus `E_star_MPa` (1/E* = (1-ν1²)/E1 + (1-ν2²)/E2, MPa).
+
+    mask: bool array of the gap's shape, False = no material (no pressure, gap not used;
+        the gap may be NaN there). Default: material everywhere.
+    tol: converged when the relative gap error (see ContactSolution) is below it.
+    warm_start: start from the Hertz ellipse fitted to the gap (:func:`hertz_start`), else
+        from uniform pressure on the material.
+    dtype: np.float64, or np.float32 for the transforms inside the iteration (faster); the
+        start and the final check are float64 either way, and the iteration is continued
+        from a fresh float64 displacement until the check meets tol.
+
+    Raises ValueError for a load, E*, dx or dy that is not a finite number > 0, a mask of
+    another shape or without material, a gap that is not finite on material, or a contact
+    that reaches the grid's edge on material (the gap does not close within the grid under
+    this load); RuntimeError if tol is not met in max_iter steps."""
+    h, dx, dy, W, E_star, m = _check_inputs(gap_mm, dx_mm, dy_mm, load_N, E_star_MPa, mask)
+    tol = _positive("tol", tol, "(relative gap error)")
+    if not (isinstance(max_iter, (int, np.integer)) and max_iter >= 1):
+        raise ValueError(f"max_iter: {max_iter!r} must be an integer >= 1")
+    if np.dtype(dtype) not in (np.dtype(np.float64), np.dtype(np.float32)):
+        raise ValueError(f"dtype: {dtype!r} must be numpy.float64 or numpy.float32")
+    single = np.dtype(dtype) == np.dtype(np.float32)
+    op = influence_operator(tuple(int(k) for k in h.shape), dx, dy)
+    compliance, cell = 1.0 / E_star, dx * dy
+
+    p = hertz_start(h, dx, dy, m, W, E_star) if warm_start else None
+    if p is None:
+        p = m.astype(float)
+    p *= W / (cell * p.sum())
+    iterations = 0
+    while True:
+        u = op(p) * compliance                   # float64, afresh
+        error, approach, separation = _error(h, u, p, m)
+        if error < tol:
+            break
+        if iterations >= max_iter:
+            raise RuntimeError(f"solve_contact: relative gap error {error:.3g} after "
+                               f"{iterations} iterations, above tol = {tol:g}")
+        p, _, steps, _ = _ccg(h, m, p, u, op, compliance, W, cell, tol, max_iter - iterations,
+                              single)
+        iterations += max(steps, 1)
+
+    S = p > 0.0
+    border = np.zeros_like(S)
+    border[[0, -1], :] = border[:, [0, -1]] = True
+    if (S & border).any():
+        i, j = np.argwhere(S & border)[0]
+        raise ValueError(
+            f"gap_mm: the contact reaches the grid's edge at cell ({i}, {j}) under "
+            f"load_N = {W:g}: the gap must close inside the grid (enlarge the grid, or set "
+            "mask False where there is no material)")
+    area = float(S.sum()) * cell
+    for array in (p, u, separation, m):
+        array.setflags(write=False)
+    return ContactSolution(
+        pressure_MPa=p, displacement_mm=u, separation_mm=separation, mask=m,
+        dx_mm=dx, dy_mm=dy, load_N=W, E_star_MPa=E_star, area_mm2=area,
+        peak_pressure_MPa=float(p.max()), mean_pressure_MPa=W / area,
+        approach_mm=approach, iterations=iterations, relative_error=error)
