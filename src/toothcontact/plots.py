@@ -1,0 +1,654 @@
+"""Matplotlib figures of results: the mesh cycle, ease-off maps, the crown design chart and
+worm-set efficiency charts.
+
+Each function takes plain data (a result document as written to result.json, or arrays) and
+an output path, draws on its own `Figure` with an Agg canvas (object API, no pyplot, no
+display, no global pyplot state), writes one PNG whole or not at all
+(temporary file in the same folder, then rename) and returns the path. Units: mm, µm, µrad,
+MPa, N, N·m, rad as the labels say. Only this module imports matplotlib.
+"""
+
+from __future__ import annotations
+
+import math
+import os
+import tempfile
+import textwrap
+from pathlib import Path
+
+import numpy as np
+from matplotlib.backends.backend_agg import FigureCanvasAgg
+from matplotlib.figure import Figure
+from matplotlib.legend_handler import HandlerTuple
+from matplotlib.lines import Line2D
+from matplotlib.patches import Patch
+from matplotlib.ticker import FuncFormatter, MaxNLocator, ScalarFormatter
+
+from . import __version__
+
+#: Resolution of every figure (pixels per inch); widths are 8.5 in, i.e. 1020 px.
+DPI = 120
+WIDTH_IN = 8.5
+#: Warning colour: edge contact. No other element of a figure uses it.
+WARNING = "#d62728"
+#: Series colours: matplotlib's tab10 without its red and orange (kept for warnings).
+SERIES = ("#1f77b4", "#2ca02c", "#9467bd", "#8c564b", "#17becf", "#7f7f7f", "#bcbd22",
+          "#e377c2")
+#: Crown chart: the chosen design's marker colour (used nowhere else in that chart).
+DESIGN = "#ffbf00"
+
+
+# ---------------------------------------------------------------------------------------
+# plumbing
+
+
+def _figure(height_in: float) -> Figure:
+    fig = Figure(figsize=(WIDTH_IN, height_in), dpi=DPI, layout="constrained")
+    FigureCanvasAgg(fig)
+    return fig
+
+
+def _save(fig: Figure, path: str | Path) -> Path:
+    """Write `fig` as PNG to `path` atomically; the figure is cleared afterwards."""
+    path = Path(path)
+    path.parent.mkdir(parents=True, exist_ok=True)
+    fd, tmp = tempfile.mkstemp(dir=path.parent, prefix=f".{path.name}.", suffix=".tmp")
+    try:
+        with os.fdopen(fd, "wb") as handle:
+            fig.savefig(handle, format="png", dpi=DPI,
+                        metadata={"Software": f"toothcontact {__version__} (matplotlib)"})
+        os.chmod(tmp, 0o644)
+        os.replace(tmp, path)
+    except BaseException:
+        Path(tmp).unlink(missing_ok=True)
+        raise
+    finally:
+        fig.clear()
+    return path
+
+
+def _num(value) -> float:
+    """A float from a result value; None, "nan", "inf" or anything non-numeric -> NaN."""
+    if isinstance(value, bool) or value is None:
+        return math.nan
+    try:
+        number = float(value)
+    except (TypeError, ValueError):
+        return math.nan
+    return number if math.isfinite(number) else math.nan
+
+
+def _column(rows: list[dict], key: str) -> np.ndarray:
+    return np.array([_num(r.get(key)) for r in rows], dtype=float)
+
+
+def _title(result: dict, what: str, width: int = 80) -> str:
+    name = result.get("title") or result.get("case") or ""
+    return "\n".join(textwrap.wrap(f"{what}: {name}" if name else what, width))
+
+
+def _plain_axis(axis) -> None:
+    """Tick labels without an offset or a power of ten (TE varies in its fourth digit)."""
+    formatter = ScalarFormatter(useOffset=False)
+    formatter.set_scientific(False)
+    axis.set_major_formatter(formatter)
+
+
+def _plain_log(axis) -> None:
+    """Log-axis labels as plain numbers, at the decades and at 2, 3 and 5 between them."""
+    major = FuncFormatter(lambda v, _: f"{v:g}")
+
+    def minor(value, _):
+        mantissa = value / 10.0 ** math.floor(math.log10(value) + 1e-9)
+        return f"{value:g}" if round(mantissa) in (2, 3, 5) else ""
+
+    axis.set_major_formatter(major)
+    axis.set_minor_formatter(FuncFormatter(minor))
+
+
+def _gapped(x: np.ndarray, y: np.ndarray, step: float) -> tuple[np.ndarray, np.ndarray]:
+    """Sorted by x, with a NaN inserted where consecutive x differ by more than 1.5 steps,
+    so a line does not bridge positions where the series is absent."""
+    order = np.argsort(x, kind="stable")
+    x, y = x[order], y[order]
+    if len(x) < 2 or not step > 0:
+        return x, y
+    breaks = np.nonzero(np.diff(x) > 1.5 * step)[0] + 1
+    return np.insert(x, breaks, np.nan), np.insert(y, breaks, np.nan)
+
+
+# ---------------------------------------------------------------------------------------
+# 1. mesh cycle
+
+
+def mesh_cycle(result: dict, path: str | Path) -> Path:
+    """The contact over the mesh cycle of a contact case (result['positions']).
+
+    Four panels: transmission error (µrad) over roll angle (deg); peak contact pressure
+    p_max (MPa), the ellipse semi-axes a and b (mm, log scale) and the worst edge margin
+    (mm, zero line = edge of the flank, edge contact in the warning colour) per tooth pair
+    over roll angle. For a spline (kind "spline", 'pair' = tooth index, every tooth at each
+    position) the last three panels run over the tooth index, one series per position.
+    Missing values (None, NaN: a line contact has no edge margin) are left out."""
+    rows = result.get("positions") or []
+    if not rows:
+        raise ValueError("mesh_cycle: the result has no 'positions' (no contact analysis)")
+    by_tooth = result.get("kind") == "spline"
+    roll, pair = _column(rows, "roll_deg"), _column(rows, "pair")
+    te, p_max = _column(rows, "transmission_error_urad"), _column(rows, "p_max_MPa")
+    a, b, margin = _column(rows, "a_mm"), _column(rows, "b_mm"), _column(rows, "edge_margin_mm")
+    edge = np.array([bool(r.get("edge_contact")) for r in rows])
+    line = np.array([bool(r.get("line_contact")) for r in rows])
+
+    if by_tooth:
+        x, group, x_label = pair, roll, "tooth index"
+    else:
+        x, group, x_label = roll, pair, "pinion roll angle (deg)"
+
+    def label(g: float) -> str:
+        return f"roll {g:g}°" if by_tooth else (f"pair {int(g):+d}" if g else "pair 0")
+
+    steps = np.diff(np.unique(x[np.isfinite(x)]))
+    step = float(np.min(steps)) if len(steps) else 0.0
+    groups = [g for g in np.unique(group[np.isfinite(group)])]
+
+    fig = _figure(7.4)
+    (ax_te, ax_p), (ax_ab, ax_m) = fig.subplots(2, 2)
+    fig.suptitle(_title(result, "Mesh cycle", 110), fontsize=11)
+
+    # transmission error: one value per position
+    rolls = np.unique(roll[np.isfinite(roll)])
+    te_roll = np.array([te[np.nonzero(roll == r)[0][0]] for r in rolls])
+    ax_te.plot(rolls, te_roll, "o-", color="black", ms=4, lw=1.2)
+    ax_te.set(title="Transmission error", xlabel="roll angle (deg)" if by_tooth else x_label,
+              ylabel="transmission error (µrad)")
+    _plain_axis(ax_te.yaxis)
+
+    handles = []
+    for i, g in enumerate(groups):
+        colour = SERIES[i % len(SERIES)]
+        sel = group == g
+        xs = x[sel]
+        ax_p.plot(*_gapped(xs, p_max[sel], step), "o-", color=colour, ms=4, lw=1.2)
+        ax_ab.plot(*_gapped(xs, a[sel], step), "o-", color=colour, ms=4, lw=1.2)
+        ax_ab.plot(*_gapped(xs, b[sel], step), "s--", color=colour, ms=3.5, lw=1.2)
+        ax_m.plot(*_gapped(xs, margin[sel], step), "o-", color=colour, ms=4, lw=1.2)
+        handles.append(Line2D([], [], color=colour, marker="o", ms=4, label=label(g)))
+
+    ax_p.set(title="Peak contact pressure", xlabel=x_label, ylabel="p_max (MPa)")
+    ax_ab.set(title="Contact ellipse semi-axes", xlabel=x_label,
+              ylabel="semi-axis a (solid), b (dashed) (mm)")
+    if np.any(np.isfinite(a) & (a > 0)) or np.any(np.isfinite(b) & (b > 0)):
+        ax_ab.set_yscale("log")
+        _plain_log(ax_ab.yaxis)
+    ax_m.axhline(0.0, color="black", ls="--", lw=1.0)
+    ax_m.set(title="Worst edge margin", xlabel=x_label,
+             ylabel="edge margin (mm), < 0 = edge loading")
+
+    style = [Line2D([], [], color="0.3", marker="o", ms=4, ls="-", label="a (long semi-axis)"),
+             Line2D([], [], color="0.3", marker="s", ms=3.5, ls="--", label="b (short semi-axis)"),
+             Line2D([], [], color="black", ls="--", lw=1.0, label="edge of the flank (margin 0)")]
+    if line.any():
+        ax_ab.plot(x[line], a[line], "D", mfc="none", mec="black", ms=8, mew=1.0)
+        style.append(Line2D([], [], color="black", marker="D", mfc="none", ls="none", ms=7,
+                            label="line contact (a = half its length)"))
+    if edge.any():
+        y_edge = np.where(np.isfinite(margin[edge]), margin[edge], 0.0)
+        ax_m.plot(x[edge], y_edge, "X", color=WARNING, ms=9, mec="black", mew=0.5, zorder=5)
+        style.append(Line2D([], [], color=WARNING, marker="X", mec="black", mew=0.5, ls="none",
+                            ms=9, label="edge contact"))
+    if np.isfinite(margin).any():
+        worst = int(np.nanargmin(margin))
+        margins = rows[worst].get("edge_margins_mm") or {}
+        finite = {k: _num(v) for k, v in margins.items() if math.isfinite(_num(v))}
+        name = min(finite, key=finite.get) if finite else "worst"
+        lo_x, hi_x = np.nanmin(x), np.nanmax(x)
+        right = x[worst] <= 0.5 * (lo_x + hi_x)
+        ax_m.annotate(f"worst: {name} {margin[worst]:.3f} mm", (x[worst], margin[worst]),
+                      xytext=(14 if right else -14, -16 if margin[worst] < 0 else 12),
+                      textcoords="offset points", ha="left" if right else "right",
+                      va="center", fontsize=8, arrowprops={"arrowstyle": "-", "color": "0.4"},
+                      bbox={"boxstyle": "round,pad=0.2", "fc": "white", "ec": "0.6", "alpha": 0.9})
+        ax_m.margins(y=0.18)
+    lo, hi = ax_m.get_ylim()  # keep the edge (margin 0) in view
+    pad = 0.08 * (max(hi, 0.0) - min(lo, 0.0))
+    ax_m.set_ylim(min(lo, -pad), max(hi, pad))
+    for ax in (ax_te, ax_p, ax_ab, ax_m):
+        ax.grid(True, alpha=0.3)
+    entries = handles + style
+    fig.legend(handles=entries, loc="outside lower center",
+               ncol=min(len(entries), max(4, math.ceil(len(entries) / 2))), fontsize=8,
+               frameon=False)
+    return _save(fig, path)
+
+
+# ---------------------------------------------------------------------------------------
+# 2. ease-off map
+
+
+def ease_off_map(face_mm, radius_mm, separation_um, path: str | Path,
+                 approach_um: float | None = None, title: str = "Ease-off: flank separation") -> Path:
+    """Map of the separation (ease-off) of a flank pair over the flank.
+
+    face_mm: face position from mid-face (mm, positive toward end B), length nx;
+    radius_mm: pinion radius (mm), length ny; separation_um: (ny, nx) separation (µm),
+    NaN where there is no flank (left blank). approach_um: draws the contour
+    separation = approach (µm), the rigid contact pattern at that approach."""
+    x = np.asarray(face_mm, dtype=float).ravel()
+    y = np.asarray(radius_mm, dtype=float).ravel()
+    z = np.asarray(separation_um, dtype=float)
+    if z.shape != (len(y), len(x)):
+        raise ValueError(f"separation_um has shape {z.shape}; expected (len(radius_mm), "
+                         f"len(face_mm)) = ({len(y)}, {len(x)})")
+    if not np.isfinite(z).any():
+        raise ValueError("separation_um has no finite value")
+    field = np.ma.masked_invalid(z)
+
+    fig = _figure(5.2)
+    ax = fig.subplots()
+    mesh = ax.pcolormesh(x, y, field, shading="nearest", cmap="viridis")
+    lo, hi = float(field.min()), float(field.max())
+    handles = []
+    if hi > lo:
+        levels = [v for v in MaxNLocator(8).tick_values(lo, hi) if lo < v < hi]
+        lines = ax.contour(x, y, field, levels=levels, colors="white", linewidths=0.6,
+                           alpha=0.7)
+        ax.clabel(lines, fmt="%g", fontsize=7)
+    if approach_um is not None:
+        if lo < approach_um < hi:
+            ax.contour(x, y, field, levels=[approach_um], colors=WARNING, linewidths=2.0)
+            text = f"rigid contact pattern: separation = approach {approach_um:g} µm"
+        else:
+            text = f"approach {approach_um:g} µm: outside the field's range, no contour"
+        handles.append(Line2D([], [], color=WARNING, lw=2.0, label=text))
+    imin = np.unravel_index(np.nanargmin(z), z.shape)
+    ax.plot(x[imin[1]], y[imin[0]], "+", color="white", ms=10, mew=1.5)
+    handles.append(Line2D([], [], color="black", marker="+", ls="none", ms=9, mew=1.5,
+                          label=f"least separation {lo:.3g} µm at ({x[imin[1]]:.2f}, "
+                                f"{y[imin[0]]:.2f}) mm"))
+    if not np.isfinite(z).all():
+        handles.append(Patch(facecolor="white", edgecolor="0.5", label="blank: no flank"))
+    colorbar = fig.colorbar(mesh, ax=ax, pad=0.02)
+    colorbar.set_label("separation (µm)")
+    ax.set(title="\n".join(textwrap.wrap(title, 90)),
+           xlabel="face position from mid-face (mm, + toward end B)",
+           ylabel="pinion radius (mm)")
+    ax.legend(handles=handles, loc="upper center", bbox_to_anchor=(0.5, -0.14), ncol=1,
+              fontsize=8, frameon=False)
+    return _save(fig, path)
+
+
+# ---------------------------------------------------------------------------------------
+# 3. crown design chart (seed 003)
+
+
+def crown_design_curves(result: dict, points: int = 80) -> dict:
+    """The two rules of seed 003's crown design over a range of slopes, from a
+    crown_design result (mm, rad, MPa).
+
+    Edge rule (eq 13): for each slope theta, the largest crown radius whose ellipse stays
+    inside the room on that side of the chosen crown centre (F - c toward end A, c toward
+    end B, less the edge clearance): `analytic.crown.design_crown` of a face twice that room
+    with slope theta at both ends. Stress rule: the smallest radius whose crowned Hertz
+    stress (`analytic.crown.crowned_contact`, eqs 6-11) stays at or under the allowable
+    stress, or under the stress of the chosen design when the case gives no allowable. In
+    this model the stress does not depend on theta, so that rule is one radius.
+    Returns theta, edge radii per end ('A', 'B'; one curve 'A' for a full crown), the
+    stress rule's radius, reference stress and its kind, and the design point."""
+    from scipy.optimize import brentq
+
+    from . import case as schema
+    from .analytic import crown, hertz
+
+    case = schema.parse_case(result["inputs"])
+    contact, chosen = result["contact"], result["crown"]
+    gear_material = case.gear_material or case.material
+    C_E = hertz.compliance(case.material.E, case.material.nu, gear_material.E, gear_material.nu)
+    internal = case.teeth[1] < 0
+    profile = 1.0 / contact["rho1_mm"] + (-1.0 if internal else 1.0) / contact["rho2_mm"]
+    load = contact["normal_load_N"]
+    F, R, c = case.face_width, chosen["radius_mm"], chosen["center_from_B_mm"]
+    slope_A = case.slope_A
+    slope_B = case.slope_A if case.crown == "full" else case.slope_B
+    rooms = {"A": F - c} if case.crown == "full" else {"A": F - c, "B": c}
+
+    top = 2.5 * max(slope_A, slope_B)
+    theta = np.linspace(0.0, top, points + 1)
+    edge = {}
+    for end, room in rooms.items():
+        radii = []
+        for t in theta:
+            try:
+                radii.append(crown.design_crown(2.0 * room, t, t, profile, load, C_E,
+                                                case.edge_clearance).radius)
+            except ValueError:
+                radii.append(math.nan)
+        edge[end] = np.array(radii)
+
+    def stress(radius: float) -> float:
+        return crown.crowned_contact(radius, profile, load, C_E).ellipse.p0
+
+    design_stress = stress(R)
+    limit = case.allowable_stress
+    reference = "allowable" if limit is not None else "design"
+    limit = design_stress if limit is None else limit
+    if reference == "design":
+        R_min = R
+    else:
+        lo, hi = math.log(1e-3 * F), math.log(1e6 * F)
+        if stress(math.exp(lo)) <= limit:
+            R_min = math.exp(lo)
+        elif stress(math.exp(hi)) > limit:
+            R_min = math.nan  # no crown this flat gets under the limit
+        else:
+            R_min = math.exp(brentq(lambda s: stress(math.exp(s)) - limit, lo, hi, xtol=1e-10))
+    return {"theta": theta, "edge_radius_mm": edge, "stress_radius_mm": R_min,
+            "reference_stress_MPa": limit, "reference": reference,
+            "design_radius_mm": R, "design_stress_MPa": design_stress,
+            "slope_A": slope_A, "slope_B": slope_B, "center_from_B_mm": c, "face_width_mm": F,
+            "edge_clearance_mm": case.edge_clearance, "full": case.crown == "full"}
+
+
+def crown_design_chart(result: dict, path: str | Path) -> Path:
+    """Seed 003's crown design chart: crown radius R (mm, log scale) against the total slope
+    theta (misalignment + deflection, mrad).
+
+    The edge rule (eq 13, R·theta + a = room to the face end) bounds R from above, per face
+    end for a bias crown; the stress rule (crowned Hertz stress = allowable, or the chosen
+    design's stress when the case gives none) bounds it from below. The chosen crown
+    (result['crown']) is marked at the case's slope_A (and slope_B)."""
+    curves = crown_design_curves(result)
+    theta_mrad = 1e3 * curves["theta"]
+    R = curves["design_radius_mm"]
+    fig = _figure(5.6)
+    ax = fig.subplots()
+    colours = {"A": SERIES[0], "B": SERIES[2]}
+    full = curves["full"]
+    F, c = curves["face_width_mm"], curves["center_from_B_mm"]
+    clearance = curves["edge_clearance_mm"]
+    less = f" − {clearance:g}" if clearance else ""
+    for end, radii in curves["edge_radius_mm"].items():
+        if full:
+            text = f"edge rule (eq 13): R·θ + a = F/2{less} = {F / 2 - clearance:.2f} mm"
+        elif end == "A":
+            text = f"edge rule, end A: R·θ + a = F − c{less} = {F - c - clearance:.2f} mm"
+        else:
+            text = f"edge rule, end B: R·θ + a = c{less} = {c - clearance:.2f} mm"
+        ax.plot(theta_mrad, radii, color=colours[end], lw=2.0, label=text)
+    R_min = curves["stress_radius_mm"]
+    slopes = [("A", curves["slope_A"])] if full else [("A", curves["slope_A"]),
+                                                     ("B", curves["slope_B"])]
+    if curves["reference"] == "allowable":
+        text = (f"stress rule: σ_c = allowable {curves['reference_stress_MPa']:.0f} MPa"
+                if math.isfinite(R_min) else "stress rule: no crown radius meets the allowable")
+        blocked = [end for end, slope in slopes if math.isfinite(R_min) and R_min > float(
+            np.interp(slope, curves["theta"], curves["edge_radius_mm"][end]))]
+        if blocked:
+            text += (f"\n(above the edge rule at θ_{', θ_'.join(blocked)}: no radius meets both"
+                     + ("" if full else " with this crown centre") + ")")
+    else:
+        text = ("stress reference: σ_c of the chosen design, "
+                f"{curves['reference_stress_MPa']:.0f} MPa (no allowable_stress given)")
+    if math.isfinite(R_min):
+        ax.axhline(R_min, color=SERIES[1], lw=2.0, ls="--", label=text)
+        if full:
+            upper = curves["edge_radius_mm"]["A"]
+            ax.fill_between(theta_mrad, R_min, upper, where=upper >= R_min, color=SERIES[1],
+                            alpha=0.12, lw=0, label="both rules met")
+    else:
+        ax.plot([], [], color=SERIES[1], lw=2.0, ls="--", label=text)
+
+    for end, slope in slopes:
+        ax.plot(1e3 * slope, R, "*", ms=18, color=DESIGN, mec="black", mew=1.0, zorder=6,
+                clip_on=False)
+        ax.annotate(f"θ_{end} = {1e3 * slope:.3g} mrad", (1e3 * slope, R), xytext=(10, 10),
+                    textcoords="offset points", fontsize=8)
+    uncrowned = (result.get("uncrowned") or {}).get("agma_stress_MPa")
+    design_label = (f"chosen crown: R = {R:.4g} mm, c = {c:.4g} mm from B, "
+                    f"σ_c = {curves['design_stress_MPa']:.0f} MPa")
+    if uncrowned is not None:
+        design_label += f"\n(uncrowned AGMA eq 3: {uncrowned:.0f} MPa)"
+    ax.plot([], [], "*", ms=14, color=DESIGN, mec="black", ls="none", label=design_label)
+
+    if math.isfinite(R_min) and curves["reference"] == "allowable":
+        for end, radii in curves["edge_radius_mm"].items():  # largest slope within both rules
+            above = np.nonzero(np.isfinite(radii) & (radii >= R_min))[0]
+            if len(above) and above[-1] + 1 < len(radii):
+                i = above[-1]
+                t = np.interp(R_min, radii[i:i + 2][::-1], theta_mrad[i:i + 2][::-1])
+                ax.plot(t, R_min, "o", ms=8, mfc="white", mec=colours[end], mew=2.0, zorder=5,
+                        label=f"largest slope within both rules{'' if full else ' at end ' + end}: "
+                              f"{t:.3g} mrad")
+    ax.set_yscale("log")
+    _plain_log(ax.yaxis)
+    finite = [v for r in curves["edge_radius_mm"].values() for v in r[np.isfinite(r)]]
+    span = [R] + ([R_min] if math.isfinite(R_min) else []) + finite
+    ref = max(R, R_min) if math.isfinite(R_min) else R
+    ax.set_ylim(0.6 * min(span), 1.6 * min(max(span), 10.0 * ref))
+    ax.set_xlim(0.0, theta_mrad[-1])
+    ax.grid(True, which="both", alpha=0.3)
+    ax.set(xlabel="total slope θ, misalignment + deflection (mrad = mm/m)",
+           ylabel="crown radius R (mm)",
+           title=_title(result, ("Full" if full else "Bias") + " crown design chart"))
+    ax.legend(loc="upper center", fontsize=8, bbox_to_anchor=(0.5, -0.13), ncol=1,
+              frameon=False)
+    return _save(fig, path)
+
+
+# ---------------------------------------------------------------------------------------
+# 4-5. worm set efficiency
+
+
+def worm_efficiency_vs_temperature(result: dict, path: str | Path) -> Path:
+    """Worm set efficiency over lubricant temperature (seed 000, DIN 3996 with Y_VISC).
+
+    Top: computed eta_total, eta_z, eta_kim (and eta_wheel_driving when not self-locking)
+    per result['efficiency'] row as lines over temperature_C (°C); the source's published
+    eta_total and eta_z (inputs.conditions) as points, hollow where the result's checks
+    found the published column inconsistent. Bottom: mean friction mu_zm, computed and
+    published."""
+    rows = [r for r in result.get("efficiency") or [] if r.get("temperature_C") is not None]
+    if not rows:
+        raise ValueError("worm_efficiency_vs_temperature: no efficiency rows with a temperature")
+    conditions = (result.get("inputs") or {}).get("conditions") or []
+    published = []
+    if conditions:
+        from . import case as schema
+
+        published = [c.model_dump() for c in schema.parse_case(result["inputs"]).conditions]
+    order = np.argsort([r["temperature_C"] for r in rows])
+    rows = [rows[i] for i in order]
+    T = _column(rows, "temperature_C")
+    fig = _figure(6.6)
+    ax, ax_mu = fig.subplots(2, 1, sharex=True, height_ratios=(2.2, 1.0))
+    failed = [c["name"] for c in result.get("checks") or [] if not c.get("ok")]
+    series = [("eta_total", "η_total = η_z·η_spindle", SERIES[0], "-", "o"),
+              ("eta_z", "η_z, tooth, worm driving (DIN 3996)", SERIES[1], "-", "s"),
+              ("eta_kim", "η, seed 001 eq (2), same μ_zm", SERIES[2], ":", None),
+              ("eta_wheel_driving", "η_z', wheel driving (0 = self-locking)", SERIES[3], "-.",
+               None)]
+    handles, labels, extra = [], [], []
+    for key, text, colour, ls, marker in series:
+        values = _column(rows, key)
+        if not np.isfinite(values).any() or (key == "eta_wheel_driving" and not np.any(values > 0)):
+            continue
+        (line,) = ax.plot(T, values, ls, color=colour, lw=1.8)
+        entry, label = [line], f"{text}: computed"
+        pts = [(c["temperature"], c[f"published_{key}"]) for c in published
+               if c.get(f"published_{key}") is not None] if marker else []
+        if pts:
+            t, v = np.array(pts).T
+            bad = np.array([any(f"published {key.replace('eta_total', 'eta_tot')}" in n
+                                and f"at {tt:g} °C" in n for n in failed) for tt in t])
+            (good,) = ax.plot(t[~bad], v[~bad], marker, color=colour, ms=7, mec="black", mew=0.6,
+                              ls="none")
+            entry.append(good)
+            label += " (line), published (points)"
+            if bad.any():
+                (hollow,) = ax.plot(t[bad], v[bad], marker, mfc="white", mec=colour, ms=8,
+                                    mew=1.6, ls="none")
+                name = text.split(" =")[0].split(",")[0]
+                extra.append((hollow, f"published {name} that the source's own columns "
+                                      + "contradict (see checks)"))
+        handles.append(tuple(entry))
+        labels.append(label)
+    handles += [h for h, _ in extra]
+    labels += [t for _, t in extra]
+    ax.set(ylabel="efficiency (–)", title=_title(result, "Worm set efficiency over temperature"))
+    ax.legend(handles, labels, fontsize=8, loc="center right",
+              handler_map={tuple: HandlerTuple(ndivide=None)})
+    ax.grid(True, alpha=0.3)
+
+    ax_mu.plot(T, _column(rows, "mu_zm"), "-", color=SERIES[4], lw=1.8,
+               label="computed μ_zm = μ_0T·Y_S·Y_G·Y_W·Y_R·Y_VISC")
+    pts = [(c["temperature"], c["published_mu_zm"]) for c in published
+           if c.get("published_mu_zm") is not None]
+    if pts:
+        t, v = np.array(pts).T
+        ax_mu.plot(t, v, "D", color=SERIES[4], mec="black", mew=0.6, ms=6, ls="none",
+                   label="published μ_zm")
+    ax_mu.set(xlabel="lubricant temperature (°C)", ylabel="mean friction μ_zm (–)")
+    ax_mu.legend(fontsize=8, loc="upper right")
+    ax_mu.grid(True, alpha=0.3)
+    return _save(fig, path)
+
+
+def worm_torque_curves(result: dict, points: int = 200) -> dict:
+    """Seed 001's anti-rattle-spring model over output torque, from a worm_efficiency result
+    with an [anti_rattle_spring] (N·m, N, mm): spring force (eq 20), shaft-end misalignment
+    (eq 21), tooth normal load (eq 3) and the tooth efficiency of eq (2) at the case's mu_zm,
+    each by the functions of `analytic.worm_efficiency`."""
+    from . import case as schema
+    from .analytic import worm_efficiency as we
+
+    case = schema.parse_case(result["inputs"])
+    spring = case.anti_rattle_spring
+    if spring is None:
+        raise ValueError("worm_torque_curves: the case has no [anti_rattle_spring]")
+    gamma = math.radians(result["worm"]["lead_angle_deg"])
+    Rp = result["worm"]["wheel_pitch_radius_mm"]
+    alpha_n = case.normal_pressure_angle
+    mu = result["efficiency"][0]["mu_zm"]
+    top = 1.1 * max(max(spring.output_torques), 1.0)
+    torque = np.linspace(0.0, top, points)  # N·mm
+    force = np.array([we.anti_rattle_spring_force(t, spring.mount_moment, spring.d1, spring.d2,
+                                                  Rp, alpha_n, gamma) for t in torque])
+    return {"output_torque_Nm": torque / 1000.0, "spring_force_N": force,
+            "misalignment_mm": np.array([we.anti_rattle_misalignment(f, spring.stiffness)
+                                         for f in force]),
+            "normal_load_N": np.array([we.normal_tooth_load(t, Rp, gamma, alpha_n)
+                                       for t in torque]),
+            "eta_aligned": np.full(points, we.efficiency_kim(gamma, alpha_n, mu)), "mu_zm": mu}
+
+
+def worm_efficiency_vs_torque(result: dict, path: str | Path) -> Path:
+    """Worm set efficiency against output torque with and without the anti-rattle spring's
+    misalignment (seed 001), with the shaft-end misalignment (mm) and the loads (N) below.
+
+    Without misalignment: eq (2) at the case's mu_zm. With misalignment: the per-torque
+    efficiency in result['misalignment'] rows ('eta_kim') when the result carries it;
+    seed 001 lets the tilt act only through the friction law mu = c·p^n, so at a constant
+    mu_zm both are the same curve, and the chart says so."""
+    rows = result.get("misalignment") or []
+    if not rows:
+        raise ValueError("worm_efficiency_vs_torque: the result has no 'misalignment' rows")
+    curves = worm_torque_curves(result)
+    Tq = curves["output_torque_Nm"]
+    T_rows = _column(rows, "output_torque_Nm")
+    fig = _figure(7.4)
+    ax_eta, ax_x, ax_f = fig.subplots(3, 1, sharex=True, height_ratios=(1.3, 1.0, 1.0))
+    fig.suptitle(_title(result, "Worm set efficiency over output torque", 110), fontsize=11)
+
+    eta_tilted = _column(rows, "eta_kim")
+    mu = curves["mu_zm"]
+    if np.isfinite(eta_tilted).any():
+        ax_eta.plot(Tq, curves["eta_aligned"], "-", color=SERIES[0], lw=1.8,
+                    label=f"without misalignment: seed 001 eq (2), μ = {mu:.3g}")
+        ax_eta.plot(T_rows, eta_tilted, "o-", color=SERIES[2], lw=1.8, ms=5,
+                    label="with the spring's misalignment")
+    else:
+        ax_eta.plot(Tq, curves["eta_aligned"], "-", color=SERIES[0], lw=1.8,
+                    label="with and without misalignment: seed 001 eq (2) at constant "
+                          f"μ = {mu:.3g}")
+        ax_eta.text(0.01, 0.06, "seed 001 lets the shaft tilt act only through μ = c·p^n; the "
+                    "case gives a constant μ,\nso the two curves coincide",
+                    transform=ax_eta.transAxes, fontsize=8, color="0.25")
+    ax_eta.plot(T_rows, np.interp(T_rows, Tq, curves["eta_aligned"]), "o", color=SERIES[0],
+                ms=5, ls="none", label="torques of the case")
+    _plain_axis(ax_eta.yaxis)
+    lo, hi = ax_eta.get_ylim()
+    if hi - lo < 0.02:
+        mid = 0.5 * (lo + hi)
+        ax_eta.set_ylim(mid - 0.03, mid + 0.02)
+    ax_eta.set(ylabel="efficiency (–)")
+    ax_eta.legend(fontsize=8, loc="upper right")
+
+    x = curves["misalignment_mm"]
+    ax_x.plot(Tq, x, "-", color=SERIES[2], lw=1.8,
+              label="shaft-end misalignment x (eq 21), left axis")
+    ax_x.plot(T_rows, _column(rows, "misalignment_mm"), "o", color=SERIES[2], ms=5, ls="none",
+              label="the case's torques (result)")
+    ax_x.axhline(0.0, color="black", lw=0.8, ls="--")
+    if np.any(np.diff(np.sign(x)) != 0):
+        zero = float(np.interp(0.0, x, Tq)) if np.all(np.diff(x) > 0) else math.nan
+        if math.isfinite(zero):
+            ax_x.annotate(f"aligned at {zero:.2f} N·m", (zero, 0.0), xytext=(8, -16),
+                          textcoords="offset points", fontsize=8)
+    ax_x.set(ylabel="misalignment x (mm)")
+    # the spring force is proportional to x (eq 21): its scale on the right, same curve
+    force = curves["spring_force_N"]
+    i = int(np.argmax(np.abs(x)))
+    if x[i] != 0.0:
+        ax_s = ax_x.twinx()
+        ax_s.set_ylim(*(np.array(ax_x.get_ylim()) * force[i] / x[i]))
+        ax_s.plot(T_rows, _column(rows, "spring_force_N"), "x", color="black", ms=6,
+                  ls="none")
+        ax_s.set_ylabel("spring force F_ARS (N)")
+        ax_x.plot([], [], "x", color="black", ms=6, ls="none",
+                  label="spring force F_ARS (eq 20) of the result, right axis")
+    ax_x.legend(fontsize=8, loc="upper left")
+
+    ax_f.plot(Tq, curves["normal_load_N"], "-", color=SERIES[3], lw=1.8,
+              label="tooth normal load F_n (eq 3)")
+    ax_f.plot(T_rows, _column(rows, "normal_load_N"), "o", color=SERIES[3], ms=5, ls="none",
+              label="the case's torques (result)")
+    ax_f.set(xlabel="output (wheel) torque (N·m)", ylabel="normal load (N)")
+    ax_f.legend(fontsize=8, loc="upper left")
+    for ax in (ax_eta, ax_x, ax_f):
+        ax.grid(True, alpha=0.3)
+    ax_f.set_xlim(0.0, Tq[-1])
+    return _save(fig, path)
+
+
+# ---------------------------------------------------------------------------------------
+# 6. dispatch
+
+
+def figures_for(result: dict, out_dir: str | Path) -> list[Path]:
+    """Every figure that applies to a result document, written into `out_dir`:
+    mesh_cycle.png (any result with 'positions'), ease_off.png (a result with an 'ease_off'
+    section: face_mm, radius_mm, separation_um, optional approach_um), crown_design.png
+    (kind crown_design), worm_efficiency_temperature.png and worm_efficiency_torque.png
+    (kind worm_efficiency, with conditions / an anti-rattle spring). [] when none applies
+    (hertz, spline_crown)."""
+    out = Path(out_dir)
+    kind = result.get("kind")
+    written = []
+    if result.get("positions"):
+        written.append(mesh_cycle(result, out / "mesh_cycle.png"))
+    ease = result.get("ease_off")
+    if isinstance(ease, dict) and {"face_mm", "radius_mm", "separation_um"} <= ease.keys():
+        written.append(ease_off_map(
+            ease["face_mm"], ease["radius_mm"],
+            np.array([[_num(v) for v in row] for row in ease["separation_um"]]),
+            out / "ease_off.png", approach_um=ease.get("approach_um"),
+            title=_title(result, "Ease-off: flank separation")))
+    if kind == "crown_design":
+        written.append(crown_design_chart(result, out / "crown_design.png"))
+    if kind == "worm_efficiency":
+        if any(r.get("temperature_C") is not None for r in result.get("efficiency") or []):
+            written.append(worm_efficiency_vs_temperature(
+                result, out / "worm_efficiency_temperature.png"))
+        if result.get("misalignment"):
+            written.append(worm_efficiency_vs_torque(result, out / "worm_efficiency_torque.png"))
+    return written
