@@ -57,6 +57,7 @@ def analyse(case: schema.CaseInfo) -> Result:
         "spur": spur_geometry_case,
         "spline": spline_geometry_case,
         "worm": worm_geometry_case,
+        "imported": imported_case,
     }[case.kind]
     with warnings.catch_warnings(record=True) as caught:
         warnings.simplefilter("always")
@@ -419,17 +420,20 @@ def _spur_interference(mesh, pair, rows: list[dict], result: Result) -> None:
 
 
 def _contact_sections(cycle, loads: dict, result: Result) -> None:
-    """positions, summary, ease-off and the edge checks of a contact cycle (kept whole in
-    result.cycle for pictures and the pressure solver)."""
+    """positions, summary, ease-off and the edge checks of a contact cycle: a
+    contact.cycle.ContactCycle (kept whole in result.cycle for pictures and the pressure
+    solver), or the rows of an imported pair."""
     from .contact.cycle import LOAD_SHARING_RULE
 
-    rows, ease = cycle.rows, cycle.ease_off
-    result.cycle = cycle
-    result.sections["ease_off"] = {
-        "face_mm": ease.face_mm.round(4).tolist(), "radius_mm": ease.radius_mm.round(4).tolist(),
-        "separation_um": [[None if not np.isfinite(s) else round(float(s) * 1e3, 3) for s in line]
-                          for line in ease.separation],
-        "approach_um": cycle.settings.approach * 1e3}
+    rows = cycle if isinstance(cycle, list) else cycle.rows
+    if not isinstance(cycle, list):
+        ease = cycle.ease_off
+        result.cycle = cycle
+        result.sections["ease_off"] = {
+            "face_mm": ease.face_mm.round(4).tolist(), "radius_mm": ease.radius_mm.round(4).tolist(),
+            "separation_um": [[None if not np.isfinite(s) else round(float(s) * 1e3, 3)
+                               for s in line] for line in ease.separation],
+            "approach_um": cycle.settings.approach * 1e3}
     te = [r["transmission_error_urad"] for r in rows]
     result.sections["positions"] = rows
     summary = {**loads, "max_p_max_MPa": max(r["p_max_MPa"] for r in rows),
@@ -593,3 +597,48 @@ def _worm_contact(case: schema.WormCase, parts, result: Result) -> None:
     except (ValueError, RuntimeError) as exc:
         raise CaseError(f"misalignment / load: no contact could be found: {exc}") from None
     _contact_sections(cycle, loads, result)
+
+
+def imported_case(case: schema.ImportedCase) -> Result:
+    """A pair from the user's STL/STEP bodies: contact over the mesh cycle on the meshes
+    (contact.imported). Reads the two body files (named and checked by the case)."""
+    from .assembly import Misalignment, ParallelMesh
+    from .contact.cycle import CycleSettings
+    from .contact.imported import chordal_error, imported_cycle
+    from .mesh import load_surface
+
+    bodies = {}
+    for name in ("pinion", "gear"):
+        spec = getattr(case, name)
+        try:
+            bodies[name] = load_surface(spec.file, case.step_tolerance)
+        except ValueError as exc:
+            raise CaseError(f"{name}.file: {exc}") from None
+    if case.pinion_phase:
+        bodies["pinion"] = bodies["pinion"].turned(case.pinion_phase)
+    z1, z2 = case.pinion.teeth, case.gear.teeth
+    m = case.misalignment
+    mesh = ParallelMesh.of_layout(z1, z2, case.center_distance, case.pressure_angle,
+                                  Misalignment(m.slope, m.slope_normal, m.center_distance_error,
+                                               m.axial_shift), gear_start=case.gear_phase)
+    pitch_radius = case.center_distance * z1 / (z1 + z2)
+    wt = case.load.tangential_load or case.load.torque / pitch_radius
+    normal_load = wt / (math.cos(case.pressure_angle) * math.cos(case.base_helix_angle))
+    gear_material = case.gear_material or case.material
+    C_E = hertz.compliance(case.material.E, case.material.nu, gear_material.E, gear_material.nu)
+    a = case.analysis
+    try:
+        rows = imported_cycle(mesh, bodies["pinion"], bodies["gear"], normal_load, C_E,
+                              CycleSettings(a.positions, a.grid, a.approach))
+    except ValueError as exc:
+        raise CaseError(f"pinion / gear: no contact could be found: {exc}") from None
+    result = Result(sections={"bodies": {
+        name: {"file": getattr(case, name).file, "teeth": getattr(case, name).teeth,
+               "triangles": len(body.faces), "chordal_error_um": 1e3 * chordal_error(body),
+               "watertight": bool(body.mesh.is_watertight)}
+        for name, body in bodies.items()}})
+    result.notes.append("imported bodies: contact on the triangulations (closest-point "
+                        "separation); A and B carry the facets' chordal error, and the tip and "
+                        "form edges are not checked")
+    _contact_sections(rows, {"tangential_load_N": wt, "normal_load_N": normal_load}, result)
+    return result

@@ -77,17 +77,33 @@ class ParallelMesh:
     """A spur/helical pair in mesh: the frames of both members at any pinion angle."""
 
     def __init__(self, pair: GearPair, misalignment: Misalignment = Misalignment()):
-        self.pair, self.misalignment = pair, misalignment
         g = pair.gear
-        self.internal = g.internal
-        self.ratio = pair.pinion.teeth / g.teeth
-        a = pair.center_distance + misalignment.center_distance_error
-        self.center = np.array([-a if self.internal else a, 0.0, misalignment.axial_shift])
         # gear tooth 0 beside the space that holds pinion tooth 0, on the driven side
         pitch = 2.0 * math.pi / g.teeth
-        self.gear_start = 0.5 * pitch if self.internal else math.pi - 0.5 * pitch
-        self.gear_side = -1 if self.internal else 1
-        alpha = pair.working_pressure_angle
+        self._place(pair.pinion.teeth, g.teeth, g.internal, pair.center_distance,
+                    pair.working_pressure_angle, misalignment,
+                    0.5 * pitch if g.internal else math.pi - 0.5 * pitch)
+
+    @classmethod
+    def of_layout(cls, pinion_teeth: int, gear_teeth: int, centre_distance: float,
+                  working_pressure_angle: float, misalignment: Misalignment = Misalignment(),
+                  internal: bool = False, gear_start: float = 0.0) -> "ParallelMesh":
+        """A pair known by its layout only (bodies from elsewhere, e.g. imported meshes):
+        tooth counts, centre distance (mm), working pressure angle (rad, for the plane of
+        action the slopes refer to) and the gear's angle at phi1 = 0 (rad)."""
+        mesh = cls.__new__(cls)
+        mesh._place(pinion_teeth, gear_teeth, internal, centre_distance, working_pressure_angle,
+                    misalignment, gear_start)
+        return mesh
+
+    def _place(self, z1, z2, internal, centre_distance, alpha, misalignment, gear_start):
+        self.misalignment = misalignment
+        self.pinion_teeth, self.gear_teeth, self.internal = z1, z2, internal
+        self.ratio = z1 / z2
+        a = centre_distance + misalignment.center_distance_error
+        self.center = np.array([-a if internal else a, 0.0, misalignment.axial_shift])
+        self.gear_start = gear_start
+        self.gear_side = -1 if internal else 1
         # line of action at the pitch point: the normal of pinion flank side +1 there (it faces
         # +y and, as the tooth narrows toward its tip, leans outward by the pressure angle)
         self.line_of_action = np.array([math.sin(alpha), math.cos(alpha), 0.0])
@@ -97,12 +113,12 @@ class ParallelMesh:
     @property
     def driver_pitch(self) -> float:
         """The pinion's angular pitch (rad): one mesh cycle."""
-        return 2.0 * math.pi / self.pair.pinion.teeth
+        return 2.0 * math.pi / self.pinion_teeth
 
     def driver_turn(self, phi1, tooth):
         """The pinion's turn (rad) at which its tooth 0 stands where tooth `tooth` stands at
         phi1: its own flank's place in the cycle."""
-        return phi1 + tooth * 2.0 * math.pi / self.pair.pinion.teeth
+        return phi1 + tooth * 2.0 * math.pi / self.pinion_teeth
 
     def pinion_frame(self, phi1: float, tooth: int = 0) -> Frame:
         return Frame(rotation([0, 0, 1], self.driver_turn(phi1, tooth)), np.zeros(3))
@@ -110,10 +126,9 @@ class ParallelMesh:
     def gear_frame(self, phi1: float, tooth: int = 0, delta: float = 0.0) -> Frame:
         """The gear's frame when the pinion has turned phi1 and the gear lags by delta (rad,
         the transmission error: positive = gear behind its ideal position)."""
-        g = self.pair.gear
         sense = 1.0 if self.internal else -1.0
         angle = (self.gear_start + sense * (phi1 * self.ratio - delta)
-                 + sense * tooth * 2.0 * math.pi / g.teeth)
+                 + sense * tooth * 2.0 * math.pi / self.gear_teeth)
         return Frame(self._tilt @ rotation([0, 0, 1], angle), self.center)
 
     def _tilt_rotation(self) -> np.ndarray:

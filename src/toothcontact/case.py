@@ -13,7 +13,7 @@ from pathlib import Path
 from typing import Annotated, Any, Literal
 
 from pydantic import (BaseModel, BeforeValidator, ConfigDict, Field, ValidationError,
-                      model_validator)
+                      field_validator, model_validator)
 
 from . import units
 
@@ -465,6 +465,51 @@ class SplineCrownCase(CaseInfo, ModuleOrPitch):
         return self.module_mm * self.teeth
 
 
+class ImportedBody(Model):
+    """A body from a file, in its own frame: its axis is the file's z axis."""
+
+    file: str = Field(description="an .stl, .step or .stp file, relative to the case file")
+    teeth: int = Field(ge=3, description="number of teeth of the whole gear (>= 3)")
+
+    @field_validator("file")
+    @classmethod
+    def _exists(cls, value: str, info) -> str:
+        path = Path(value)
+        if not path.is_absolute() and info.context and info.context.get("base"):
+            path = Path(info.context["base"]) / path
+        if path.suffix.lower() not in (".stl", ".step", ".stp"):
+            raise ValueError(f"{value!r}: must be an .stl, .step or .stp file")
+        if not path.is_file():
+            raise ValueError(f"{value!r}: no such file ({path})")
+        return str(path.resolve())
+
+
+class ImportedCase(CaseInfo):
+    """A parallel-axis pair from a user's STL or STEP bodies, analysed on their meshes."""
+
+    kind: Literal["imported"]
+    pinion: ImportedBody
+    gear: ImportedBody
+    center_distance: Length
+    pressure_angle: Angle = Field(math.radians(20.0),
+                                  description="working transverse pressure angle (the plane "
+                                              "of action the slopes refer to), default 20 deg")
+    base_helix_angle: Angle = Field(0.0, description="for the normal load; 0 for spur")
+    pinion_phase: Angle = Field(0.0, description="the pinion's turn from its file's position "
+                                                 "at the start (default 0: a tooth on the "
+                                                 "file's +x axis faces the gear)")
+    gear_phase: Angle = Field(math.pi, description="the gear's turn from its file's position "
+                                                   "at the start; the mesh is sought within two "
+                                                   "pitches of it (default 180 deg: a tooth on "
+                                                   "the file's +x axis faces the pinion)")
+    step_tolerance: Length = Field(0.002, description="chordal tolerance to tessellate STEP")
+    material: Material = Field(Material.model_validate(STEEL), description="default steel")
+    gear_material: Material | None = None
+    misalignment: MisalignmentSpec = MisalignmentSpec()
+    load: LoadSpec
+    analysis: AnalysisSpec = AnalysisSpec(positions=11)
+
+
 KINDS: dict[str, type[CaseInfo]] = {
     "hertz": HertzCase,
     "crown_design": CrownDesignCase,
@@ -473,6 +518,7 @@ KINDS: dict[str, type[CaseInfo]] = {
     "spur": SpurCase,
     "spline": SplineCase,
     "worm": WormCase,
+    "imported": ImportedCase,
 }
 
 
@@ -487,11 +533,12 @@ def load_case(path: str | Path) -> tuple[CaseInfo, dict]:
         raise CaseError(f"{path}: cannot read it ({exc})") from None
     except tomllib.TOMLDecodeError as exc:
         raise CaseError(f"{path}: not valid TOML ({exc})") from None
-    return parse_case(raw, source=str(path)), raw
+    return parse_case(raw, source=str(path), base=path.parent), raw
 
 
-def parse_case(raw: dict, source: str = "case") -> CaseInfo:
-    """Validate a case table (as read from TOML) into its kind's model."""
+def parse_case(raw: dict, source: str = "case", base: Path | None = None) -> CaseInfo:
+    """Validate a case table (as read from TOML) into its kind's model; files it names are
+    found relative to `base` (the case file's folder)."""
     kind = raw.get("kind")
     allowed = ", ".join(KINDS)
     if kind is None:
@@ -500,7 +547,7 @@ def parse_case(raw: dict, source: str = "case") -> CaseInfo:
         raise CaseError(f"{source}: kind: {kind!r} is not a known kind; allowed: {allowed}")
     model = KINDS[kind]
     try:
-        return model.model_validate(raw)
+        return model.model_validate(raw, context={"base": base})
     except ValidationError as exc:
         raise CaseError(f"{source}: {_describe(exc, model)}") from None
 
