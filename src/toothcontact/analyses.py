@@ -15,6 +15,7 @@ import numpy as np
 
 from . import case as schema
 from .analytic import agma, crown, hertz, spline, worm_efficiency
+from .analytic.stiffness import single_stiffness
 from .analytic.spur_mesh import SpurMesh
 from .case import CaseError
 
@@ -34,13 +35,14 @@ class Check:
 @dataclass
 class Result:
     """What an analysis found: sections, checks and notes go to result.json; `cycle` (a
-    contact.cycle.ContactCycle, for contact cases) stays in memory for pictures and the
-    pressure solver."""
+    contact.cycle.ContactCycle, for contact cases) and `loaded` (contact.loaded.LoadedContact
+    or None per cycle row) stay in memory for the pictures."""
 
     sections: dict = field(default_factory=dict)
     checks: list[Check] = field(default_factory=list)
     notes: list[str] = field(default_factory=list)
     cycle: object = None
+    loaded: list | None = None
 
     def as_dict(self) -> dict:
         return {**self.sections, "checks": [c.as_dict() for c in self.checks],
@@ -362,6 +364,13 @@ def _spur_contact(case: schema.SpurCase, pair, result: Result) -> None:
     except (ValueError, RuntimeError) as exc:
         raise CaseError(f"misalignment / load: no contact could be found: {exc}") from None
     _contact_sections(cycle, {"tangential_load_N": wt, "normal_load_N": normal_load}, result)
+    stiffness = single_stiffness(pair.pinion.teeth, -pair.gear.teeth if pair.gear.internal
+                                 else pair.gear.teeth, pair.pinion.profile_shift,
+                                 pair.gear.profile_shift, case.helix_angle)
+    _loaded_sections(cycle, C_E, a.pressure_grid, stiffness * 1e3 * case.face_width,
+                     f"tooth bending: ISO 6336-1 single stiffness c' = {stiffness:.2f} "
+                     "N/(mm·µm) over the whole face width (Method B, solid blanks, ISO 53 "
+                     "rack; for a short pattern the real tooth is softer)", result)
     if case.analysis.interference:
         _spur_interference(mesh, pair, cycle.rows, result)
 
@@ -417,6 +426,49 @@ def _spur_interference(mesh, pair, rows: list[dict], result: Result) -> None:
                                f"{len(found)} positions with interference"
                                + (f", first at roll {found[0]['roll_deg']:.2f} deg near "
                                   f"{found[0]['points_mm'][0]} mm" if found else "")))
+
+
+def _loaded_sections(cycle, C_E: float, grid: int, stiffness: float | None, bending: str,
+                     result: Result) -> None:
+    """The loaded contact of every row (contact.loaded): bem_* and edge keys on each row,
+    their worst in the summary, and the edge-load check."""
+    if not grid:
+        return
+    from .contact.loaded import EDGE_LOAD_RATIO, EDGE_STRIP, loaded_cycle
+
+    try:
+        loaded = loaded_cycle(cycle, C_E, (grid, grid), stiffness)
+    except (ValueError, RuntimeError) as exc:
+        raise CaseError(f"analysis.pressure_grid: the loaded contact could not be solved: {exc}") from None
+    result.loaded = loaded
+    for row, contact in zip(cycle.rows, loaded):
+        row.update(contact.summary() if contact is not None else
+                   {"bem_load_N": 0.0, "bem_p_max_MPa": 0.0, "bem_area_mm2": 0.0,
+                    "edge_pressure_MPa": 0.0, "edge_load_fraction": 0.0, "edge_loaded": False})
+    summary = result.sections["summary"]
+    worst = max(cycle.rows, key=lambda r: r["edge_pressure_MPa"] / max(r["bem_p_max_MPa"], 1e-300))
+    summary.update(
+        load_sharing="one rigid rotation for all pairs of a position; each pair's approach "
+                     f"from its half-space solution; {bending}",
+        bem_max_p_max_MPa=max(r["bem_p_max_MPa"] for r in cycle.rows),
+        max_edge_pressure_MPa=max(r["edge_pressure_MPa"] for r in cycle.rows),
+        max_edge_load_fraction=max(r["edge_load_fraction"] for r in cycle.rows),
+        edge_loaded_contacts=sum(r["edge_loaded"] for r in cycle.rows),
+        edge_pressure_note=f"edge_pressure_MPa is the pressure averaged over a {EDGE_STRIP} mm "
+                           "strip at the edge, and bem_p_max_MPa the larger of it and the peak "
+                           f"more than {EDGE_STRIP} mm inside the edges: both converge as the "
+                           "grid is refined; bem_raw_peak_MPa, the largest cell pressure, grows "
+                           "without bound at a sharp edge and is not a design value; a contact "
+                           f"is edge_loaded when its edge pressure exceeds {EDGE_LOAD_RATIO:g} "
+                           "of bem_p_max_MPa")
+    result.checks.append(Check(
+        "loaded contact: no edge load (half-space solution)", not worst["edge_loaded"],
+        f"highest edge pressure {worst['edge_pressure_MPa']:.0f} MPa averaged over "
+        f"{EDGE_STRIP} mm ({worst.get('edge_pressure_at', '-')}), "
+        f"{worst['edge_pressure_MPa'] / max(worst['bem_p_max_MPa'], 1e-300):.2f} of the "
+        f"contact's peak {worst['bem_p_max_MPa']:.0f} MPa, at roll {worst['roll_deg']:.2f} deg "
+        f"pair {worst['pair']}; {100 * worst['edge_load_fraction']:.2f} % of its load in the "
+        f"strip; edge-loaded above {EDGE_LOAD_RATIO:g}"))
 
 
 def _contact_sections(cycle, loads: dict, result: Result) -> None:
@@ -515,6 +567,8 @@ def _spline_contact(case: schema.SplineCase, pair, result: Result) -> None:
     except (ValueError, RuntimeError) as exc:
         raise CaseError(f"misalignment / torque: no contact could be found: {exc}") from None
     _contact_sections(cycle, {"tangential_load_N": wt, "normal_load_N": normal_load}, result)
+    _loaded_sections(cycle, C_E, a.pressure_grid, None,
+                     "tooth bending left out: the teeth share by their contact approaches", result)
     per_position = {}
     for r in cycle.rows:
         per_position.setdefault(r["roll_deg"], []).append(r["pair"])
@@ -597,6 +651,8 @@ def _worm_contact(case: schema.WormCase, parts, result: Result) -> None:
     except (ValueError, RuntimeError) as exc:
         raise CaseError(f"misalignment / load: no contact could be found: {exc}") from None
     _contact_sections(cycle, loads, result)
+    _loaded_sections(cycle, C_E, a.pressure_grid, None,
+                     "tooth bending left out: the teeth share by their contact approaches", result)
 
 
 def imported_case(case: schema.ImportedCase) -> Result:

@@ -236,6 +236,9 @@ class AnalysisSpec(Model):
     grid: tuple[int, int] = Field((25, 41), description="[profile, face] search grid")
     approach: Length = Field(0.00632, description="rigid approach for the pattern")
     interference: bool = Field(True, description="collide the bodies (python-fcl)")
+    pressure_grid: int = Field(128, ge=0, le=1024,
+                               description="cells per side of the loaded-contact (half-space) "
+                                           "grid of each contact; 0 = Hertz only")
 
 
 STEEL = {"E": "206 GPa", "nu": 0.3}

@@ -317,7 +317,8 @@ def hertz_start(h, dx: float, dy: float, mask, load: float, E_star: float):
     and analytic.hertz.hertz_point gives a, b and p0 for the load (Johnson eqs 4.36-4.39);
     the fit is repeated over the rigid interference at Hertz's approach. The start is
     p0·sqrt(1 - ξ²/a² - η²/b²) about the fitted minimum in the ellipse's axes, on material
-    cells. None when the fit is no bowl or the ellipse covers no material cell."""
+    cells. None when the fit is no bowl (or its cells lie on a line) or the ellipse covers
+    no material cell."""
     i0, j0 = np.unravel_index(np.argmin(np.where(mask, h, np.inf)), h.shape)
     x = ((np.arange(h.shape[0]) - i0) * dx)[:, None]
     y = ((np.arange(h.shape[1]) - j0) * dy)[None, :]
@@ -333,7 +334,10 @@ def hertz_start(h, dx: float, dy: float, mask, load: float, E_star: float):
         scale = np.abs(M).max(axis=0)
         scale[scale == 0] = 1.0
         M /= scale                          # normal equations, einsum: no BLAS threads
-        c = np.linalg.solve(np.einsum("ki,kj->ij", M, M), np.einsum("ki,k->i", M, rel[select]))
+        try:
+            c = np.linalg.solve(np.einsum("ki,kj->ij", M, M), np.einsum("ki,k->i", M, rel[select]))
+        except np.linalg.LinAlgError:        # the cells lie on a line: no bowl to fit
+            return None
         c /= scale
         H = np.array([[c[3], 0.5 * c[4]], [0.5 * c[4], c[5]]])
         evals, evecs = np.linalg.eigh(H)
