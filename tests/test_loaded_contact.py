@@ -3,7 +3,6 @@ Hertz, the load sharing against Hertz's law, and seed 003's crown design verifie
 
 import math
 
-import numpy as np
 import pytest
 from scipy.optimize import brentq
 
