@@ -90,3 +90,34 @@ def test_kim_case_ars_misalignment_matches_the_reported_points():
     slopes = {(rows[b]["misalignment_mm"] - rows[a]["misalignment_mm"]) / (b - a)
               for a, b in zip(torques, torques[1:])}
     assert max(slopes) - min(slopes) < 1e-9  # eq (21) is linear in the torque
+
+
+def test_friction_law_passes_the_measured_point_with_the_sliding_exponent():
+    """Seed 001 §2.4.1: mu = c·p^n, n = -0.9 (sliding), through 0.029 at 130 MPa."""
+    mu = lambda p: w.friction_power_law(p, 0.029, 130.0, -0.9)  # noqa: E731
+    assert mu(130.0) == pytest.approx(0.029, rel=1e-12)
+    assert mu(260.0) / mu(130.0) == pytest.approx(2.0 ** -0.9, rel=1e-12)
+
+
+def test_kim_pressure_is_the_force_over_eq_18_area():
+    """Seed 001 eq (19) is the force over eq (18)'s area A = π{(3/4)C_E}^(2/3)
+    (R_eq1 R_eq2)^(1/3) (F/3)^(2/3): P·A = F for any force."""
+    radii = w.kim_curvature_radii(10.0, 8.5, 11.0, math.radians(10.0), 35.0, math.radians(20.0))
+    R1, _, R3, R4 = radii
+    C_E = 0.91 / 206e3 + 0.84 / 3000.0
+    for F in (10.0, 600.0, 1400.0):
+        area = math.pi * (0.75 * C_E) ** (2 / 3) * (R1 * R3 / (R3 - R1) * R4) ** (1 / 3) * (F / 3) ** (2 / 3)
+        assert w.kim_contact_pressure(F, radii, C_E) * area == pytest.approx(F, rel=1e-12)
+
+
+def test_kim_case_efficiency_with_and_without_the_spring():
+    """The bundled Kim case: the spring's preload costs efficiency most at low torque, and
+    nothing where the shaft is aligned (19.67 N·m, zero spring force: the paper's 'the
+    difference becomes zero when the misalignment is zero')."""
+    rows = analyse_file(bundled_cases_dir() / "worm_kim_steering_ars.toml")["misalignment"]
+    loaded = [r for r in rows if r["output_torque_Nm"] > 0]
+    gap = [r["eta_kim_aligned"] - r["eta_kim"] for r in loaded]
+    aligned = next(r for r in loaded if r["output_torque_Nm"] == pytest.approx(19.67))
+    assert aligned["eta_kim"] == pytest.approx(aligned["eta_kim_aligned"], abs=1e-6)
+    below = [g for r, g in zip(loaded, gap) if r["output_torque_Nm"] < 19.67]
+    assert all(g > 0 for g in below) and below == sorted(below, reverse=True)

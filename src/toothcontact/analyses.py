@@ -250,17 +250,40 @@ def _published_checks(cond: schema.Condition, eta_z: float, gamma: float) -> lis
 
 
 def _anti_rattle_rows(case: schema.WormEfficiencyCase, gamma: float) -> list[dict]:
-    spring = case.anti_rattle_spring
+    """Seed 001 eqs (3), (20), (21) per output torque; with [contact], eq (19)'s pressure
+    with and without the spring's preload, the friction law and eq (2)'s efficiency."""
+    spring, alpha = case.anti_rattle_spring, case.normal_pressure_angle
     Rp = _wheel_pitch_radius(case, gamma)
+    kim = case.contact
+    if kim is not None:
+        rp = 0.5 * case.worm_pitch_diameter
+        # a ZI worm's base cylinder: cos(gamma_b) = cos(alpha_n)·cos(gamma), r_b = r·tan(gamma)/tan(gamma_b)
+        base = rp * math.tan(gamma) / math.tan(math.acos(math.cos(alpha) * math.cos(gamma)))
+        try:
+            radii = worm_efficiency.kim_curvature_radii(rp, base, 0.5 * kim.hob_pitch_diameter,
+                                                         gamma, Rp, alpha)
+        except ValueError as exc:
+            raise CaseError(f"contact: {exc}") from None
+        C_E = hertz.compliance(kim.worm.E, kim.worm.nu, kim.wheel.E, kim.wheel.nu)
     rows = []
     for torque in spring.output_torques:
         force = worm_efficiency.anti_rattle_spring_force(
-            torque, spring.mount_moment, spring.d1, spring.d2, Rp, case.normal_pressure_angle, gamma)
-        rows.append({"output_torque_Nm": torque / 1000.0,
-                     "normal_load_N": worm_efficiency.normal_tooth_load(torque, Rp, gamma,
-                                                                        case.normal_pressure_angle),
-                     "spring_force_N": force,
-                     "misalignment_mm": worm_efficiency.anti_rattle_misalignment(force, spring.stiffness)})
+            torque, spring.mount_moment, spring.d1, spring.d2, Rp, alpha, gamma)
+        Fn = worm_efficiency.normal_tooth_load(torque, Rp, gamma, alpha)
+        row = {"output_torque_Nm": torque / 1000.0, "normal_load_N": Fn, "spring_force_N": force,
+               "misalignment_mm": worm_efficiency.anti_rattle_misalignment(force, spring.stiffness)}
+        if kim is not None:
+            total = worm_efficiency.preloaded_normal_force(Fn, force, spring.d1, spring.d2, alpha)
+            law = kim.friction
+            for suffix, F in (("_aligned", Fn), ("", total)):
+                p = worm_efficiency.kim_contact_pressure(F, radii, C_E) if F > 0 else 0.0
+                mu = worm_efficiency.friction_power_law(p, law.mu_ref, law.pressure_ref,
+                                                        law.exponent) if p > 0 else math.nan
+                row[f"pressure{suffix}_MPa"], row[f"mu{suffix}"] = p, mu
+                row[f"eta_kim{suffix}"] = (worm_efficiency.efficiency_kim_preloaded(
+                    gamma, alpha, mu, Fn, F) if p > 0 else 0.0)
+            row["preloaded_normal_load_N"] = total
+        rows.append(row)
     return rows
 
 

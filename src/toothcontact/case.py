@@ -407,6 +407,24 @@ class AntiRattleSpring(Model):
                                                      description="wheel torques, e.g. ['0 N*m']")
 
 
+class FrictionLaw(Model):
+    """Seed 001 §2.4.1: mu = c·p^n through a measured point (steel on polymer)."""
+
+    mu_ref: Factor = Field(description="measured friction, e.g. 0.029")
+    pressure_ref: Modulus = Field(description="at this contact pressure, e.g. '130 MPa'")
+    exponent: float = Field(-0.9, le=0.0, description="n: -0.9 sliding, -0.6 rolling")
+
+
+class KimContact(Model):
+    """What seed 001's contact pressure (eqs 10-19) needs beyond the worm set: a ZI worm,
+    the hob that cut the wheel, the materials."""
+
+    hob_pitch_diameter: Length = Field(description="the (oversized) hob, e.g. '22 mm'")
+    worm: Material = Field(Material.model_validate({"E": "206 GPa", "nu": 0.3}))
+    wheel: Material = Field(description="e.g. nylon: E = '3 GPa', nu = 0.4")
+    friction: FrictionLaw
+
+
 class WormEfficiencyCase(CaseInfo):
     kind: Literal["worm_efficiency"]
     starts: int = Field(ge=1, le=12, description="worm starts z1 (1..12)")
@@ -419,9 +437,14 @@ class WormEfficiencyCase(CaseInfo):
     din3996: Din3996 | None = None
     conditions: list[Condition] = []
     anti_rattle_spring: AntiRattleSpring | None = None
+    contact: KimContact | None = Field(None, description="seed 001's pressure-dependent "
+                                                         "friction (needs the spring)")
 
     @model_validator(mode="after")
     def _choices(self):
+        if self.contact is not None and (self.anti_rattle_spring is None
+                                         or self.worm_pitch_diameter is None):
+            raise ValueError("contact: needs [anti_rattle_spring] and worm_pitch_diameter")
         if (self.lead_angle is None) == (self.worm_pitch_diameter is None):
             raise ValueError("lead_angle / worm_pitch_diameter: give exactly one of them")
         if self.lead_angle is not None and not 0 < self.lead_angle < math.radians(45):

@@ -545,10 +545,11 @@ def worm_efficiency_vs_torque(result: dict, path: str | Path) -> Path:
     """Worm set efficiency against output torque with and without the anti-rattle spring's
     misalignment (seed 001), with the shaft-end misalignment (mm) and the loads (N) below.
 
-    Without misalignment: eq (2) at the case's mu_zm. With misalignment: the per-torque
-    efficiency in result['misalignment'] rows ('eta_kim') when the result carries it;
-    seed 001 lets the tilt act only through the friction law mu = c·p^n, so at a constant
-    mu_zm both are the same curve, and the chart says so."""
+    With the case's [contact] (seed 001's pressure-dependent friction) the rows carry both
+    efficiencies, eta_kim_aligned and eta_kim, drawn with the constant-mu curve for
+    reference. Without it: eq (2) at the case's mu_zm; seed 001 lets the tilt act only
+    through the friction law mu = c·p^n, so at a constant mu_zm both are the same curve, and
+    the chart says so."""
     rows = result.get("misalignment") or []
     if not rows:
         raise ValueError("worm_efficiency_vs_torque: the result has no 'misalignment' rows")
@@ -561,7 +562,17 @@ def worm_efficiency_vs_torque(result: dict, path: str | Path) -> Path:
 
     eta_tilted = _column(rows, "eta_kim")
     mu = curves["mu_zm"]
-    if np.isfinite(eta_tilted).any():
+    if "eta_kim_aligned" in rows[0]:
+        # seed 001's full chain: pressure (eq 19) -> mu = c·p^n -> eq (2), per torque (no
+        # efficiency without output torque)
+        on = T_rows > 0
+        ax_eta.plot(T_rows[on], _column(rows, "eta_kim_aligned")[on], "o-", color=SERIES[0],
+                    lw=1.8, ms=5, label="without misalignment: μ(p) at the tooth load (eqs 19, 2)")
+        ax_eta.plot(T_rows[on], eta_tilted[on], "s-", color=SERIES[2], lw=1.8, ms=5,
+                    label="with the spring's preload and tilt: μ(p) on the total load")
+        ax_eta.plot(Tq, curves["eta_aligned"], "--", color="0.5", lw=1.0,
+                    label=f"constant μ = {mu:.3g} (eq 2)")
+    elif np.isfinite(eta_tilted).any():
         ax_eta.plot(Tq, curves["eta_aligned"], "-", color=SERIES[0], lw=1.8,
                     label=f"without misalignment: seed 001 eq (2), μ = {mu:.3g}")
         ax_eta.plot(T_rows, eta_tilted, "o-", color=SERIES[2], lw=1.8, ms=5,
@@ -573,15 +584,16 @@ def worm_efficiency_vs_torque(result: dict, path: str | Path) -> Path:
         ax_eta.text(0.01, 0.06, "seed 001 lets the shaft tilt act only through μ = c·p^n; the "
                     "case gives a constant μ,\nso the two curves coincide",
                     transform=ax_eta.transAxes, fontsize=8, color="0.25")
-    ax_eta.plot(T_rows, np.interp(T_rows, Tq, curves["eta_aligned"]), "o", color=SERIES[0],
-                ms=5, ls="none", label="torques of the case")
+    if "eta_kim_aligned" not in rows[0]:
+        ax_eta.plot(T_rows, np.interp(T_rows, Tq, curves["eta_aligned"]), "o", color=SERIES[0],
+                    ms=5, ls="none", label="torques of the case")
     _plain_axis(ax_eta.yaxis)
     lo, hi = ax_eta.get_ylim()
     if hi - lo < 0.02:
         mid = 0.5 * (lo + hi)
         ax_eta.set_ylim(mid - 0.03, mid + 0.02)
     ax_eta.set(ylabel="efficiency (–)")
-    ax_eta.legend(fontsize=8, loc="upper right")
+    ax_eta.legend(fontsize=8, loc="lower right")
 
     x = curves["misalignment_mm"]
     ax_x.plot(Tq, x, "-", color=SERIES[2], lw=1.8,

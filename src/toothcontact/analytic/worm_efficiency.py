@@ -94,3 +94,74 @@ def anti_rattle_spring_force(wheel_torque: float, mount_moment: float, d1: float
 def anti_rattle_misalignment(spring_force: float, stiffness: float) -> float:
     """Seed 001 eq (21): x = F_ARS / k, the worm-shaft tip height at the spring (mm)."""
     return spring_force / stiffness
+
+
+def kim_curvature_radii(worm_pitch_radius: float, base_radius: float, hob_radius: float,
+                        lead_angle: float, wheel_pitch_radius: float,
+                        pressure_angle: float) -> tuple[float, float, float, float]:
+    """Seed 001 eqs (10)-(17): the radii of the four principal curves at the contact point of
+    a ZI worm and a wheel cut by a hob of pitch radius r_h (mm):
+    R1 (worm, eq 14 at u1 of eq 10), R2 = inf (the worm's straight blade, eq 15),
+    R3 (wheel, eq 16 at u2 of eq 12), R4 = R_b·sqrt(R_p/R_b - 1), R_b = R_p·cos(alpha) (eq 17).
+    Eqs (14)/(16) are the curvature radius of the helix-like curve x = r cos d + u cos l sin d,
+    ... of eqs (4)/(7) at the given u."""
+    rp, rb, rh, lam = worm_pitch_radius, base_radius, hob_radius, lead_angle
+    if not rb < rp:
+        raise ValueError(f"base radius {rb:.4g} mm must be below the worm pitch radius {rp:.4g} mm")
+    c2 = math.cos(lam) ** 2
+
+    def radius(r, u):   # eqs (14) and (16)
+        return (r * r * c2 + u * u * c2) ** 1.5 / math.sqrt(
+            r ** 4 * c2 + r * r * u * u * (1.0 + c2) + u ** 4 * c2 * c2)
+
+    u1 = -rp * math.cos(math.asin(rb / rp)) * math.cos(lam)                       # eq (10)
+    reach = rh + rp - rb
+    u2 = -reach * math.cos(math.asin(rh / reach)) * math.cos(lam)                 # eq (12)
+    Rb = wheel_pitch_radius * math.cos(pressure_angle)
+    return radius(rb, u1), math.inf, radius(rh, u2), Rb * math.sqrt(wheel_pitch_radius / Rb - 1.0)
+
+
+def kim_contact_pressure(normal_force: float, radii: tuple[float, float, float, float],
+                         C_E: float) -> float:
+    """Seed 001 eq (19): the mean contact pressure (MPa) of the normal force (N) on the
+    contact area of eq (18), A = π·{(3/4)·C_E}^(2/3)·(R_eq1·R_eq2)^(1/3)·(F/3)^(2/3), with
+    R_eq1 = R1·R3/(R3 - R1) and R_eq2 = R2·R4/(R4 + R2) (= R4 for R2 = inf):
+    P = F^(1/3) / (π·{(1/4)·C_E}^(2/3)·(R_eq1·R_eq2)^(1/3))."""
+    R1, R2, R3, R4 = radii
+    if not R3 > R1:
+        raise ValueError(f"the wheel's curve radius R3 = {R3:.4g} mm must exceed the worm's "
+                         f"R1 = {R1:.4g} mm (a concave wheel holding the worm)")
+    req1 = R1 * R3 / (R3 - R1)
+    req2 = R4 if math.isinf(R2) else R2 * R4 / (R4 + R2)
+    return normal_force ** (1.0 / 3.0) / (math.pi * (0.25 * C_E) ** (2.0 / 3.0)
+                                          * (req1 * req2) ** (1.0 / 3.0))
+
+
+def preloaded_normal_force(normal_force: float, spring_force: float, d1: float, d2: float,
+                           pressure_angle: float) -> float:
+    """Seed 001 eq (19)'s load: the tooth normal force plus the anti-rattle spring's share at
+    the mesh, (d1 + d2)·|F_ARS|·sin(alpha)/d1 (N): the spring presses the worm into the
+    wheel whichever way it deflects."""
+    return normal_force + (d1 + d2) * abs(spring_force) * math.sin(pressure_angle) / d1
+
+
+def friction_power_law(pressure: float, mu_ref: float, pressure_ref: float,
+                       exponent: float) -> float:
+    """Seed 001 §2.4.1: steel on polymer, mu = c·p^n (n = -0.9 sliding, -0.6 rolling, after
+    Mowafi), with c fixed by a measured point: mu_ref at pressure_ref (the paper's 0.029 at
+    130 MPa)."""
+    if not pressure > 0:
+        raise ValueError(f"pressure must be > 0 MPa, got {pressure}")
+    return mu_ref * (pressure / pressure_ref) ** exponent
+
+
+def efficiency_kim_preloaded(lead_angle: float, normal_pressure_angle: float, mu: float,
+                             normal_force: float, preloaded_force: float) -> float:
+    """Seed 001 eq (2) with the friction force of the preloaded contact: the friction mu
+    acts on the whole normal force (tooth load plus spring), while only the tooth load
+    transmits torque, so the equation sees mu·F_total/F_n. Zero when nothing is
+    transmitted or friction locks the mesh."""
+    if not normal_force > 0:
+        return 0.0
+    return max(efficiency_kim(lead_angle, normal_pressure_angle,
+                              mu * preloaded_force / normal_force), 0.0)
