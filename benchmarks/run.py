@@ -3,11 +3,13 @@
     .venv/bin/python benchmarks/run.py
 
 Times the analytic building blocks (an exact Hertz solve, a crown design), every bundled
-case end to end (load, validate, analyse; the spur case includes its 21-position contact
-cycle), the solids of the issue-3 benchmark parts (crowned spur gear z = 20, m = 3 mm,
+case end to end (load, validate, analyse), the contact cycle of the spur and worm cases on
+their own and with the loaded contact, the imported-mesh path on a 1.4-million-triangle
+STL, the solids of the issue-3 benchmark parts (crowned spur gear z = 20, m = 3 mm,
 F = 30 mm, all teeth; the seed 000 worm wheel z2 = 40) with their flank deviation, and the
 CLI start-up, which must not import the heavy 3D stack. The side-by-side comparison with
-other gear generators is benchmarks/geometry_peers.py.
+other gear generators is benchmarks/geometry_peers.py, and with the ContactMechanics
+half-space solver benchmarks/pressure_peers.py.
 """
 
 from __future__ import annotations
@@ -48,11 +50,12 @@ def main() -> None:
         30.0, 0.0015, 0.0003, profile, load, C_E), number=20), "R and c, Hertz inside"))
     analyse_file(bundled_cases()[0])  # warm up pint's registry once
     for path in bundled_cases():
-        rows.append((f"case {path.stem}", best_of(lambda: analyse_file(path), number=3),
-                     "load + validate + analyse"))
+        rows.append((f"case {path.stem}", best_of(lambda: analyse_file(path), repeat=2),
+                     "load + validate + analyse (contact cases: with loaded contact, "
+                     "interference, mesh import)"))
 
-    rows.append(("spur contact cycle (21 positions, 25x41 grid)", best_of(_spur_cycle(), repeat=2),
-                 "issue 4 target: 0.5 s on a 201x201 grid"))
+    rows.extend(_contact())
+    rows.extend(_mesh_path())
     rows.extend(_solids())
 
     probe = ("import sys, time; t = time.perf_counter(); from toothcontact.cli import app\n"
@@ -78,18 +81,80 @@ def main() -> None:
     print(f"wrote {HERE / 'results.json'}")
 
 
-def _spur_cycle():
-    """The bundled crowned spur case's contact over the mesh cycle, without interference."""
+def _case(name: str, **analysis):
+    """A bundled case with its [analysis] table changed."""
     import tomllib
 
-    from toothcontact.analyses import analyse
     from toothcontact.case import parse_case
     from toothcontact.runner import bundled_cases_dir
 
-    raw = tomllib.loads((bundled_cases_dir() / "spur_crowned_20_60.toml").read_text())
-    raw["analysis"]["interference"] = False
-    case = parse_case(raw)
-    return lambda: analyse(case)
+    raw = tomllib.loads((bundled_cases_dir() / f"{name}.toml").read_text())
+    raw.setdefault("analysis", {}).update(analysis)
+    return parse_case(raw)
+
+
+def _contact():
+    """Issue 4: the contact cycle of the crowned spur case (search, fits, ellipses, edges,
+    ease-off), also on a 201 x 201 search grid, and of the loaded worm set; issue 6: the
+    loaded contact (half-space solution of every contact, shared load) on top."""
+    from toothcontact.analyses import analyse
+
+    out = []
+    plain = dict(interference=False, pressure_grid=0)
+    for grid in ((25, 41), (201, 201)):
+        case = _case("spur_crowned_20_60", grid=list(grid), **plain)
+        out.append((f"spur contact cycle, 21 positions, {grid[0]}x{grid[1]} search grid",
+                    best_of(lambda: analyse(case), repeat=3 if grid[0] < 100 else 1),
+                    "issue 4 target 0.5 s (201x201); the search is exact at any grid (refined)"))
+    for pressure in (128, 256):
+        case = _case("spur_crowned_20_60", interference=False, pressure_grid=pressure)
+        out.append((f"spur cycle + loaded contact {pressure}^2 (37 contacts)",
+                    best_of(lambda: analyse(case), repeat=1), "half-space solve, load shared"))
+    case = _case("worm_eps_oversized_hob", pressure_grid=0)
+    out.append(("worm contact cycle, 7 positions (incl. wheel envelope)",
+                best_of(lambda: analyse(case), repeat=3), "issue 4 target 2 s"))
+    return out
+
+
+def _mesh_path():
+    """Issue 4: the imported-mesh path on a 1.4-million-triangle STL pinion (the crowned
+    z = 20 gear, all teeth, tessellated to 1.2 µm) against a five-tooth gear sector."""
+    from toothcontact import cad, gearset
+    from toothcontact.analytic.hertz import compliance
+    from toothcontact.assembly import Misalignment, ParallelMesh
+    from toothcontact.case import parse_case
+    from toothcontact.contact.cycle import CycleSettings
+    from toothcontact.contact.imported import imported_cycle
+    from toothcontact.mesh import TriangleSurface
+
+    spur = parse_case({"kind": "spur", "teeth": [20, 60], "module": "3 mm",
+                       "pressure_angle": "20 deg", "face_width": "30 mm",
+                       "pinion": {"crown": {"radius": "4000 mm"}}})
+    pair = gearset.gear_pair(spur)
+    t0 = time.perf_counter()
+    pin = cad.tessellate(cad.build_gear(pair.pinion, pair.pinion_modifications).solid, 0.0012)
+    sector = cad.tessellate(cad.build_gear(pair.gear, pair.gear_modifications, teeth=5).solid, 0.0012)
+    t1 = time.perf_counter()
+    turn = -2 * 2 * math.pi / 60
+    pinion = TriangleSurface(pin.vertices, pin.faces)
+    gear = TriangleSurface(sector.vertices, sector.faces).turned(turn)
+    t2 = time.perf_counter()
+    gear._samples, pinion.mesh.vertex_normals  # noqa: B018 - build the search structures
+    t3 = time.perf_counter()
+    mesh = ParallelMesh.of_layout(20, 60, 120.0, pair.working_pressure_angle,
+                                  Misalignment(slope=0.0008), gear_start=math.pi)
+    C_E = compliance(206e3, 0.3, 206e3, 0.3)
+    timings = {}
+    for n in (1, 5):
+        start = time.perf_counter()
+        imported_cycle(mesh, pinion, gear, 8513.4, C_E, CycleSettings(positions=n))
+        timings[n] = time.perf_counter() - start
+    triangles = len(pin.faces) + len(sector.faces)
+    return [(f"mesh path: tessellate {triangles / 1e6:.2f} M triangles", t1 - t0, "OCCT, 1.2 um"),
+            ("mesh path: load + search structures", (t2 - t1) + (t3 - t2), "trimesh, KD-tree"),
+            ("mesh path: first position (incl. phase scan)", timings[1], "issue 4 target 5 s/position"),
+            ("mesh path: per further position", (timings[5] - timings[1]) / 4,
+             "issue 4 target 5 s/position")]
 
 
 def _solids():

@@ -111,11 +111,11 @@ def parallel_cycle(mesh, pinion: Flank, gear: Flank, normal_load: float,
         return out
 
     delta, s_grid = solve_transmission_error(least, delta)
-    facing_pairs = (P, J)
     # refine the pairs that may be in contact: the grid minimum can overstate a pair's
     # least separation by about the gap across one grid cell
     near = pair_least(delta) - s_grid[P] <= settings.approach + CELL_GAP
     P, J = P[near], J[near]
+    near_pairs = (P, J)
     contacts = refine_minima(pinion, gear, pinion_frames[P, J], gear_frames(P, J, delta[P]),
                              best_u[near, 0], best_v[near, 0], half)
     # the lag on the refined minimum (a little below the best grid point)
@@ -132,13 +132,15 @@ def parallel_cycle(mesh, pinion: Flank, gear: Flank, normal_load: float,
         rows, planes, angle = _pair_results(pinion, gear, pf, gf, np.degrees(phis[P]), pairs[J],
                                             delta[P], contacts, gaps[keep], share, C_E, settings)
         ease = _ease_off(mesh, pinion, gear, phis, pairs, pinion_frames, gear_frames, delta,
-                         *facing_pairs, settings.ease_off_grid)
+                         *near_pairs, settings.ease_off_grid)
     return ContactCycle(rows, pinion, gear, pf, gf, contacts, planes, angle, ease, settings)
 
 
 def _ease_off(mesh, pinion, gear, phis, pairs, pinion_frames, gear_frames, delta, P, J, grid):
-    """The pinion flank's ease-off over every facing pair at every position (the gear at
-    the solved lag; the final lag correction is below a micrometre and left out)."""
+    """The pinion flank's ease-off over the pairs near contact at every position (within
+    the approach and a grid cell's gap of it: where a flank point's least separation over
+    the cycle comes from; the gear at the solved lag, whose final correction is below a
+    micrometre and left out)."""
     turns = np.array([mesh.driver_turn(phis[p], pairs[j]) for p, j in zip(P, J)], float)
     return ease_off(pinion, gear, pinion_frames[P, J], gear_frames(P, J, delta[P]), turns, grid)
 

@@ -1,7 +1,7 @@
 """Separation fields: the pinion flank's ease-off over the mesh cycle, and the gap around one
 contact in its tangent plane.
 
-Ease-off: at every mesh position (every tooth pair facing another, the gear at its solved
+Ease-off: at every mesh position (every tooth pair near contact, the gear at its solved
 lag) the separation of a grid of pinion flank points from the gear flank; the least over the
 cycle at each point is what a paint pattern shows: zero along the path of contact, and the
 gap a marking compound must bridge elsewhere.

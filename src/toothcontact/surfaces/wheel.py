@@ -361,15 +361,22 @@ class WormWheelFlank(Flank):
         """Polar angle ψ (rad) of the generating point in the hob's fixed frame. strict=False:
         NaN where Newton fails (no contact on that line), instead of an error."""
         uf, vf, fpf = np.broadcast_arrays(*(np.asarray(value(x), float) for x in (u, v, fp)))
+        shape = uf.shape
+        uf, vf, fpf = (x.ravel() for x in (uf, vf, fpf))
         psi = np.arcsin(np.clip(vf / (self._ky * uf), -0.95, 0.95))
+        done = np.zeros(psi.shape, bool)
+        active = np.arange(psi.size)
         with np.errstate(all="ignore"):
-            for _ in range(60):
-                g = self._zeta(uf, fpf, Jet(psi, 1.0)) - vf
+            for _ in range(60):   # Newton on the points still running only
+                g = self._zeta(uf[active], fpf[active], Jet(psi[active], 1.0)) - vf[active]
                 step = g.f / g.u
-                psi = np.clip(psi - step, -1.5, 1.5)
-                done = np.abs(step) <= 1e-14
-                if np.all(done):
+                psi[active] = np.clip(psi[active] - step, -1.5, 1.5)
+                converged = np.abs(step) <= 1e-14
+                done[active[converged]] = True
+                active = active[~converged & np.isfinite(step)]
+                if active.size == 0:
                     break
+        uf, vf, fpf, psi, done = (x.reshape(shape) for x in (uf, vf, fpf, psi, done))
         if not np.all(done):
             if strict:
                 raise RuntimeError("worm wheel: no generating contact found (Newton failed)")
