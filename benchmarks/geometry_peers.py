@@ -64,6 +64,8 @@ from pathlib import Path
 import numpy as np
 
 HERE = Path(__file__).resolve().parent
+sys.path.insert(0, str(HERE))
+from timing import timed  # noqa: E402
 JSON_OUT = HERE / "geometry_peers.json"
 CQ_GEARS_PATH = os.environ.get("CQ_GEARS_PATH", "/tmp/cq_gears_src")
 
@@ -91,16 +93,6 @@ def versions() -> dict:
     except Exception:  # noqa: BLE001
         out["cq_gears"] = "source checkout"
     return out
-
-
-def timed(fn, repeat: int = 1):
-    """(best wall time over `repeat` calls, last result)."""
-    best, result = math.inf, None
-    for _ in range(repeat):
-        t0 = time.perf_counter()
-        result = fn()
-        best = min(best, time.perf_counter() - t0)
-    return best, result
 
 
 # --- sampling B-rep faces ----------------------------------------------------------------------

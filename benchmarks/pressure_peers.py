@@ -45,7 +45,6 @@ import math
 import os
 import platform
 import sys
-import time
 import warnings
 from importlib import metadata
 from pathlib import Path
@@ -59,6 +58,10 @@ try:
 except ImportError:
     sys.path.insert(0, str(HERE.parent / "src"))
 
+sys.path.insert(0, str(HERE))
+sys.path.insert(0, str(HERE.parent / "tests"))
+from test_pressure import E_STAR as TEST_E_STAR, TRUNCATED, truncated_gap  # noqa: E402 - the tests' problem
+from timing import timed  # noqa: E402
 from toothcontact.analytic import hertz  # noqa: E402
 from toothcontact.contact import pressure as P  # noqa: E402
 
@@ -79,16 +82,6 @@ def versions() -> dict:
         except metadata.PackageNotFoundError:
             out[dist] = None
     return out
-
-
-def best_of(fn, repeat: int):
-    """(best wall time over `repeat` calls, last result)."""
-    best, result = math.inf, None
-    for _ in range(repeat):
-        t0 = time.perf_counter()
-        result = fn()
-        best = min(best, time.perf_counter() - t0)
-    return best, result
 
 
 def hertz_problem(ratio: float, n: int):
@@ -117,8 +110,8 @@ def run_ours(h, dx, dy, exact, repeat, **options):
         P.influence_operator.cache_clear()
         return P.solve_contact(h, dx, dy, LOAD, E_STAR, tol=TOL, **options)
 
-    t_cold, sol = best_of(cold, repeat)
-    t_cached, _ = best_of(lambda: P.solve_contact(h, dx, dy, LOAD, E_STAR, tol=TOL,
+    t_cold, sol = timed(cold, repeat)
+    t_cached, _ = timed(lambda: P.solve_contact(h, dx, dy, LOAD, E_STAR, tol=TOL,
                                                   **options), repeat)
     return {
         "time_s": t_cold, "time_cached_operator_s": t_cached,
@@ -147,7 +140,7 @@ def run_peer(h, dx, dy, exact, repeat, pentol):
 
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")
-        t, result = best_of(solve, repeat)
+        t, result = timed(solve, repeat)
     p = result.jac / (dx * dy)
     return {
         "time_s": t, "iterations": int(result.nit), "pentol_mm": pentol,
@@ -190,20 +183,13 @@ def hertz_rows(ratios, grids, repeat, peer_ok):
 
 
 def edge_rows(grids):
-    A, B, load = 0.01, 0.1, 2000.0
-    exact = hertz.hertz_point(A, B, load, 1.0 / E_STAR)
+    """The truncated ellipse of the tests (tests/test_pressure.py) at each grid size."""
+    A, B, load = TRUNCATED["A"], TRUNCATED["B"], TRUNCATED["load"]
     rows = []
     for n in grids:
-        half_x, half_y = 1.5 * exact.a, 2.0 * exact.b
-        dx, dy = 2 * half_x / n, 2 * half_y / n
-        x = -half_x + (np.arange(n) + 0.5) * dx
-        y = -half_y + (np.arange(n) + 0.5) * dy
-        X, Y = np.meshgrid(x, y, indexing="ij")
-        mask = np.zeros((n, n), dtype=bool)
-        mask[: n * 56 // 64, :] = True                  # face end at x = 1.125 a
-        h = A * (X - 0.6 * exact.a) ** 2 + B * Y**2
+        h, dx, dy, mask, exact = truncated_gap(n)
         P.influence_operator.cache_clear()
-        t, sol = best_of(lambda: P.solve_contact(h, dx, dy, load, E_STAR, mask=mask), 1)
+        t, sol = timed(lambda: P.solve_contact(h, dx, dy, load, TEST_E_STAR, mask=mask), 1)
         _, end = sol.edge_loads(axis=0, width_mm=STRIP)
         rows.append({"cells_across": n, "dx_mm": dx, "dy_mm": dy, "time_s": t,
                      "iterations": sol.iterations,
@@ -214,7 +200,7 @@ def edge_rows(grids):
     for coarse, fine in zip(rows, rows[1:]):
         fine["edge_pressure_change"] = fine["edge_pressure_MPa"] / coarse["edge_pressure_MPa"] - 1
         fine["raw_peak_ratio"] = fine["raw_edge_peak_MPa"] / coarse["raw_edge_peak_MPa"]
-    return {"problem": {"A_per_mm": A, "B_per_mm": B, "load_N": load, "E_star_MPa": E_STAR,
+    return {"problem": {"A_per_mm": A, "B_per_mm": B, "load_N": load, "E_star_MPa": TEST_E_STAR,
                         "hertz_a_mm": exact.a, "hertz_b_mm": exact.b, "hertz_p0_MPa": exact.p0,
                         "centre_x_mm": 0.6 * exact.a, "face_end_x_mm": 1.125 * exact.a,
                         "grid_x_mm": [-1.5 * exact.a, 1.5 * exact.a],

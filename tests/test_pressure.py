@@ -166,8 +166,15 @@ TRUNCATED = dict(A=0.01, B=0.1, load=2000.0)
 
 
 def truncated_ellipse(n):
+    """The truncated_gap problem solved: (solution, mask, exact Hertz)."""
+    h, dx, dy, mask, exact = truncated_gap(n)
+    return P.solve_contact(h, dx, dy, TRUNCATED["load"], E_STAR, mask=mask), mask, exact
+
+
+def truncated_gap(n):
     """Gap A (x - 0.6a)² + B y² cut by a face end at x = 1.125 a (mask False beyond it), a
-    the Hertz semi-axis; the face end falls on a cell boundary for every n divisible by 64."""
+    the Hertz semi-axis, on n × n cells: (gap, dx, dy, mask, exact Hertz); the face end
+    falls on a cell boundary for every n divisible by 64."""
     A, B, load = TRUNCATED["A"], TRUNCATED["B"], TRUNCATED["load"]
     exact = hertz.hertz_point(A, B, load, 1.0 / E_STAR)
     half_x, half_y = 1.5 * exact.a, 2.0 * exact.b
@@ -178,7 +185,7 @@ def truncated_ellipse(n):
     mask = np.zeros((n, n), dtype=bool)
     mask[: n * 56 // 64, :] = True
     h = A * (X - 0.6 * exact.a) ** 2 + B * Y**2
-    return P.solve_contact(h, dx, dy, load, E_STAR, mask=mask), mask, exact
+    return h, dx, dy, mask, exact
 
 
 @pytest.fixture(scope="module")
