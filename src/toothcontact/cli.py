@@ -32,17 +32,90 @@ def _guarded(action):
               "(set TOOTHCONTACT_DEBUG=1 to see the traceback)", 3)
 
 
+class _Progress:
+    """A rich progress display on stderr for work that takes more than a moment; silent
+    when stderr is not a terminal (pipes, logs, tests)."""
+
+    def __init__(self, total: int | None, label: str):
+        from rich.console import Console
+        from rich.progress import (BarColumn, MofNCompleteColumn, Progress, SpinnerColumn,
+                                   TextColumn, TimeElapsedColumn)
+
+        console = Console(stderr=True)
+        columns = [SpinnerColumn(), TextColumn("{task.description}")]
+        if total is not None:
+            columns += [BarColumn(), MofNCompleteColumn()]
+        self._progress = Progress(*columns, TimeElapsedColumn(), console=console,
+                                  transient=True, disable=not console.is_terminal)
+        self._task = self._progress.add_task(label, total=total)
+        self._label = label
+
+    def __enter__(self):
+        self._progress.__enter__()
+        return self
+
+    def __exit__(self, *exc):
+        return self._progress.__exit__(*exc)
+
+    def stage(self, what: str) -> None:
+        self._progress.update(self._task, description=f"{self._label}: {what}")
+
+    def advance(self) -> None:
+        self._progress.advance(self._task)
+
+
+def _wrote(written) -> str:
+    return ", ".join(p.name for p in written)
+
+
 @app.command()
 def run(case: Path = typer.Argument(..., help="case file (TOML)"),
-        out: Optional[Path] = typer.Option(None, "--out", help="output folder [out/<case>]")):
-    """Analyse CASE: writes result.json and report.md."""
+        out: Optional[Path] = typer.Option(None, "--out", help="output folder [out/<case>]"),
+        pictures: bool = typer.Option(True, "--pictures/--no-pictures",
+                                      help="render the 3D pictures (spur, spline, worm)")):
+    """Analyse CASE: writes result.json, report.md, report.html, plots and pictures."""
     from . import runner
 
-    document, written = _guarded(lambda: runner.run_case(case, out))
+    with _Progress(None, case.stem) as progress:
+        document, written = _guarded(lambda: runner.run_case(case, out, pictures, progress.stage))
     failed = [c for c in document["checks"] if not c["ok"]]
-    typer.echo(f"{case.stem}: wrote {', '.join(str(p) for p in written)}")
+    folder = written[0].parent if written else out
+    typer.echo(f"{case.stem}: wrote {_wrote(written)} -> {folder}")
     for check in failed:
         typer.echo(f"  check failed: {check['name']}: {check['detail']}")
+    for note in document["notes"]:
+        if note.startswith("the 3D pictures could not be rendered"):
+            typer.echo(f"  warning: {note}")
+
+
+@app.command()
+def render(cases: list[Path] = typer.Argument(..., help="case files (TOML)"),
+           out: Optional[Path] = typer.Option(None, "--out",
+                                              help="output folder; the pictures go to OUT/<case>/ [viz]"),
+           position: Optional[int] = typer.Option(None, "--position",
+                                                  help="mesh position of the pair picture "
+                                                       "(0 = first roll angle) [nearest roll 0]"),
+           exaggerate: float = typer.Option(1.0, "--exaggerate",
+                                            help="show the misalignment N times larger")):
+    """Render each case's 3D pictures off-screen (PNG) into OUT/<case>/.
+
+    The contact pattern on the flank (head-on and in perspective), the pair in mesh and
+    the loaded pressure; a case without a load gets the pair in mesh."""
+    from . import runner
+
+    with _Progress(len(cases) if len(cases) > 1 else None, "rendering") as progress:
+        for case in cases:
+            target = (out or Path("viz")) / case.stem
+            progress.stage(case.stem)
+            written = _guarded(lambda: runner.render_case(
+                case, target, position, exaggerate,
+                lambda what: progress.stage(f"{case.stem}: {what}")))
+            if written:
+                typer.echo(f"{case.stem}: wrote {_wrote(written)} -> {target}")
+            else:
+                typer.echo(f"{case.stem}: no 3D picture for this kind of case "
+                           "(its plots come with `toothcontact run`)")
+            progress.advance()
 
 
 @app.command()
@@ -75,20 +148,30 @@ def cases():
 
 @app.command()
 def demo(out: Path = typer.Option(Path("out"), "--out", help="output folder")):
-    """Run every bundled case into OUT/<case>/."""
+    """Run every bundled case into OUT/<case>/: results, reports, plots, pictures, solids."""
     from rich.console import Console
     from rich.table import Table
 
     from . import runner
 
-    table = Table("case", "kind", "checks", "STEP/STL", title=f"bundled cases -> {out}/<case>/")
-    for path in _guarded(runner.bundled_cases):
-        document, _ = _guarded(lambda: runner.run_case(path, out / path.stem))
-        failed = sum(not c["ok"] for c in document["checks"])
-        solids = ""
-        if document["kind"] in runner.GEOMETRY_KINDS:
-            record = _guarded(lambda: runner.export_case(path, out / path.stem))
-            solids = ", ".join(f"{n} {p['flank_deviation_um']:.2f} µm" for n, p in record["parts"].items())
-        table.add_row(path.stem, document["kind"],
-                      f"{len(document['checks']) - failed} pass, {failed} flagged", solids)
-    Console(width=100).print(table)
+    table = Table("case", "kind", "checks", "files", "STEP/STL",
+                  title=f"bundled cases -> {out}/<case>/")
+    paths = _guarded(runner.bundled_cases)
+    with _Progress(len(paths), "demo") as progress:
+        for path in paths:
+            progress.stage(path.stem)
+            document, written = _guarded(lambda: runner.run_case(
+                path, out / path.stem, progress=lambda what: progress.stage(f"{path.stem}: {what}")))
+            failed = sum(not c["ok"] for c in document["checks"])
+            solids = ""
+            if document["kind"] in runner.GEOMETRY_KINDS:
+                progress.stage(f"{path.stem}: solids")
+                record = _guarded(lambda: runner.export_case(path, out / path.stem))
+                solids = ", ".join(f"{n} {p['flank_deviation_um']:.2f} µm"
+                                   for n, p in record["parts"].items())
+            pngs = sum(p.suffix == ".png" for p in written)
+            table.add_row(path.stem, document["kind"],
+                          f"{len(document['checks']) - failed} pass, {failed} flagged",
+                          f"{len(written) - pngs} + {pngs} png", solids)
+            progress.advance()
+    Console(width=110).print(table)

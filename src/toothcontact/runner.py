@@ -2,6 +2,10 @@
 
 from __future__ import annotations
 
+import math
+import os
+from collections.abc import Callable
+from dataclasses import dataclass
 from pathlib import Path
 
 from . import analyses, case as schema, report
@@ -21,24 +25,101 @@ def bundled_cases() -> list[Path]:
     return sorted(bundled_cases_dir().glob("*.toml"))
 
 
-def analyse_file(path: str | Path) -> dict:
-    """Load and analyse a case file; returns the result document (raises CaseError)."""
+@dataclass
+class Analysis:
+    """A case file analysed: the validated case, its raw table (units as given), the
+    analyses.Result (with the contact cycle for pictures) and the result document."""
+
+    path: Path
+    case: object
+    raw: dict
+    result: analyses.Result
+    document: dict
+
+
+def analyse_path(path: str | Path) -> Analysis:
+    """Load and analyse a case file (raises CaseError, naming the file, on bad input)."""
     path = Path(path)
     case, raw = schema.load_case(path)
     try:
         result = analyses.analyse(case)
     except schema.CaseError as exc:
         raise schema.CaseError(f"{path}: {exc}") from None
-    return report.result_document(path.stem, case, raw, result)
+    return Analysis(path, case, raw, result, report.result_document(path.stem, case, raw, result))
 
 
-def run_case(path: str | Path, out_dir: str | Path | None = None) -> tuple[dict, list[Path]]:
-    """Analyse a case file and write result.json and report.md into `out_dir`
-    (default out/<case name>/). Nothing is written when the case is bad."""
+def analyse_file(path: str | Path) -> dict:
+    """Load and analyse a case file; returns the result document (raises CaseError)."""
+    return analyse_path(path).document
+
+
+def _step(progress: Callable[[str], None] | None, what: str) -> None:
+    if progress is not None:
+        progress(what)
+
+
+def run_case(path: str | Path, out_dir: str | Path | None = None, pictures: bool = True,
+             progress: Callable[[str], None] | None = None) -> tuple[dict, list[Path]]:
+    """Analyse a case file and write into `out_dir` (default out/<case name>/): result.json,
+    report.md, report.html, the plots (plots.figures_for) and, with `pictures`, the 3D
+    pictures (render.pictures_for). Nothing is written when the case is bad. A picture
+    that cannot be rendered (no OpenGL here, say) leaves the rest of the run standing: the
+    report says so. `progress(stage)` is called before each stage."""
     path = Path(path)
-    document = analyse_file(path)
+    _step(progress, "analysing")
+    run = analyse_path(path)
+    document = run.document
     target = Path(out_dir) if out_dir is not None else Path("out") / path.stem
-    return document, report.write_run(target, document)
+    target.mkdir(parents=True, exist_ok=True)
+    from . import plots
+
+    _step(progress, "plotting")
+    images = plots.figures_for(document, target)
+    if pictures and has_pictures(run.case):
+        _step(progress, "rendering")
+        try:
+            images += picture_files(run, target)
+        except Exception as exc:  # noqa: BLE001 - the numbers stand without the pictures
+            if os.environ.get("TOOTHCONTACT_DEBUG"):
+                raise
+            document["notes"].append(f"the 3D pictures could not be rendered here: "
+                                     f"{type(exc).__name__}: {exc}")
+    _step(progress, "writing the reports")
+    return document, report.write_run(target, document, images) + images
+
+
+def has_pictures(case) -> bool:
+    """Whether a case gets 3D pictures: spur, spline and worm cases (with a load, the
+    contact pattern; without, the pair in mesh)."""
+    from .render import PICTURE_KINDS
+
+    return case.kind in PICTURE_KINDS
+
+
+def picture_files(run: Analysis, out_dir: Path, position: int | None = None,
+                  exaggerate: float = 1.0) -> list[Path]:
+    from . import render
+
+    return render.pictures_for(run.result, run.case, out_dir, name=run.path.stem,
+                               position=position, exaggerate=exaggerate)
+
+
+def render_case(path: str | Path, out_dir: str | Path | None = None, position: int | None = None,
+                exaggerate: float = 1.0,
+                progress: Callable[[str], None] | None = None) -> list[Path]:
+    """Analyse a case and write its 3D pictures into `out_dir` (default viz/<case name>/);
+    [] without analysing for a kind that has none (analytic kinds, imported meshes)."""
+    path = Path(path)
+    case, _ = schema.load_case(path)
+    if not has_pictures(case):
+        return []
+    if exaggerate <= 0 or not math.isfinite(exaggerate):
+        raise schema.CaseError(f"--exaggerate: {exaggerate:g} must be a positive number")
+    _step(progress, "analysing")
+    run = analyse_path(path)
+    target = Path(out_dir) if out_dir is not None else Path("viz") / path.stem
+    _step(progress, "rendering")
+    return picture_files(run, target, position, exaggerate)
 
 
 from .cad.parts import SOLID_KINDS as GEOMETRY_KINDS  # noqa: E402 - OCP loads lazily

@@ -1,0 +1,216 @@
+"""Pictures, rendered off-screen: the paint shows where the contact is computed to be, edge
+contact turns the warning colour on (and only then), every picture is written whole."""
+
+import math
+from pathlib import Path
+from types import SimpleNamespace
+
+import numpy as np
+import pytest
+from matplotlib.colors import rgb_to_hsv, to_rgb
+from typer.testing import CliRunner
+
+from toothcontact import analyses, plots, render
+from toothcontact.assembly import Frame, rotation
+from toothcontact.case import parse_case
+from toothcontact.cli import app
+
+
+def spur_case(slope: float):
+    """The bundled crowned spur pair, three positions, no interference or loaded solve (fast);
+    a tip relief keeps the first and last contacts off the tip edge."""
+    return parse_case({
+        "kind": "spur", "title": "render test", "teeth": [20, 60], "module": "3 mm",
+        "pressure_angle": "20 deg", "face_width": "30 mm",
+        "pinion": {"crown": {"radius": "4000 mm"},
+                   "tip_relief": {"amount": "20 um", "start_diameter": "64 mm"}},
+        "misalignment": {"slope": str(slope)}, "load": {"tangential_load": "8000 N"},
+        "analysis": {"positions": 3, "interference": False, "pressure_grid": 0}})
+
+
+@pytest.fixture(scope="module")
+def aligned():
+    case = spur_case(0.0)
+    return case, analyses.analyse(case)
+
+
+@pytest.fixture(scope="module")
+def tilted():
+    case = spur_case(0.004)
+    return case, analyses.analyse(case)
+
+
+def hsv(image: np.ndarray) -> np.ndarray:
+    return rgb_to_hsv(image.astype(float) / 255.0)
+
+
+def hue_distance(h: np.ndarray, target: float) -> np.ndarray:
+    d = np.abs(h - target)
+    return np.minimum(d, 1.0 - d)
+
+
+CONTACT_HUE = float(rgb_to_hsv(np.array(to_rgb(render.CONTACT)))[0])
+WARNING_HUE = float(rgb_to_hsv(np.array(to_rgb(render.WARNING)))[0])
+
+
+def is_contact_colour(pixels: np.ndarray) -> np.ndarray:
+    """The paint at (nearly) zero separation: the CONTACT hue, saturated, shaded by the
+    lights but not washed out."""
+    h = hsv(pixels)
+    return (hue_distance(h[..., 0], CONTACT_HUE) < 0.04) & (h[..., 1] > 0.6) & (h[..., 2] > 0.25)
+
+
+def is_warning_colour(pixels: np.ndarray) -> np.ndarray:
+    h = hsv(pixels)
+    return (hue_distance(h[..., 0], WARNING_HUE) < 0.03) & (h[..., 1] > 0.55) & (h[..., 2] > 0.45)
+
+
+def window(image: np.ndarray, pixel, half: int = 3) -> np.ndarray:
+    c, r = (int(round(x)) for x in pixel)
+    return image[max(r - half, 0):r + half + 1, max(c - half, 0):c + half + 1]
+
+
+def test_the_warning_colour_is_the_plots_warning_colour():
+    assert render.WARNING == plots.WARNING
+
+
+def test_pattern_is_not_blank_and_paints_where_the_contact_is(aligned):
+    case, result = aligned
+    cycle = result.cycle
+    plotter = render.pattern_scene(result, case, "test", "head-on")
+    image = render.screenshot(plotter)
+    assert image.shape == (render.WINDOW[1], render.WINDOW[0], 3)
+    colours = np.unique(image.reshape(-1, 3), axis=0)
+    assert len(colours) > 500                                    # not blank
+    # every contact point of the cycle, projected by the plotter's camera, is painted in the
+    # contact colour (tooth 0's flank: each row's point carried by its own pinion frame)
+    for k in range(len(cycle.rows)):
+        local = cycle.pinion_frames[np.array([k])].to_local(cycle.planes.point[[k]])
+        pixel = render.project(plotter, local)[0]
+        assert 0 <= pixel[0] < image.shape[1] and 0 <= pixel[1] < image.shape[0]
+        assert is_contact_colour(window(image, pixel)).mean() > 0.5, (k, pixel)
+    # the face ends, where the crown opens the gap beyond the approach, are not painted
+    (u0, u1), (v0, v1) = cycle.pinion.domain
+    for v in (v0 + 0.03 * (v1 - v0), v1 - 0.03 * (v1 - v0)):
+        end = np.stack(cycle.pinion.point(np.array([0.5 * (u0 + u1)]), np.array([v])), axis=-1)
+        pixel = render.project(plotter, end)[0]
+        assert not is_contact_colour(window(image, pixel)).any()
+    plotter.close()
+    # without edge contact nothing is in the warning colour
+    assert not any(r["edge_contact"] for r in cycle.rows)
+    assert is_warning_colour(image).sum() == 0
+
+
+def test_edge_contact_turns_the_warning_colour_on_at_its_edge(tilted):
+    case, result = tilted
+    cycle = result.cycle
+    assert all(r["edge_margins_mm"].get("pinion_end_B", 0.0) < 0 for r in cycle.rows)
+    plotter = render.pattern_scene(result, case, "test", "head-on")
+    image = render.screenshot(plotter)
+    warning = is_warning_colour(image)
+    assert warning.sum() > 500
+    # and it is at end B: the warning pixels near the end B edge's projection
+    (u0, u1), (v0, v1) = cycle.pinion.domain
+    u = np.linspace(u0, u1, 9)
+    edge_b = np.stack(cycle.pinion.point(u, np.full_like(u, v1)), axis=-1)
+    edge_a = np.stack(cycle.pinion.point(u, np.full_like(u, v0)), axis=-1)
+    at_b = render.project(plotter, edge_b)
+    at_a = render.project(plotter, edge_a)
+    plotter.close()
+    assert sum(is_warning_colour(window(image, p, 4)).any() for p in at_b) >= 2
+    assert not any(is_warning_colour(window(image, p, 4)).any() for p in at_a)
+    # the red lies on end B's side of the flank (an ellipse reaches beyond the edge)
+    top, bottom = np.concatenate([at_a[:, 1], at_b[:, 1]]).min(), np.concatenate(
+        [at_a[:, 1], at_b[:, 1]]).max()
+    _, cols = np.nonzero(warning[int(top) - 40:int(bottom) + 40])
+    middle = 0.5 * (at_a[:, 0].mean() + at_b[:, 0].mean())
+    toward_b = np.sign(at_b[:, 0].mean() - middle)
+    assert np.mean(np.sign(cols - middle) == toward_b) > 0.95
+
+
+def synthetic_loaded(cycle, n: int = 48):
+    """A loaded solution per row as the loaded-contact module gives it: a Hertz pressure
+    field on a grid of the row's tangent plane (x along e1, y along e2)."""
+    out = []
+    for k, row in enumerate(cycle.rows):
+        a, b, angle = row["a_mm"], row["b_mm"], float(cycle.axis_angle[k])
+        x = np.linspace(-1.3 * a, 1.3 * a, n)
+        y = np.linspace(-1.3 * b, 1.3 * b, n)
+        X, Y = np.meshgrid(x, y, indexing="ij")
+        xa = X * math.cos(angle) + Y * math.sin(angle)
+        yb = -X * math.sin(angle) + Y * math.cos(angle)
+        p = row["p_max_MPa"] * np.sqrt(np.clip(1 - (xa / a) ** 2 - (yb / b) ** 2, 0, None))
+        out.append(SimpleNamespace(field=SimpleNamespace(x=x, y=y, material=np.ones_like(p, bool)),
+                                   solution=SimpleNamespace(pressure_MPa=p)))
+    return out
+
+
+def test_pressure_map_from_the_loaded_contact(aligned):
+    case, result = aligned
+    cycle = result.cycle
+    loaded = SimpleNamespace(cycle=cycle, loaded=synthetic_loaded(cycle))
+    patch = render.flank_patch(cycle)
+    _, pressure = render.pressure_on_flank(cycle, loaded.loaded, patch)
+    assert pressure.max() == pytest.approx(max(r["p_max_MPa"] for r in cycle.rows), rel=0.05)
+    plotter = render.pressure_scene(loaded, case, "test", patch)
+    image = render.screenshot(plotter)
+    top_hue = float(rgb_to_hsv(np.array(to_rgb("#fde725")))[0])       # viridis' top
+    k = int(np.argmax([r["p_max_MPa"] for r in cycle.rows]))
+    local = cycle.pinion_frames[np.array([k])].to_local(cycle.planes.point[[k]])
+    h = hsv(window(image, render.project(plotter, local)[0], 2))
+    plotter.close()
+    assert (hue_distance(h[..., 0], top_hue) < 0.06).mean() > 0.5
+
+
+def test_pictures_of_a_contact_case_are_written_whole(aligned, tmp_path):
+    case, result = aligned
+    result = SimpleNamespace(cycle=result.cycle, loaded=synthetic_loaded(result.cycle))
+    written = render.pictures_for(result, case, tmp_path, name="test", exaggerate=20.0)
+    assert [p.name for p in written] == ["pattern_head_on.png", "pattern_perspective.png",
+                                         "pair.png", "pressure.png"]
+    assert sorted(p.name for p in tmp_path.iterdir()) == sorted(p.name for p in written)
+    from PIL import Image
+
+    for path in written:
+        image = np.asarray(Image.open(path).convert("RGB"))
+        assert image.shape == (render.WINDOW[1], render.WINDOW[0], 3)
+        assert len(np.unique(image.reshape(-1, 3), axis=0)) > 300, path.name
+
+
+def test_a_bad_position_fails_before_anything_is_written(aligned, tmp_path):
+    from toothcontact.case import CaseError
+
+    case, result = aligned
+    with pytest.raises(CaseError, match="--position"):
+        render.pictures_for(result, case, tmp_path / "out", position=7)
+    assert not (tmp_path / "out").exists()
+
+
+def test_exaggerated_misalignment_multiplies_the_relative_motion():
+    nominal_p = Frame.stack([Frame(rotation([0, 0, 1], 0.3), np.zeros(3))])
+    nominal_g = Frame.stack([Frame(rotation([0, 0, 1], -0.1), np.array([100.0, 0, 0]))])
+    tilt = rotation([0, 1, 0], 0.001)
+    placed_g = Frame.stack([Frame(tilt @ nominal_g.R[0], tilt @ nominal_g.origin[0, 0]
+                                  + np.array([0.02, 0, 0]))])
+    same = render.exaggerated_frame(nominal_p, placed_g, nominal_p, nominal_g, 1.0)
+    assert np.allclose(same.R, placed_g.R) and np.allclose(same.origin, placed_g.origin)
+    ten = render.exaggerated_frame(nominal_p, placed_g, nominal_p, nominal_g, 10.0)
+    relative = ten.R[0] @ nominal_g.R[0].T
+    angle = math.acos((np.trace(relative) - 1) / 2)
+    assert angle == pytest.approx(0.01, rel=1e-9)
+
+
+def test_render_command(tmp_path):
+    runner = CliRunner()
+    cases = Path(__file__).parents[1] / "cases"
+    result = runner.invoke(app, ["render", str(cases / "hertz_sphere_on_flat.toml"),
+                                 "--out", str(tmp_path)])
+    assert result.exit_code == 0 and "no 3D picture" in result.output
+    assert not (tmp_path / "hertz_sphere_on_flat").exists()
+    result = runner.invoke(app, ["render", str(cases / "helical_bias_crown_tip_relief.toml"),
+                                 "--out", str(tmp_path)])
+    assert result.exit_code == 0, result.output
+    assert [p.name for p in (tmp_path / "helical_bias_crown_tip_relief").iterdir()] == ["pair.png"]
+    result = runner.invoke(app, ["render", str(cases / "spur_crowned_20_60.toml"), "--out",
+                                 str(tmp_path), "--exaggerate", "-1"])
+    assert result.exit_code == 2 and "--exaggerate" in result.output
