@@ -1191,9 +1191,9 @@ def geometry_scene(case, name: str = "", bodies: Members | None = None):
     plotter = _plotter(pv)
     driver, driven = _placed(bodies.driver, pf), _placed(bodies.driven, gf)
     plotter.add_mesh(driver, color=DRIVER_BODY, **_surface_props())
-    plotter.add_mesh(driven, color=DRIVEN_BODY, **_surface_props())
+    plotter.add_mesh(driven, color=DRIVEN_BODY, **_surface_props(opacity=0.35))
     names = MEMBER_NAMES[case.kind]
-    _texts(plotter, _title(case, name, f"{names[0]} and {names[1]} in mesh, nominal position"),
+    _texts(plotter, _title(case, name, f"{names[0]} and {names[1]} ({names[1]} see-through) in mesh, nominal position"),
            ["geometry only: the case gives no load, so there is no contact analysis"])
     m = _module_of(case)
     if case.kind == "worm":
