@@ -670,7 +670,8 @@ def _worm_contact(case: schema.WormCase, parts, result: Result) -> None:
     a = case.analysis
     try:
         cycle = parallel_cycle(mesh, worm, wheel, normal_load, C_E,
-                              CycleSettings(a.positions, a.grid, a.approach, pairs=(-2, -1, 0, 1, 2)))
+                              CycleSettings(a.positions, a.grid, a.approach, pairs=(-2, -1, 0, 1, 2),
+                                            ease_off_grid=(21, 41)))
     except (ValueError, RuntimeError) as exc:
         raise CaseError(f"misalignment / load: no contact could be found: {exc}") from None
     _contact_sections(cycle, loads, result)
