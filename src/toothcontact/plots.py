@@ -11,8 +11,6 @@ MPa, N, N·m, rad as the labels say. Only this module imports matplotlib.
 from __future__ import annotations
 
 import math
-import os
-import tempfile
 import textwrap
 from pathlib import Path
 
@@ -50,21 +48,14 @@ def _figure(height_in: float) -> Figure:
 
 def _save(fig: Figure, path: str | Path) -> Path:
     """Write `fig` as PNG to `path` atomically; the figure is cleared afterwards."""
-    path = Path(path)
-    path.parent.mkdir(parents=True, exist_ok=True)
-    fd, tmp = tempfile.mkstemp(dir=path.parent, prefix=f".{path.name}.", suffix=".tmp")
+    from .report import write_atomic
+
     try:
-        with os.fdopen(fd, "wb") as handle:
-            fig.savefig(handle, format="png", dpi=DPI,
-                        metadata={"Software": f"toothcontact {__version__} (matplotlib)"})
-        os.chmod(tmp, 0o644)
-        os.replace(tmp, path)
-    except BaseException:
-        Path(tmp).unlink(missing_ok=True)
-        raise
+        return write_atomic(path, lambda handle: fig.savefig(
+            handle, format="png", dpi=DPI,
+            metadata={"Software": f"toothcontact {__version__} (matplotlib)"}), binary=True)
     finally:
         fig.clear()
-    return path
 
 
 def _num(value) -> float:

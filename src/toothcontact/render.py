@@ -22,7 +22,6 @@ from __future__ import annotations
 import math
 import os
 import sys
-import tempfile
 import textwrap
 from dataclasses import dataclass
 from pathlib import Path
@@ -87,25 +86,16 @@ def screenshot(plotter) -> np.ndarray:
 
 
 def write_png(image: np.ndarray, path: str | Path) -> Path:
-    """Write an RGB image as PNG whole or not at all (temporary file, then rename)."""
+    """Write an RGB image as PNG whole or not at all (report.write_atomic)."""
     from PIL import Image
     from PIL.PngImagePlugin import PngInfo
 
-    path = Path(path)
-    path.parent.mkdir(parents=True, exist_ok=True)
+    from .report import write_atomic
+
     info = PngInfo()
     info.add_text("Software", f"toothcontact {__version__} (pyvista)")
-    fd, tmp = tempfile.mkstemp(dir=path.parent, prefix=f".{path.name}.", suffix=".tmp")
-    try:
-        with os.fdopen(fd, "wb") as handle:
-            Image.fromarray(np.ascontiguousarray(image)).save(handle, format="png", pnginfo=info,
-                                                                compress_level=3)
-        os.chmod(tmp, 0o644)
-        os.replace(tmp, path)
-    except BaseException:
-        Path(tmp).unlink(missing_ok=True)
-        raise
-    return path
+    return write_atomic(path, lambda handle: Image.fromarray(np.ascontiguousarray(image)).save(
+        handle, format="png", pnginfo=info, compress_level=3), binary=True)
 
 
 def project(plotter, points) -> np.ndarray:

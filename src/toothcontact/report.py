@@ -62,18 +62,26 @@ def caption(path) -> str:
     return CAPTIONS.get(name, Path(name).stem.replace("_", " "))
 
 
-def write_text(target: Path, text: str) -> Path:
-    """Write a text file whole or not at all (temporary file, then rename)."""
+def write_atomic(target: str | Path, write, binary: bool = False) -> Path:
+    """Write a file whole or not at all: `write(handle)` fills a temporary file beside
+    `target` (opened "wb" if binary, else UTF-8 text), which is then renamed onto it."""
+    target = Path(target)
+    target.parent.mkdir(parents=True, exist_ok=True)
     fd, tmp = tempfile.mkstemp(dir=target.parent, prefix=f".{target.name}.", suffix=".tmp")
     try:
-        with os.fdopen(fd, "w", encoding="utf-8") as handle:
-            handle.write(text)
+        with (os.fdopen(fd, "wb") if binary else os.fdopen(fd, "w", encoding="utf-8")) as handle:
+            write(handle)
         os.chmod(tmp, 0o644)
         os.replace(tmp, target)
     except BaseException:
         Path(tmp).unlink(missing_ok=True)
         raise
     return target
+
+
+def write_text(target: Path, text: str) -> Path:
+    """Write a text file whole or not at all (write_atomic)."""
+    return write_atomic(target, lambda handle: handle.write(text))
 
 
 def _finite(value):
