@@ -163,13 +163,15 @@ _UNARY = {
     np.square: lambda a: a * a,
 }
 
-_BINARY = {
+#: the binary ufuncs any Taylor-number class maps onto its own operators
+ARITHMETIC = {
     np.add: lambda a, b: a + b,
     np.subtract: lambda a, b: a - b,
     np.multiply: lambda a, b: a * b,
     np.true_divide: lambda a, b: a / b,
-    np.arctan2: _arctan2,
 }
+
+_BINARY = {**ARITHMETIC, np.arctan2: _arctan2}
 
 
 def value(x):

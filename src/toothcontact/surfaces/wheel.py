@@ -85,7 +85,7 @@ import math
 import numpy as np
 
 from .base import Flank
-from .jet import Jet, dispatch_ufunc, value, where
+from .jet import ARITHMETIC, Jet, dispatch_ufunc, value, where
 from .worm import WormFlank
 
 
@@ -211,13 +211,7 @@ _UNARY3 = {
     np.square: lambda a: a * a,
 }
 
-_BINARY3 = {
-    np.add: lambda a, b: a + b,
-    np.subtract: lambda a, b: a - b,
-    np.multiply: lambda a, b: a * b,
-    np.true_divide: lambda a, b: a / b,
-    np.arctan2: _arctan2_3,
-}
+_BINARY3 = {**ARITHMETIC, np.arctan2: _arctan2_3}
 
 
 def _compose(u, p0, p1, p2):
