@@ -236,7 +236,8 @@ def ellipse_outlines(cycle, member: str = "pinion", samples: int = 97) -> np.nda
     line contact the line's length and width) carried onto the member's tooth-0 flank along
     the common normal: (K, samples, 3) in that member's own frame. The rays march out from
     the contact point, each starting where the last one landed, so that the outline follows
-    this part of the flank (as contact.ellipse does)."""
+    this part of the flank (as contact.ellipse does); beyond the flank's edges the outline
+    runs along them (3 % of the span outside), so a cut ellipse shows where it is cut."""
     from .contact.rays import intersect
 
     flank = getattr(cycle, member)
@@ -261,9 +262,13 @@ def ellipse_outlines(cycle, member: str = "pinion", samples: int = 97) -> np.nda
             hits = intersect(flank, frames.to_local(world), direction, u, v, iterations=40)
             ok = hits.converged & (np.abs(hits.s) < 0.5)
             u, v = np.where(ok, hits.u, u), np.where(ok, hits.v, v)
+        # an ellipse larger than the flank is drawn cut at its edges (slightly outside them)
+        (fu0, fu1), (fv0, fv1) = flank.domain
+        du, dv = 0.03 * (fu1 - fu0), 0.03 * (fv1 - fv0)
+        u, v = np.clip(u, fu0 - du, fu1 + du), np.clip(v, fv0 - dv, fv1 + dv)
         on_flank = _flank_points(flank, u, v)
     in_plane = frames.to_local(planes.point[:, None, :] + along + across)
-    return np.where((ok & np.isfinite(on_flank).all(axis=-1))[..., None], on_flank, in_plane)
+    return np.where(np.isfinite(on_flank).all(axis=-1)[..., None], on_flank, in_plane)
 
 
 def _patch_boundary(patch: Patch, n: int = 121) -> dict[str, np.ndarray]:
