@@ -106,6 +106,16 @@ def _contact():
         out.append((f"spur contact cycle, 21 positions, {grid[0]}x{grid[1]} search grid",
                     best_of(lambda: analyse(case), repeat=3 if grid[0] < 100 else 1),
                     "issue 4 target 0.5 s (201x201); the search is exact at any grid (refined)"))
+    from toothcontact.contact.field import contact_fields
+
+    case = _case("spur_crowned_20_60", **plain)
+
+    def with_fields():
+        cycle = analyse(case).cycle
+        return contact_fields(cycle, range(len(cycle.rows)), (201, 201))
+
+    out.append(("spur cycle + 201x201 tangent-plane separation field of each contact",
+                best_of(with_fields, repeat=3), "issue 4 target 0.5 s"))
     for pressure in (128, 256):
         case = _case("spur_crowned_20_60", interference=False, pressure_grid=pressure)
         out.append((f"spur cycle + loaded contact {pressure}^2 (37 contacts)",

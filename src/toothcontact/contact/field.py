@@ -104,38 +104,44 @@ class GapField:
         return float(self.x[1] - self.x[0]), float(self.y[1] - self.y[0])
 
 
-def gap_field(pinion: Flank, gear: Flank, pinion_frame: Frame, gear_frame: Frame,
-              plane: TangentPlanes, pinion_uv, gear_uv, half: tuple[float, float],
-              shape: tuple[int, int], samples: int = 41) -> GapField:
-    """The gap field of one contact (frames and plane of a batch of one) over
-    [-half[0], half[0]] × [-half[1], half[1]] mm on `shape` points."""
+def gap_fields(pinion: Flank, gear: Flank, pinion_frames: Frame, gear_frames: Frame,
+               planes: TangentPlanes, pinion_uv, gear_uv, half: np.ndarray,
+               shape: tuple[int, int], samples: int = 41) -> list[GapField]:
+    """The gap fields of K contacts (frames and planes stacked (K,), parameters (K,)), each
+    over [-half[k, 0], half[k, 0]] × [-half[k, 1], half[k, 1]] mm on `shape` points: the
+    exact samples of all of them in one ray solve per flank, then per contact the splines."""
     from scipy.interpolate import RectBivariateSpline
 
-    xs, ys = np.linspace(-half[0], half[0], samples), np.linspace(-half[1], half[1], samples)
-    X, Y = (a.reshape(1, -1) for a in np.meshgrid(xs, ys, indexing="ij"))
-    hp = heights(pinion, pinion_frame, plane, X, Y, *(np.atleast_1d(w) for w in pinion_uv))
-    hg = heights(gear, gear_frame, plane, X, Y, *(np.atleast_1d(w) for w in gear_uv))
-    met = (hp.converged & hg.converged).reshape(samples, samples)
-    if not met.any():
-        raise ValueError("no line of the gap field meets both flanks")
-    nearest = _nearest_met(met)
-    x, y = np.linspace(-half[0], half[0], shape[0]), np.linspace(-half[1], half[1], shape[1])
+    half = np.asarray(half, float).reshape(-1, 2)
+    unit = np.linspace(-1.0, 1.0, samples)
+    U, V = (a.ravel() for a in np.meshgrid(unit, unit, indexing="ij"))
+    X, Y = half[:, :1] * U, half[:, 1:] * V                             # (K, samples²)
+    hp = heights(pinion, pinion_frames, planes, X, Y, *pinion_uv)
+    hg = heights(gear, gear_frames, planes, X, Y, *gear_uv)
+    fine = (np.linspace(-1.0, 1.0, shape[0]), np.linspace(-1.0, 1.0, shape[1]))
+    # each fine point's nearest sample: where it did not meet both surfaces, nothing exists
+    ix, iy = (np.rint((f + 1.0) * 0.5 * (samples - 1)).astype(int) for f in fine)
+    fields = []
+    for k in range(len(half)):
+        met = (hp.converged[k] & hg.converged[k]).reshape(samples, samples)
+        if not met.any():
+            raise ValueError("no line of the gap field meets both flanks")
+        nearest = _nearest_met(met)
 
-    def spline(values):
-        filled = values.reshape(samples, samples)[nearest]
-        return RectBivariateSpline(xs, ys, filled, kx=3, ky=3)(x, y)
+        def spline(values, k=k, nearest=nearest):
+            filled = values[k].reshape(samples, samples)[nearest]
+            return RectBivariateSpline(unit, unit, filled, kx=3, ky=3)(*fine)
 
-    gap = spline(hg.s - hp.s)
-    inside = np.ones(gap.shape, bool)
-    for flank, hits in ((pinion, hp), (gear, hg)):
-        (u0, u1), (v0, v1) = flank.domain
-        u, v = spline(hits.u), spline(hits.v)
-        inside &= (u >= u0) & (u <= u1) & (v >= v0) & (v <= v1)
-    # a fine point whose nearest sample did not meet both surfaces has no surface to speak of
-    ix = np.rint((x + half[0]) / (2 * half[0]) * (samples - 1)).astype(int)
-    iy = np.rint((y + half[1]) / (2 * half[1]) * (samples - 1)).astype(int)
-    exists = met[np.ix_(ix, iy)]
-    return GapField(x, y, np.where(exists, gap, np.nan), inside & exists)
+        gap = spline(hg.s - hp.s)
+        inside = np.ones(gap.shape, bool)
+        for flank, hits in ((pinion, hp), (gear, hg)):
+            (u0, u1), (v0, v1) = flank.domain
+            u, v = spline(hits.u), spline(hits.v)
+            inside &= (u >= u0) & (u <= u1) & (v >= v0) & (v <= v1)
+        exists = met[np.ix_(ix, iy)]
+        fields.append(GapField(half[k, 0] * fine[0], half[k, 1] * fine[1],
+                               np.where(exists, gap, np.nan), inside & exists))
+    return fields
 
 
 def _nearest_met(met: np.ndarray):
@@ -148,14 +154,23 @@ def _nearest_met(met: np.ndarray):
     return tuple(index)
 
 
+def contact_fields(cycle, rows, shape: tuple[int, int], margin: float = 1.3) -> list[GapField]:
+    """The gap fields of the given rows of a contact cycle, each over the bounding box of
+    its Hertz ellipse (or of the line of contact) enlarged by `margin` (scalar or one per
+    row)."""
+    rows = np.atleast_1d(np.asarray(rows, int))
+    a = np.array([cycle.rows[k]["a_mm"] for k in rows])
+    b = np.array([cycle.rows[k]["b_mm"] for k in rows])
+    angle = np.asarray(cycle.axis_angle, float)[rows]
+    half = np.broadcast_to(np.asarray(margin, float), rows.shape)[:, None] * np.stack(
+        [np.hypot(a * np.cos(angle), b * np.sin(angle)),
+         np.hypot(a * np.sin(angle), b * np.cos(angle))], axis=-1)
+    uv = {m: (np.asarray(getattr(cycle.contacts, f"{m}_u"))[rows],
+              np.asarray(getattr(cycle.contacts, f"{m}_v"))[rows]) for m in ("pinion", "gear")}
+    return gap_fields(cycle.pinion, cycle.gear, cycle.pinion_frames[rows], cycle.gear_frames[rows],
+                      planes_at(cycle.planes, rows), uv["pinion"], uv["gear"], half, shape)
+
+
 def contact_field(cycle, k: int, shape: tuple[int, int], margin: float = 1.3) -> GapField:
-    """The gap field of row k of a contact cycle, over the bounding box of its Hertz ellipse
-    (or of the line of contact) enlarged by `margin`."""
-    row = cycle.rows[k]
-    a, b, angle = row["a_mm"], row["b_mm"], float(cycle.axis_angle[k])
-    half = (margin * float(np.hypot(a * np.cos(angle), b * np.sin(angle))),
-            margin * float(np.hypot(a * np.sin(angle), b * np.cos(angle))))
-    index = np.array([k])
-    return gap_field(cycle.pinion, cycle.gear, cycle.pinion_frames[index], cycle.gear_frames[index],
-                     planes_at(cycle.planes, index), cycle.contact_uv("pinion", k),
-                     cycle.contact_uv("gear", k), half, shape)
+    """The gap field of row k of a contact cycle (see contact_fields)."""
+    return contact_fields(cycle, [k], shape, margin)[0]

@@ -23,7 +23,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from .field import GapField, contact_field
+from .field import GapField, contact_field, contact_fields
 from .pressure import ContactSolution, solve_contact
 
 #: width (mm) of the strip at an edge over which the edge pressure is averaged
@@ -87,8 +87,9 @@ def loaded_cycle(cycle, C_E: float, shape: tuple[int, int] = (128, 128),
     positions: dict[float, list[int]] = {}
     for k, row in enumerate(rows):
         positions.setdefault(row["roll_deg"], []).append(k)
+    fields = contact_fields(cycle, range(len(rows)), shape, _Pair.MARGIN)   # one batch
     for ks in positions.values():
-        pairs = [_Pair(cycle, k, shape, 1.0 / C_E) for k in ks]
+        pairs = [_Pair(cycle, k, shape, 1.0 / C_E, fields[k]) for k in ks]
         load = sum(rows[k]["normal_load_N"] for k in ks)
         for k, pair, solution in zip(ks, pairs, _share(pairs, load, pair_stiffness)):
             if solution is not None:
@@ -100,11 +101,13 @@ class _Pair:
     """One contact to solve: its gap field, widened when the loaded contact reaches the
     field's edge (a cut ellipse spreads away from the cut)."""
 
-    def __init__(self, cycle, k: int, shape, E_star: float):
+    #: the Hertz ellipse's box enlarged by this much at first
+    MARGIN = 1.5
+
+    def __init__(self, cycle, k: int, shape, E_star: float, field: GapField):
         self.cycle, self.k, self.shape, self.E_star = cycle, k, shape, E_star
         self.separation = cycle.rows[k]["separation_mm"]
-        self.margin = 1.5
-        self.field = contact_field(cycle, k, shape, self.margin)
+        self.margin, self.field = self.MARGIN, field
 
     def solve(self, load: float) -> ContactSolution:
         for _ in range(5):
