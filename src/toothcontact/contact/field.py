@@ -9,7 +9,7 @@ gap a marking compound must bridge elsewhere.
 Gap field: around a contact, on a grid in the common tangent plane (x along e1, the pinion's
 face direction; y along e2), the distance along the common normal from the pinion flank to
 the gear flank, and where both flanks have material. The lines are solved exactly (rays.py)
-on a `samples` × `samples` grid and carried to the requested grid by bicubic splines of the
+on a 25 × 25 grid and carried to the requested grid by bicubic splines of the
 gap and of both flanks' parameters: the surfaces are smooth, so the splines are exact to far
 below a micrometre (tested), and the flank edges, from the interpolated parameters, fall
 where they lie. Units: mm.
@@ -17,13 +17,15 @@ where they lie. Units: mm.
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, fields
+from functools import lru_cache
 
 import numpy as np
 
 from ..assembly import Frame
 from ..surfaces.base import Flank
 from .local import TangentPlanes, heights, planes_at
+from .rays import RayHits
 from .search import separation
 
 
@@ -106,12 +108,10 @@ class GapField:
 
 def gap_fields(pinion: Flank, gear: Flank, pinion_frames: Frame, gear_frames: Frame,
                planes: TangentPlanes, pinion_uv, gear_uv, half: np.ndarray,
-               shape: tuple[int, int], samples: int = 41) -> list[GapField]:
+               shape: tuple[int, int], samples: int = 25) -> list[GapField]:
     """The gap fields of K contacts (frames and planes stacked (K,), parameters (K,)), each
     over [-half[k, 0], half[k, 0]] × [-half[k, 1], half[k, 1]] mm on `shape` points: the
     exact samples of all of them in one ray solve per flank, then per contact the splines."""
-    from scipy.interpolate import RectBivariateSpline
-
     half = np.asarray(half, float).reshape(-1, 2)
     unit = np.linspace(-1.0, 1.0, samples)
     U, V = (a.ravel() for a in np.meshgrid(unit, unit, indexing="ij"))
@@ -119,29 +119,80 @@ def gap_fields(pinion: Flank, gear: Flank, pinion_frames: Frame, gear_frames: Fr
     hp = heights(pinion, pinion_frames, planes, X, Y, *pinion_uv)
     hg = heights(gear, gear_frames, planes, X, Y, *gear_uv)
     fine = (np.linspace(-1.0, 1.0, shape[0]), np.linspace(-1.0, 1.0, shape[1]))
+    to_fine = (_cardinal_splines(samples, shape[0]), _cardinal_splines(samples, shape[1]))
     # each fine point's nearest sample: where it did not meet both surfaces, nothing exists
     ix, iy = (np.rint((f + 1.0) * 0.5 * (samples - 1)).astype(int) for f in fine)
-    fields = []
+    out = []
+    grid = (samples, samples)
+    pinion_normals = pinion_frames.vectors_to_local(planes.normal[:, None, :])[:, 0]
+    gear_normals = gear_frames.vectors_to_local(planes.normal[:, None, :])[:, 0]
     for k in range(len(half)):
-        met = (hp.converged[k] & hg.converged[k]).reshape(samples, samples)
+        reach = float(np.max(half[k]))
+        met = (_continued(_take(hp, k), pinion_normals[k], reach, grid)
+               & _continued(_take(hg, k), gear_normals[k], reach, grid))
         if not met.any():
             raise ValueError("no line of the gap field meets both flanks")
         nearest = _nearest_met(met)
-
-        def spline(values, k=k, nearest=nearest):
-            filled = values[k].reshape(samples, samples)[nearest]
-            return RectBivariateSpline(unit, unit, filled, kx=3, ky=3)(*fine)
-
-        gap = spline(hg.s - hp.s)
-        inside = np.ones(gap.shape, bool)
+        # the gap, and each flank parameter that may cross its domain's edge in the field
+        quantities, limits = [(hg.s - hp.s)[k].reshape(grid)[nearest]], []
         for flank, hits in ((pinion, hp), (gear, hg)):
-            (u0, u1), (v0, v1) = flank.domain
-            u, v = spline(hits.u), spline(hits.v)
-            inside &= (u >= u0) & (u <= u1) & (v >= v0) & (v <= v1)
+            for name, (low, high) in zip(("u", "v"), flank.domain):
+                value = getattr(hits, name)[k].reshape(grid)[nearest]
+                if not _clear_of(value, low, high):
+                    quantities.append(value)
+                    limits.append((low, high))
+        carried = to_fine[0] @ np.stack(quantities) @ to_fine[1].T
+        inside = np.ones(carried.shape[1:], bool)
+        for value, (low, high) in zip(carried[1:], limits):
+            inside &= (value >= low) & (value <= high)
         exists = met[np.ix_(ix, iy)]
-        fields.append(GapField(half[k, 0] * fine[0], half[k, 1] * fine[1],
-                               np.where(exists, gap, np.nan), inside & exists))
-    return fields
+        out.append(GapField(half[k, 0] * fine[0], half[k, 1] * fine[1],
+                            np.where(exists, carried[0], np.nan), inside & exists))
+    return out
+
+
+@lru_cache(maxsize=16)
+def _cardinal_splines(samples: int, points: int) -> np.ndarray:
+    """(points, samples) matrix taking values at `samples` equally spaced nodes on [-1, 1] to
+    their interpolating cubic spline (not-a-knot) at `points` equally spaced points: a
+    tensor-product spline on a grid is M_x·F·M_yᵀ."""
+    from scipy.interpolate import make_interp_spline
+
+    unit = np.linspace(-1.0, 1.0, samples)
+    return make_interp_spline(unit, np.eye(samples), k=3)(np.linspace(-1.0, 1.0, points))
+
+
+def _continued(hits, normal: np.ndarray, reach: float, shape: tuple[int, int]) -> np.ndarray:
+    """The samples of one contact's field (hits of its lines, (n,); `normal` the plane's
+    normal in the flank's frame) where the lines meet the flank continued smoothly from the
+    contact at the centre sample: converged within `reach` (mm) of the plane, the flank
+    facing the plane as it does at the contact (the parameter map does not fold), and
+    connected to the centre through such samples. Past a fold (an involute's cusp on its
+    base circle) or far off, a line meets another branch of the surface: no part of the
+    flank."""
+    from scipy.ndimage import label
+
+    with np.errstate(invalid="ignore"):
+        facing = np.sign(hits.normal @ normal).reshape(shape)
+    c = (shape[0] // 2, shape[1] // 2)
+    ok = (hits.converged & (np.abs(hits.s) <= reach)).reshape(shape) & (facing == facing[c])
+    if not ok[c]:
+        return ok
+    labels, _ = label(ok)
+    return labels == labels[c]
+
+
+def _take(hits: RayHits, k: int) -> RayHits:
+    """The hits of contact k of a batch."""
+    return RayHits(*(getattr(hits, f.name)[k] for f in fields(RayHits)))
+
+
+def _clear_of(samples: np.ndarray, low: float, high: float) -> bool:
+    """Whether a parameter sampled on the grid stays inside [low, high] everywhere between
+    the samples too: every sample lies farther inside than the largest step between
+    neighbouring samples (a bicubic spline overshoots its samples by less than that)."""
+    step = max(np.max(np.abs(np.diff(samples, axis=0))), np.max(np.abs(np.diff(samples, axis=1))))
+    return bool(np.min(samples) - low > step and high - np.max(samples) > step)
 
 
 def _nearest_met(met: np.ndarray):

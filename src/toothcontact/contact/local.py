@@ -71,8 +71,29 @@ def heights(flank: Flank, frames: Frame, planes: TangentPlanes, x: np.ndarray, y
     height t above the plane, hits.inside says whether the flank has material there."""
     local = frames.to_local(planes.at(x, y))
     direction = frames.vectors_to_local(planes.normal[:, None, :])
-    start = (np.broadcast_to(guess_u[:, None], x.shape), np.broadcast_to(guess_v[:, None], x.shape))
-    return intersect(flank, local, direction, *start)
+    return intersect(flank, local, direction, *_tangent_start(flank, frames, planes, x, y,
+                                                              guess_u, guess_v))
+
+
+def _tangent_start(flank: Flank, frames: Frame, planes: TangentPlanes, x, y, guess_u, guess_v):
+    """Starting parameters for the lines through plane points (x, y) ((K, m)): the guess
+    (one point per plane, (K,)) moved by the flank's tangent map there, projected on the
+    plane (first order: Newton then starts one step in)."""
+    sample = flank.evaluate(guess_u[:, None], guess_v[:, None], order=1)
+    offset = frames.to_world(sample.points)[:, 0] - planes.point
+    r_u, r_v = (frames.vectors_to_world(r)[:, 0] for r in (sample.r_u, sample.r_v))
+    j11, j12 = np.einsum("ki,ki->k", r_u, planes.e1), np.einsum("ki,ki->k", r_v, planes.e1)
+    j21, j22 = np.einsum("ki,ki->k", r_u, planes.e2), np.einsum("ki,ki->k", r_v, planes.e2)
+    dx = x - np.einsum("ki,ki->k", offset, planes.e1)[:, None]
+    dy = y - np.einsum("ki,ki->k", offset, planes.e2)[:, None]
+    det = (j11 * j22 - j12 * j21)[:, None]
+    with np.errstate(all="ignore"):
+        du = (j22[:, None] * dx - j12[:, None] * dy) / det
+        dv = (j11[:, None] * dy - j21[:, None] * dx) / det
+    # a flank seen edge-on from the plane (no tangent map) starts at the guess itself
+    flat = ~(np.isfinite(du) & np.isfinite(dv))
+    return (np.where(flat, guess_u[:, None], guess_u[:, None] + du),
+            np.where(flat, guess_v[:, None], guess_v[:, None] + dv))
 
 
 #: exponents (i, j) of the quartic gap polynomial fitted around a contact point

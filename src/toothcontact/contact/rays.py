@@ -18,62 +18,82 @@ from ..surfaces.base import Flank, cross, dot
 LOST_SPANS = 5.0
 
 
+#: a ray has converged once its residual is below this (mm): Newton's step from there
+#: leaves a residual of about curvature × tolerance², far below a nanometre, so the step
+#: is taken and no further evaluation is spent confirming it
+TOLERANCE = 1e-7
+
+
 @dataclass(frozen=True)
 class RayHits:
     """Per ray: the flank parameters hit, the distance s along the ray (mm), whether Newton
-    converged on the (analytically continued) surface, and whether the hit lies inside the
-    flank's domain (False: no flank material on that line)."""
+    converged on the (analytically continued) surface, whether the hit lies inside the
+    flank's domain (False: no flank material on that line), and the flank's unit normal
+    out of the material there (from the last Newton step, NaN where not converged)."""
 
     u: np.ndarray
     v: np.ndarray
     s: np.ndarray
     converged: np.ndarray
     inside: np.ndarray
+    normal: np.ndarray
 
 
 def intersect(flank: Flank, points: np.ndarray, directions: np.ndarray, u0: np.ndarray,
-              v0: np.ndarray, iterations: int = 30, tolerance: float = 1e-11) -> RayHits:
+              v0: np.ndarray, iterations: int = 30) -> RayHits:
     """Newton solve of r(u, v) - P - s·n = 0 from the starting parameters (u0, v0).
 
     points, directions: (..., 3) in the flank's frame; u0, v0: starting guesses (...).
-    Each iteration works on the rays still running only: a ray stops when its residual is
-    below `tolerance` (converged), or when it has no Newton step or wanders off."""
+    Each iteration works on the rays still running only (kept packed): a ray stops when its
+    residual is below TOLERANCE (converged, after one last step), or when it has no Newton
+    step or wanders off."""
     shape = np.broadcast_shapes(np.shape(u0), np.shape(v0), np.shape(points)[:-1],
                                 np.shape(directions)[:-1])
-    P = np.broadcast_to(points, shape + (3,)).reshape(-1, 3)
-    D = np.broadcast_to(directions, shape + (3,)).reshape(-1, 3)
+    n = int(np.prod(shape))
     u = np.array(np.broadcast_to(u0, shape), float).ravel()
     v = np.array(np.broadcast_to(v0, shape), float).ravel()
-    s = np.zeros(u.shape)
-    converged = np.zeros(u.shape, bool)
+    s = np.zeros(n)
+    converged = np.zeros(n, bool)
+    normal = np.full((n, 3), np.nan)
     (ua, ub), (va, vb) = flank.domain
     reach_u, reach_v = LOST_SPANS * (ub - ua), LOST_SPANS * (vb - va)
-    active = np.flatnonzero(np.isfinite(u) & np.isfinite(v))
+    index = np.flatnonzero(np.isfinite(u) & np.isfinite(v))
+    # the running rays, packed, vectors by component (first axis): their index, point,
+    # direction negated (the Newton matrix's third column) and unknowns
+    P = np.broadcast_to(points, shape + (3,)).reshape(-1, 3)[index].T
+    m = -np.broadcast_to(directions, shape + (3,)).reshape(-1, 3)[index].T
+    pu, pv, ps = u[index], v[index], s[index]
     for _ in range(iterations):
-        if active.size == 0:
+        if index.size == 0:
             break
-        sample = flank.evaluate(u[active], v[active], order=1)
-        residual = sample.points - P[active] - s[active, None] * D[active]
-        done = np.linalg.norm(residual, axis=-1) < tolerance
-        converged[active[done]] = True
-        # Newton step: [r_u r_v -n]·(du, dv, ds) = -residual, by Cramer's rule
-        ru, rv, n = sample.r_u, sample.r_v, -D[active]
-        rv_n = cross(rv, n)
-        det = dot(ru, rv_n)
+        r, r_u, r_v = flank.tangents(pu, pv)
+        y = tuple(P[i] - r[i] - ps * m[i] for i in range(3))       # minus the residual
+        last = dot(y, y) < TOLERANCE * TOLERANCE
+        # Newton step: [r_u r_v m]·(du, dv, ds) = y, by Cramer's rule
+        a, b, c = cross(r_v, m), cross(m, r_u), cross(r_u, r_v)
+        det = dot(r_u, a)
+        with np.errstate(all="ignore"):
+            du, dv, ds = dot(y, a) / det, dot(y, b) / det, dot(y, c) / det
+        pu, pv, ps = pu + du, pv + dv, ps + ds
         # a ray along the flank, or a singular point of it (an involute at its base circle),
-        # has no Newton step: it ends unconverged
-        running = ~done & (np.abs(det) > 1e-14) & np.isfinite(residual).all(axis=-1)
-        ru, rv, n, rv_n, det = ru[running], rv[running], n[running], rv_n[running], det[running]
-        y = -residual[running]
-        step = np.stack([dot(y, rv_n), dot(ru, cross(y, n)), dot(ru, cross(rv, y))],
-                        axis=-1) / det[:, None]
-        active = active[running]
-        u[active] += step[:, 0]
-        v[active] += step[:, 1]
-        s[active] += step[:, 2]
-        on = (np.isfinite(step).all(axis=-1) & (u[active] > ua - reach_u) & (u[active] < ub + reach_u)
-              & (v[active] > va - reach_v) & (v[active] < vb + reach_v))
-        active = active[on]
+        # has no Newton step: it ends unconverged, as does one that wanders off
+        stepped = (np.abs(det) > 1e-14) & np.isfinite(du) & np.isfinite(dv) & np.isfinite(ds)
+        final = last & stepped
+        if final.any():
+            done = index[final]
+            converged[done] = True
+            normal[done] = flank.orientation * np.stack(
+                [np.broadcast_to(ci, final.shape)[final] for ci in c], axis=-1)
+        keep = (stepped & ~last & (pu > ua - reach_u) & (pu < ub + reach_u)
+                & (pv > va - reach_v) & (pv < vb + reach_v))
+        leave = ~keep
+        u[index[leave]], v[index[leave]], s[index[leave]] = pu[leave], pv[leave], ps[leave]
+        index, P, m = index[keep], P[:, keep], m[:, keep]
+        pu, pv, ps = pu[keep], pv[keep], ps[keep]
+    u[index], v[index], s[index] = pu, pv, ps
     slack = 1e-9
     inside = converged & (u >= ua - slack) & (u <= ub + slack) & (v >= va - slack) & (v <= vb + slack)
-    return RayHits(*(x.reshape(shape) for x in (u, v, s, converged, inside)))
+    with np.errstate(invalid="ignore"):
+        normal /= np.linalg.norm(normal, axis=-1, keepdims=True)
+    return RayHits(*(x.reshape(shape) for x in (u, v, s, converged, inside)),
+                   normal.reshape(shape + (3,)))

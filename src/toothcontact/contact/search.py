@@ -46,10 +46,8 @@ def separation(pinion: Flank, gear: Flank, pinion_frame: Frame, gear_frame: Fram
         normals = gear_frame.vectors_to_local(pinion_frame.vectors_to_world(sample.normals))
         u0, v0 = gear.parameters_near(points)
         hits = intersect(gear, points, normals, u0, v0)
-        facing = hits.inside & (np.abs(hits.s) <= REACH)
-        mate = gear.evaluate(hits.u[facing], hits.v[facing], order=1).normals
-        facing[facing] = np.einsum("...i,...i->...", mate,
-                                   np.broadcast_to(normals, facing.shape + (3,))[facing]) < 0.0
+        facing = (hits.inside & (np.abs(hits.s) <= REACH)
+                  & (np.einsum("...i,...i->...", hits.normal, normals) < 0.0))
     return Separation(np.where(facing, hits.s, np.nan), hits.u, hits.v)
 
 

@@ -16,17 +16,15 @@ import numpy as np
 from .jet import Jet
 
 
-def cross(a: np.ndarray, b: np.ndarray) -> np.ndarray:
-    """a × b over the trailing axis of 3 (np.cross without its axis juggling: the hot
-    path of every ray solve and normal)."""
-    a0, a1, a2 = a[..., 0], a[..., 1], a[..., 2]
-    b0, b1, b2 = b[..., 0], b[..., 1], b[..., 2]
-    return np.stack([a1 * b2 - a2 * b1, a2 * b0 - a0 * b2, a0 * b1 - a1 * b0], axis=-1)
+def cross(a, b):
+    """a × b of vectors given by their components a[0], a[1], a[2] (triples of arrays, or
+    arrays with the components on the first axis), as a triple."""
+    return (a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0])
 
 
-def dot(a: np.ndarray, b: np.ndarray) -> np.ndarray:
-    """a · b over the trailing axis of 3."""
-    return a[..., 0] * b[..., 0] + a[..., 1] * b[..., 1] + a[..., 2] * b[..., 2]
+def dot(a, b):
+    """a · b of vectors given by their components (see cross)."""
+    return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
 
 
 class Flank:
@@ -59,6 +57,14 @@ class Flank:
 
         return FlankSample(stack("f"), stack("u"), stack("v"), stack("uu"), stack("uv"),
                            stack("vv"), self.orientation)
+
+    def tangents(self, u, v):
+        """Point, r_u and r_v at arrays of (u, v) as triples of components (a constant one
+        may stay 0-d): the hot path of every ray solve, with no stacking."""
+        U, V = Jet.variables(u, v, order=1)
+        parts = [c if isinstance(c, Jet) else Jet(c) for c in self.point(U, V)]
+        return (tuple(c.f for c in parts), tuple(c.u for c in parts),
+                tuple(c.v for c in parts))
 
     def parameters_near(self, points):
         """Starting parameters (u, v) for points near the flank (own frame): those of the
@@ -96,7 +102,8 @@ class FlankSample:
     @property
     def normals(self) -> np.ndarray:
         """Unit normals out of the material."""
-        n = self.orientation * cross(self.r_u, self.r_v)
+        n = self.orientation * np.stack(cross(np.moveaxis(self.r_u, -1, 0),
+                                              np.moveaxis(self.r_v, -1, 0)), axis=-1)
         return n / np.linalg.norm(n, axis=-1, keepdims=True)
 
     def fundamental_forms(self):

@@ -20,6 +20,7 @@ from functools import cached_property
 import numpy as np
 
 from .base import Flank
+from .jet import cos_sin
 
 
 def inv(alpha: float) -> float:
@@ -172,25 +173,28 @@ class InvoluteFlank(Flank):
         self.orientation = self._orientation()
 
     def point(self, u, v):
-        rb, psi = self.gear.base_radius, self._psi
-        a = psi - u
-        x = rb * (np.cos(a) - u * np.sin(a))
-        y = self._mirror * rb * (np.sin(a) + u * np.cos(a))
-        turn = self.gear.twist_per_length * v
-        c, s = np.cos(turn), np.sin(turn)
-        return x * c - y * s, x * s + y * c, v + 0.0 * u
+        return self.point_and_normal(u, v)[0]
 
     def unit_normal(self, u, v):
-        """Closed-form unit normal out of the material (jet-friendly):
+        """Closed-form unit normal out of the material (jet-friendly)."""
+        return self.point_and_normal(u, v)[1]
+
+    def point_and_normal(self, u, v):
+        """The point and its unit normal out of the material, sharing their trigonometry:
         n = orientation·(Rot(twist·z)·(m·sin(a), -cos(a)), twist·rb) / sqrt(1 + (twist·rb)²),
         a = psi - t, m the mirror sign; |twist·rb| = tan(beta_b)."""
-        a = self._psi - u
-        k = self.gear.twist_per_length * self.gear.base_radius
+        rb, m = self.gear.base_radius, self._mirror
+        cos_a, sin_a = cos_sin(self._psi - u)
+        x = rb * (cos_a - u * sin_a)
+        y = m * rb * (sin_a + u * cos_a)
+        k = self.gear.twist_per_length * rb
         scale = self.orientation / math.sqrt(1.0 + k * k)
-        nx, ny = self._mirror * np.sin(a), -np.cos(a)
-        turn = self.gear.twist_per_length * v
-        c, s = np.cos(turn), np.sin(turn)
-        return scale * (nx * c - ny * s), scale * (nx * s + ny * c), scale * k + 0.0 * u
+        nx, ny = scale * m * sin_a, -scale * cos_a
+        z, nz = v + 0.0 * u, scale * k + 0.0 * u
+        if self.gear.twist_per_length == 0.0:
+            return (x, y, z), (nx, ny, nz)
+        c, s = cos_sin(self.gear.twist_per_length * v)
+        return (x * c - y * s, x * s + y * c, z), (nx * c - ny * s, nx * s + ny * c, nz)
 
     @property
     def tip_roll(self) -> float:

@@ -103,6 +103,10 @@ class Jet:
         p = float(exponent)
         return self._chain(self.f**p, p * self.f ** (p - 1), p * (p - 1) * self.f ** (p - 2))
 
+    def cos_sin(self) -> tuple["Jet", "Jet"]:
+        c, s = np.cos(self.f), np.sin(self.f)
+        return _sin_cos(self, c, -s), _sin_cos(self, s, c)
+
     # --- numpy functions on jets ----------------------------------------------------------
     def __array_ufunc__(self, ufunc, method, *inputs, **kwargs):
         return dispatch_ufunc(ufunc, method, inputs, kwargs, _UNARY, _BINARY, _lift)
@@ -148,10 +152,17 @@ def _sin_cos(a: Jet, value, slope) -> Jet:
     return a._chain(value, slope, None if a.uu is None else -value)
 
 
+def cos_sin(a):
+    """(cos a, sin a) of a plain array or a Taylor number (a class with a `cos_sin` method),
+    each transcendental evaluated once."""
+    own = getattr(a, "cos_sin", None)
+    return own() if own is not None else (np.cos(a), np.sin(a))
+
+
 _UNARY = {
     np.negative: lambda a: -a,
-    np.sin: lambda a: _sin_cos(a, np.sin(a.f), np.cos(a.f)),
-    np.cos: lambda a: _sin_cos(a, np.cos(a.f), -np.sin(a.f)),
+    np.sin: lambda a: a.cos_sin()[1],
+    np.cos: lambda a: a.cos_sin()[0],
     np.tan: lambda a: a._chain(np.tan(a.f), 1 + np.tan(a.f) ** 2,
                                2 * np.tan(a.f) * (1 + np.tan(a.f) ** 2)),
     np.arctan: lambda a: a._chain(np.arctan(a.f), 1 / (1 + a.f**2), -2 * a.f / (1 + a.f**2) ** 2),

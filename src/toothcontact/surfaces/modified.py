@@ -24,8 +24,7 @@ class ModifiedFlank(Flank):
                                        b.form_roll, b.tip_roll)
 
     def point(self, u, v):
-        x, y, z = self.base.point(u, v)
-        nx, ny, nz = self.base.unit_normal(u, v)
+        (x, y, z), (nx, ny, nz) = self.base.point_and_normal(u, v)
         d = -self._normal_factor * self.drop(u, v)
         return x + d * nx, y + d * ny, z + d * nz
 

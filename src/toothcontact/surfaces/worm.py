@@ -45,7 +45,7 @@ import numpy as np
 from scipy.optimize import brentq
 
 from .base import Flank
-from .jet import value
+from .jet import cos_sin, value
 
 FORMS = ("ZA", "ZN", "ZI", "ZK")
 
@@ -202,8 +202,8 @@ class WormFlank(Flank):
     def point(self, u, v):
         """(x, y, z) in mm at u = radius (mm), v = screw angle (rad); numpy or jets."""
         f = self._side_sign * self._left_profile(u)
-        theta = v - f / self._p
-        return u * np.cos(theta), u * np.sin(theta), self._p * v
+        cos_theta, sin_theta = cos_sin(v - f / self._p)
+        return u * cos_theta, u * sin_theta, self._p * v
 
     def axial_profile(self, r):
         """z (mm) of this flank in the axial half-plane y = 0, x > 0 at radius r (mm), for the
@@ -270,7 +270,7 @@ class WormFlank(Flank):
         B = -tau * (a * cg + p * sg)
         D = a * sg - p * cg
         psi = np.arctan2(B, A) + np.arccos(D / np.sqrt(A * A + B * B))  # branch near psi = 0
-        cpsi, spsi = np.cos(psi), np.sin(psi)
+        cpsi, spsi = cos_sin(psi)
         x = a - rho * cpsi
         y = -rho * cg * spsi - zeta * sg
         z = self._zq - rho * sg * spsi + zeta * cg
