@@ -73,8 +73,8 @@ def both(tmp_path_factory):
                        folder / f"{name}.stl")
     (folder / "case.toml").write_text(
         'kind = "imported"\n'
-        'pinion = { file = "pinion.stl", teeth = 20 }\n'
-        'gear = { file = "gear.stl", teeth = 60 }\n'
+        'pinion = { file = "pinion.stl", teeth = 20, form_diameter = "56.46 mm" }\n'
+        'gear = { file = "gear.stl", teeth = 60, form_diameter = "174.78 mm" }\n'
         'center_distance = "120 mm"\n'
         'pinion_phase = "-36 deg"\n'       # teeth 0..4 -> -2..2
         'gear_phase = "168 deg"\n'         # 180 deg - two gear pitches
@@ -95,7 +95,7 @@ def test_mesh_path_agrees_with_the_exact_analysis(both):
     te_exact = np.mean([r["transmission_error_urad"] for r in exact["positions"]])
     matched = 0
     for e in exact["positions"]:
-        if e["edge_margins_mm"]["pinion_tip"] < 0.5:   # a tip contact: no edge on a mesh
+        if e["edge_margins_mm"]["pinion_tip"] < 0.5:   # a tip corner: no bowl to fit A, B
             continue
         m = [r for r in mesh["positions"]
              if r["roll_deg"] == pytest.approx(e["roll_deg"]) and r["pair"] == e["pair"]]
@@ -110,6 +110,27 @@ def test_mesh_path_agrees_with_the_exact_analysis(both):
         assert r["transmission_error_urad"] == pytest.approx(
             e["transmission_error_urad"] - te_exact, abs=2.0)
     assert matched >= 5
+
+
+def test_mesh_path_holds_the_ellipse_against_tips_and_form_circles(both):
+    """The margins to both bodies' tip circles (the meshes' largest radii) and form circles
+    (the case's form diameters), walked along the meshes' transverse profiles, equal the
+    exact analysis's (lengths along the involutes) within 0.03 mm at every contact, the
+    pinion-tip corner contacts at the ends of the path included: both paths flag those as
+    edge contact at the pinion tip."""
+    exact, mesh, _ = both
+    corners = 0
+    for e in exact["positions"]:
+        m = [r for r in mesh["positions"]
+             if r["roll_deg"] == pytest.approx(e["roll_deg"]) and r["pair"] == e["pair"]]
+        assert m, f"contact at roll {e['roll_deg']} pair {e['pair']} not found on the mesh"
+        for edge in ("pinion_tip", "pinion_form", "gear_tip", "gear_form"):
+            assert m[0]["edge_margins_mm"][edge] == pytest.approx(e["edge_margins_mm"][edge], abs=0.03)
+        if e["edge_margins_mm"]["pinion_tip"] < 0:
+            corners += 1
+            assert m[0]["edge_contact"] and e["edge_contact"]
+            assert min(m[0]["edge_margins_mm"], key=m[0]["edge_margins_mm"].get) == "pinion_tip"
+    assert corners == 2
 
 
 def test_missing_body_file_is_named(both):

@@ -76,6 +76,64 @@ def test_slope_moves_the_contact_by_R_theta_and_then_onto_the_edge():
     assert all(name.endswith("end_B") for name in worst)
 
 
+def test_edge_margins_are_lengths_along_the_involute(aligned):
+    """The margins to the tip and form circles are lengths along the profile: an involute's
+    arc from roll angle t to t' is rb·(t'² - t²)/2, so the margin from the ellipse (reaching
+    b across the profile from the contact) to the tip is rb·(t_tip² - t_c²)/2 - b, with t_c
+    from the contact radius (the gear's from its roll length along the line of action),
+    and likewise to the form circle; to 1e-4 mm."""
+    pair, rows = aligned
+    flanks = {name: getattr(f, "base", f) for name, f in (   # the involutes under the crown
+        ("pinion", gearset.working_flank(pair.pinion, pair.pinion_modifications, 1)),
+        ("gear", gearset.working_flank(pair.gear, pair.gear_modifications, -1)))}
+    arc = {name: (lambda r, f=f: 0.5 * f.gear.base_radius * (r**2 / f.gear.base_radius**2 - 1))
+           for name, f in flanks.items()}
+    line_of_action = pair.center_distance * math.sin(pair.working_pressure_angle)
+    for r in rows:
+        rb1, rb2 = pair.pinion.base_radius, pair.gear.base_radius
+        t1 = math.sqrt(r["contact_radius_pinion_mm"] ** 2 / rb1**2 - 1)
+        roll = {"pinion": 0.5 * rb1 * t1**2, "gear": 0.5 * (line_of_action - rb1 * t1) ** 2 / rb2}
+        for name, f in flanks.items():
+            margins = r["edge_margins_mm"]
+            assert margins[f"{name}_tip"] == pytest.approx(
+                arc[name](f.gear.tip_radius) - roll[name] - r["b_mm"], abs=1e-4)
+            assert margins[f"{name}_form"] == pytest.approx(
+                roll[name] - arc[name](f.form_radius) - r["b_mm"], abs=1e-4)
+
+
+def test_rigid_pattern_measured_on_the_separation_field(aligned):
+    """The rigid pattern measured on each contact's 201 × 201 separation field at the
+    approach delta (wherever no edge cuts it): along the face it spans the crown's closed
+    form 2·sqrt(2R·delta - delta²), to one cell of the field (1.25 % of the rigid ellipse's
+    box), and across it 2·sqrt(delta/B), to 1.5 cells (the profile curvature changes across
+    the pattern); its area is π·a·b of the rigid ellipse to 0.5 % where the gap is
+    quadratic over the pattern (fit rms below 1 nm) and to 1 % next to the base circle
+    (radius 28.4 mm, rb 28.2 mm), where the profile curvature changes fast."""
+    _, rows = aligned
+    delta = CycleSettings().approach
+    whole = [r for r in rows if not r["rigid_pattern_cut"]]
+    assert len(whole) >= 2
+    for r in whole:
+        along, across = 2 * math.sqrt(2 * 4000.0 * delta - delta**2), 2 * r["rigid_b_mm"]
+        assert r["rigid_pattern_along_face_mm"] == pytest.approx(along, abs=0.0125 * along)
+        assert r["rigid_pattern_across_face_mm"] == pytest.approx(across, abs=0.019 * across)
+        assert r["rigid_pattern_area_mm2"] == pytest.approx(
+            math.pi * r["rigid_a_mm"] * r["rigid_b_mm"], rel=5e-3 if r["fit_rms_mm"] < 1e-6 else 0.01)
+
+
+def test_rigid_pattern_is_cut_at_the_face_end():
+    """Under slope 0.0035 the rigid pattern runs from rigid_a before the contact to the first
+    face end (the distance the ellipse's edge margins give: a + margin), to one cell, and
+    is reported cut."""
+    _, rows = run(slope=0.0035)
+    for r in rows:
+        assert r["rigid_pattern_cut"]
+        margins = r["edge_margins_mm"]
+        to_end = r["a_mm"] + min(margins["pinion_end_B"], margins["gear_end_B"])
+        cell = 2.5 * r["rigid_a_mm"] / 200
+        assert r["rigid_pattern_along_face_mm"] == pytest.approx(r["rigid_a_mm"] + to_end, abs=1.5 * cell)
+
+
 def test_bias_crown_adds_its_centre_shift():
     case = {**CASE, "pinion": {"crown": {"radius": "4000 mm", "center": "2.5 mm"}}}
     _, rows = run(case, slope=0.001)

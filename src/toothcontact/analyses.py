@@ -364,10 +364,17 @@ def spur_geometry_case(case: schema.SpurCase) -> Result:
     return result
 
 
+def _cycle_settings(a: schema.AnalysisSpec, **kind_settings):
+    """The contact cycle's settings from a case's [analysis] table."""
+    from .contact.cycle import CycleSettings
+
+    return CycleSettings(a.positions, a.grid, a.approach, field_grid=a.field_grid, **kind_settings)
+
+
 def _spur_contact(case: schema.SpurCase, pair, result: Result) -> None:
     """Contact by surface separation over the mesh cycle (contact.cycle)."""
     from .assembly import Misalignment, ParallelMesh
-    from .contact.cycle import CycleSettings, parallel_cycle
+    from .contact.cycle import parallel_cycle
     from .gearset import working_flank
 
     m = case.misalignment
@@ -383,7 +390,7 @@ def _spur_contact(case: schema.SpurCase, pair, result: Result) -> None:
     a = case.analysis
     try:
         cycle = parallel_cycle(mesh, pinion, gear, normal_load, C_E,
-                              CycleSettings(a.positions, a.grid, a.approach))
+                              _cycle_settings(a))
     except (ValueError, RuntimeError) as exc:
         raise CaseError(f"misalignment / load: no contact could be found: {exc}") from None
     _contact_sections(cycle, {"tangential_load_N": wt, "normal_load_N": normal_load}, result)
@@ -570,7 +577,7 @@ def _spline_contact(case: schema.SplineCase, pair, result: Result) -> None:
     (assembly.ParallelMesh with zero centre distance), the sleeve tilted about the normal of
     tooth 0's plane of action; the lag closes the clearance."""
     from .assembly import Misalignment, ParallelMesh
-    from .contact.cycle import CycleSettings, parallel_cycle
+    from .contact.cycle import parallel_cycle
     from .gearset import GearPair, working_flank
     from .modify import FlankModifications
 
@@ -585,8 +592,7 @@ def _spline_contact(case: schema.SplineCase, pair, result: Result) -> None:
     a = case.analysis
     try:
         cycle = parallel_cycle(mesh, hub, sleeve, normal_load, C_E,
-                              CycleSettings(a.positions, a.grid, a.approach,
-                                            pairs=tuple(range(case.teeth))))
+                              _cycle_settings(a, pairs=tuple(range(case.teeth))))
     except (ValueError, RuntimeError) as exc:
         raise CaseError(f"misalignment / torque: no contact could be found: {exc}") from None
     _contact_sections(cycle, {"tangential_load_N": wt, "normal_load_N": normal_load}, result)
@@ -639,7 +645,7 @@ def _worm_contact(case: schema.WormCase, parts, result: Result) -> None:
     """Contact of the loaded flank pair (`[load] flank`) over one mesh cycle, with seed 001's
     anti-rattle-spring tilt of the worm shaft when a spring is given."""
     from .assembly import WormMesh, WormMisalignment
-    from .contact.cycle import CycleSettings, parallel_cycle
+    from .contact.cycle import parallel_cycle
 
     worm, wheel = parts.worm[case.load.flank], parts.wheel[case.load.flank]
     torque = case.load.output_torque
@@ -670,8 +676,8 @@ def _worm_contact(case: schema.WormCase, parts, result: Result) -> None:
     a = case.analysis
     try:
         cycle = parallel_cycle(mesh, worm, wheel, normal_load, C_E,
-                              CycleSettings(a.positions, a.grid, a.approach, pairs=(-2, -1, 0, 1, 2),
-                                            ease_off_grid=(21, 41)))
+                              _cycle_settings(a, pairs=(-2, -1, 0, 1, 2),
+                                              ease_off_grid=(21, 41)))
     except (ValueError, RuntimeError) as exc:
         raise CaseError(f"misalignment / load: no contact could be found: {exc}") from None
     _contact_sections(cycle, loads, result)
@@ -683,7 +689,6 @@ def imported_case(case: schema.ImportedCase) -> Result:
     """A pair from the user's STL/STEP bodies: contact over the mesh cycle on the meshes
     (contact.imported). Reads the two body files (named and checked by the case)."""
     from .assembly import Misalignment, ParallelMesh
-    from .contact.cycle import CycleSettings
     from .contact.imported import chordal_error, imported_cycle
     from .mesh import load_surface
 
@@ -709,7 +714,9 @@ def imported_case(case: schema.ImportedCase) -> Result:
     a = case.analysis
     try:
         rows = imported_cycle(mesh, bodies["pinion"], bodies["gear"], normal_load, C_E,
-                              CycleSettings(a.positions, a.grid, a.approach))
+                              _cycle_settings(a), tuple(None if b.form_diameter is None else
+                                                        0.5 * b.form_diameter
+                                                        for b in (case.pinion, case.gear)))
     except ValueError as exc:
         raise CaseError(f"pinion / gear: no contact could be found: {exc}") from None
     result = Result(sections={"bodies": {
@@ -717,8 +724,11 @@ def imported_case(case: schema.ImportedCase) -> Result:
                "triangles": len(body.faces), "chordal_error_um": 1e3 * chordal_error(body),
                "watertight": bool(body.mesh.is_watertight)}
         for name, body in bodies.items()}})
+    unchecked = [name for name in ("pinion", "gear") if getattr(case, name).form_diameter is None]
     result.notes.append("imported bodies: contact on the triangulations (closest-point "
-                        "separation); A and B carry the facets' chordal error, and the tip and "
-                        "form edges are not checked")
+                        "separation); A and B carry the facets' chordal error; tips at each "
+                        "body's largest radius" + (f"; form edge not checked for the "
+                                                   f"{' and '.join(unchecked)} (give "
+                                                   "form_diameter)" if unchecked else ""))
     _contact_sections(rows, {"tangential_load_N": wt, "normal_load_N": normal_load}, result)
     return result

@@ -235,6 +235,10 @@ class AnalysisSpec(Model):
     positions: int = Field(21, ge=1, le=401, description="mesh positions over one pitch")
     grid: tuple[int, int] = Field((25, 41), description="[profile, face] search grid")
     approach: Length = Field(0.00632, description="rigid approach for the pattern")
+    field_grid: int = Field(201, ge=0, le=1001,
+                            description="points per side of each contact's separation field in "
+                                        "the common tangent plane, on which the rigid pattern "
+                                        "is measured; 0 = none")
     interference: bool = Field(True, description="collide the bodies (python-fcl)")
     pressure_grid: int = Field(128, ge=0, le=1024,
                                description="cells per side of the loaded-contact (half-space) "
@@ -496,6 +500,8 @@ class ImportedBody(Model):
 
     file: str = Field(description="an .stl, .step or .stp file, relative to the case file")
     teeth: int = Field(ge=3, description="number of teeth of the whole gear (>= 3)")
+    form_diameter: Length | None = Field(None, gt=0, description="where the active flank "
+                                         "starts; the form edge is checked only when given")
 
     @field_validator("file")
     @classmethod

@@ -157,6 +157,13 @@ class TriangleSurface:
         shape = np.shape(points)[:-1]
         return (sign * distance).reshape(shape), nearest.reshape(shape + (3,))
 
+    def closest(self, points: np.ndarray, k: int = 16) -> tuple[np.ndarray, np.ndarray]:
+        """The closest point on the surface to each point (n, 3), and the normal of the
+        facet it lies on."""
+        points = np.asarray(points, float).reshape(-1, 3)
+        _, nearest, face = self._closest(points, np.arange(len(points)), k, np.inf)
+        return nearest, self.mesh.face_normals[face]
+
     def _closest(self, points: np.ndarray, which: np.ndarray, k: int, exact_within: float):
         """Distance, closest point and face for points[which]: the best of the triangles of
         the k nearest samples, and again with 4k for the points whose k-th sample lies

@@ -20,8 +20,8 @@ from ..analytic.hertz import hertz_line, hertz_point
 from ..assembly import Frame
 from ..surfaces.base import Flank
 from .ellipse import edge_margins
-from .field import EaseOff, ease_off
-from .local import TangentPlanes, analytic_gaps, fit_gaps, planes_at, tangent_planes
+from .field import EaseOff, ease_off, rigid_patterns
+from .local import TangentPlanes, analytic_gaps, face_length, fit_gaps, planes_at, tangent_planes
 from .search import ContactPoints, lowest, refine_minima, separation, solve_transmission_error
 
 LOAD_SHARING_RULE = "equal split of the normal load among the tooth pairs in contact"
@@ -40,6 +40,7 @@ class CycleSettings:
     fit_points: int = 21
     pairs: tuple[int, ...] = (-2, -1, 0, 1, 2)
     ease_off_grid: tuple[int, int] = (31, 61)   # pinion flank grid of the ease-off map
+    field_grid: int = 201     # points per side of each contact's separation field; 0 = none
 
 
 @dataclass(frozen=True)
@@ -133,7 +134,14 @@ def parallel_cycle(mesh, pinion: Flank, gear: Flank, normal_load: float,
                                             delta[P], contacts, gaps[keep], share, C_E, settings)
         ease = _ease_off(mesh, pinion, gear, phis, pairs, pinion_frames, gear_frames, delta,
                          *near_pairs, settings.ease_off_grid)
-    return ContactCycle(rows, pinion, gear, pf, gf, contacts, planes, angle, ease, settings)
+    cycle = ContactCycle(rows, pinion, gear, pf, gf, contacts, planes, angle, ease, settings)
+    if settings.field_grid:
+        for row, pattern in zip(rows, rigid_patterns(cycle, settings.field_grid)):
+            row.update({"rigid_pattern_area_mm2": pattern.area,
+                        "rigid_pattern_along_face_mm": pattern.along_face,
+                        "rigid_pattern_across_face_mm": pattern.across_face,
+                        "rigid_pattern_cut": pattern.cut})
+    return cycle
 
 
 def _ease_off(mesh, pinion, gear, phis, pairs, pinion_frames, gear_frames, delta, P, J, grid):
@@ -173,9 +181,9 @@ def _pair_results(pinion, gear, pf, gf, roll_deg, pairs, delta, cp: ContactPoint
     B = np.array([g.B for g in analytic])
     angle = np.array([g.angle for g in analytic])
     # line contact: the rigid pattern would be longer than the shorter flank's face
-    face = np.minimum(_face_length(pinion, p_uv), _face_length(gear, g_uv))
+    face = np.minimum(face_length(pinion, p_uv), face_length(gear, g_uv))
     line = A <= settings.approach / (0.5 * face) ** 2
-    fit_limit = np.minimum(_face_length(pinion, p_uv) / 3.0, 10.0 * np.sqrt(FIT_GAP / B))
+    fit_limit = np.minimum(face_length(pinion, p_uv) / 3.0, 10.0 * np.sqrt(FIT_GAP / B))
     extent = np.stack([np.where(A > 0, np.minimum(np.sqrt(FIT_GAP / A), fit_limit), fit_limit),
                        np.sqrt(FIT_GAP / B)], axis=-1)
     fit = fit_gaps(pinion, gear, pf, gf, planes, p_uv, g_uv, extent, settings.fit_points)
@@ -219,8 +227,3 @@ def _pair_results(pinion, gear, pf, gf, roll_deg, pairs, delta, cp: ContactPoint
             "edge_margins_mm": own})
     return rows, planes, angle
 
-
-def _face_length(flank: Flank, uv) -> np.ndarray:
-    """Length (mm) of the flank along its v parameter at the points uv ((K,) arrays)."""
-    (_, _), (v0, v1) = flank.domain
-    return (v1 - v0) * np.linalg.norm(flank.evaluate(uv[0], uv[1], order=1).r_v, axis=-1)

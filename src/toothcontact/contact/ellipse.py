@@ -3,7 +3,9 @@
 The ellipse lies in the common tangent plane; each of its boundary points is carried onto a
 flank along the common normal, and its parameters are compared with the flank's domain.
 The margin to an edge is the least distance (mm, along the flank) from the ellipse to that
-edge; a negative margin means the ellipse is cut by the edge: edge loading.
+edge: the length of the parameter line from each carried boundary point to the edge (the
+transverse profile for a tip or form edge, the face line for a face end), integrated
+exactly; a negative margin means the ellipse is cut by the edge: edge loading.
 """
 
 from __future__ import annotations
@@ -41,17 +43,12 @@ def edge_margins(flank: Flank, frames: Frame, planes: TangentPlanes, a: np.ndarr
         u = np.where(hits.converged, hits.u, u)
         v = np.where(hits.converged, hits.v, v)
     (u0, u1), (v0, v1) = flank.domain
-    # parameter distances become lengths with the flank's speed at the nearest domain point:
-    # beyond the edges a continued parameterisation may stretch without meaning
-    sample = flank.evaluate(np.clip(np.nan_to_num(hits.u), u0, u1),
-                            np.clip(np.nan_to_num(hits.v), v0, v1), order=1)
-    speed_u = np.linalg.norm(sample.r_u, axis=-1)
-    speed_v = np.linalg.norm(sample.r_v, axis=-1)
+    u, v = np.nan_to_num(hits.u), np.nan_to_num(hits.v)
     margins = {
-        flank.edges["u0"]: (hits.u - u0) * speed_u,
-        flank.edges["u1"]: (u1 - hits.u) * speed_u,
-        flank.edges["v0"]: (hits.v - v0) * speed_v,
-        flank.edges["v1"]: (v1 - hits.v) * speed_v,
+        flank.edges["u0"]: -_arc(flank, "u", u, u0, v),
+        flank.edges["u1"]: _arc(flank, "u", u, u1, v),
+        flank.edges["v0"]: -_arc(flank, "v", v, v0, u),
+        flank.edges["v1"]: _arc(flank, "v", v, v1, u),
     }
     # a hit far off the tangent plane, or parameters more than a domain's span beyond its
     # edges, is another part of a long (continued) surface, not the flank here
@@ -62,3 +59,28 @@ def edge_margins(flank: Flank, frames: Frame, planes: TangentPlanes, a: np.ndarr
            for name, value in margins.items()}
     out["beyond_surface"] = np.where(on.all(axis=-1), np.nan, -b)
     return out
+
+
+#: Gauss-Legendre nodes and weights on [-1, 1] for the arc lengths along parameter lines
+_NODES, _WEIGHTS = np.polynomial.legendre.leggauss(6)
+
+
+def _arc(flank: Flank, name: str, start: np.ndarray, end: float, other: np.ndarray) -> np.ndarray:
+    """Signed length (mm) along the flank's `name` ("u" or "v") parameter line from `start`
+    to the edge at `end`, the other parameter held at `other`: the integral of the line's
+    speed, by 6-point Gauss-Legendre (the speed is smooth; an involute's is linear in its
+    roll angle). Where the surface does not exist on part of the line (beyond a hob's
+    reach), the speed at the edge's side of the domain stands in for it."""
+    mid, half = 0.5 * (start + end), 0.5 * (end - start)
+    t = mid[..., None] + half[..., None] * _NODES
+    fixed = np.broadcast_to(other[..., None], t.shape)
+    (u0, u1), (v0, v1) = flank.domain
+    low, high = (u0, u1) if name == "u" else (v0, v1)
+    with np.errstate(all="ignore"):
+        sample = flank.evaluate(*((t, fixed) if name == "u" else (fixed, t)), order=1)
+        speed = np.linalg.norm(sample.r_u if name == "u" else sample.r_v, axis=-1)
+        edge = flank.evaluate(*((np.clip(start, low, high), other) if name == "u"
+                                else (other, np.clip(start, low, high))), order=1)
+        fallback = np.linalg.norm(edge.r_u if name == "u" else edge.r_v, axis=-1)
+    speed = np.where(np.isfinite(speed), speed, fallback[..., None])
+    return half * (speed @ _WEIGHTS)

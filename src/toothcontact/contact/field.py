@@ -24,7 +24,7 @@ import numpy as np
 
 from ..assembly import Frame
 from ..surfaces.base import Flank
-from .local import TangentPlanes, heights, planes_at
+from .local import TangentPlanes, face_length, heights, planes_at
 from .rays import RayHits
 from .search import separation
 
@@ -205,13 +205,15 @@ def _nearest_met(met: np.ndarray):
     return tuple(index)
 
 
-def contact_fields(cycle, rows, shape: tuple[int, int], margin: float = 1.3) -> list[GapField]:
-    """The gap fields of the given rows of a contact cycle, each over the bounding box of
-    its Hertz ellipse (or of the line of contact) enlarged by `margin` (scalar or one per
-    row)."""
+def contact_fields(cycle, rows, shape: tuple[int, int], margin=1.3,
+                   semi_axes: np.ndarray | None = None) -> list[GapField]:
+    """The gap fields of the given rows of a contact cycle, each over the bounding box of an
+    ellipse about its contact (A axis along the row's axis angle) enlarged by `margin`
+    (scalar or one per row): the Hertz ellipse, or the semi-axes given ((K, 2), mm)."""
     rows = np.atleast_1d(np.asarray(rows, int))
-    a = np.array([cycle.rows[k]["a_mm"] for k in rows])
-    b = np.array([cycle.rows[k]["b_mm"] for k in rows])
+    if semi_axes is None:
+        semi_axes = np.array([[cycle.rows[k]["a_mm"], cycle.rows[k]["b_mm"]] for k in rows])
+    a, b = np.asarray(semi_axes, float).reshape(-1, 2).T
     angle = np.asarray(cycle.axis_angle, float)[rows]
     half = np.broadcast_to(np.asarray(margin, float), rows.shape)[:, None] * np.stack(
         [np.hypot(a * np.cos(angle), b * np.sin(angle)),
@@ -225,3 +227,56 @@ def contact_fields(cycle, rows, shape: tuple[int, int], margin: float = 1.3) -> 
 def contact_field(cycle, k: int, shape: tuple[int, int], margin: float = 1.3) -> GapField:
     """The gap field of row k of a contact cycle (see contact_fields)."""
     return contact_fields(cycle, [k], shape, margin)[0]
+
+
+@dataclass(frozen=True)
+class RigidPattern:
+    """One contact's rigid pattern measured on its separation field: the cells where the gap
+    exceeds the contact's least separation by at most the approach, on both flanks'
+    material. area (mm²); along_face and across_face (mm): its extents along e1 (the
+    pinion's face direction) and e2 in the tangent plane, cell centres plus one cell;
+    cut: a flank edge bounds it (a pattern cell next to no material)."""
+
+    area: float
+    along_face: float
+    across_face: float
+    cut: bool
+
+
+def rigid_patterns(cycle, points: int, margin: float = 1.25, growths: int = 3) -> list[RigidPattern]:
+    """The rigid pattern of every row of a contact cycle, each on a `points` × `points`
+    separation field over the box of its rigid ellipse (the A axis capped at the face
+    length) enlarged by `margin`; a field the pattern reaches the side of is enlarged 1.6
+    times, up to `growths` times. All rows' fields are solved in one batch."""
+    from scipy.ndimage import binary_dilation
+
+    rows, approach = cycle.rows, cycle.settings.approach
+    face = face_length(cycle.pinion, (np.asarray(cycle.contacts.pinion_u), np.asarray(cycle.contacts.pinion_v)))
+    semi_axes = np.array([[min(r["rigid_a_mm"], f), r["rigid_b_mm"]] for r, f in zip(rows, face)])
+    margins = np.full(len(rows), float(margin))
+    out: list[RigidPattern | None] = [None] * len(rows)
+    todo = np.arange(len(rows))
+    for attempt in range(growths + 1):
+        fields = contact_fields(cycle, todo, (points, points), margins[todo], semi_axes[todo])
+        for k, field in zip(todo, fields):
+            pattern = field.material & (field.gap - rows[k]["separation_mm"] <= approach)
+            rim = np.zeros(pattern.shape, bool)
+            rim[[0, -1], :] = rim[:, [0, -1]] = True
+            if (pattern & rim).any() and attempt < growths:
+                continue
+            out[k] = _measure(field, pattern, bool((pattern & binary_dilation(~field.material)).any()))
+        todo = np.array([k for k in todo if out[k] is None], int)
+        margins[todo] *= 1.6
+        if todo.size == 0:
+            break
+    return out
+
+
+def _measure(field: GapField, pattern: np.ndarray, cut: bool) -> RigidPattern:
+    """Area and extents of the cells of `pattern` on the field."""
+    if not pattern.any():
+        return RigidPattern(0.0, 0.0, 0.0, cut)
+    dx, dy = field.spacing
+    rows, cols = np.nonzero(pattern)
+    return RigidPattern(float(rows.size * dx * dy), float((np.ptp(rows) + 1) * dx),
+                        float((np.ptp(cols) + 1) * dy), cut)

@@ -162,3 +162,9 @@ def analytic_gaps(pinion: Flank, gear: Flank, pinion_frames: Frame, gear_frames:
                                 float(angle_g[k] - angle_p[k]), point_contact=False)
         out.append(RelativeCurvature(rc.A, rc.B, float(angle_p[k] + rc.angle)))
     return out
+
+
+def face_length(flank: Flank, uv) -> np.ndarray:
+    """Length (mm) of the flank along its v parameter at the points uv ((K,) arrays)."""
+    (_, _), (v0, v1) = flank.domain
+    return (v1 - v0) * np.linalg.norm(flank.evaluate(uv[0], uv[1], order=1).r_v, axis=-1)

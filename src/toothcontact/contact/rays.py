@@ -66,13 +66,14 @@ def intersect(flank: Flank, points: np.ndarray, directions: np.ndarray, u0: np.n
     for _ in range(iterations):
         if index.size == 0:
             break
-        r, r_u, r_v = flank.tangents(pu, pv)
-        y = tuple(P[i] - r[i] - ps * m[i] for i in range(3))       # minus the residual
-        last = dot(y, y) < TOLERANCE * TOLERANCE
-        # Newton step: [r_u r_v m]·(du, dv, ds) = y, by Cramer's rule
-        a, b, c = cross(r_v, m), cross(m, r_u), cross(r_u, r_v)
-        det = dot(r_u, a)
+        # Newton may probe beyond where the surface exists (a hob's reach): NaN there
         with np.errstate(all="ignore"):
+            r, r_u, r_v = flank.tangents(pu, pv)
+            y = tuple(P[i] - r[i] - ps * m[i] for i in range(3))       # minus the residual
+            last = dot(y, y) < TOLERANCE * TOLERANCE
+            # Newton step: [r_u r_v m]·(du, dv, ds) = y, by Cramer's rule
+            a, b, c = cross(r_v, m), cross(m, r_u), cross(r_u, r_v)
+            det = dot(r_u, a)
             du, dv, ds = dot(y, a) / det, dot(y, b) / det, dot(y, c) / det
         pu, pv, ps = pu + du, pv + dv, ps + ds
         # a ray along the flank, or a singular point of it (an involute at its base circle),
