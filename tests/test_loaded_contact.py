@@ -104,5 +104,5 @@ def test_designed_crown_has_no_edge_load_and_a_flatter_one_has(slope):
     assert designed["edge_margins_mm"][f"pinion_{end}"] == pytest.approx(0.0, abs=0.15)
     assert not designed["edge_loaded"]
     assert designed["edge_pressure_MPa"] < 0.15 * designed["bem_p_max_MPa"]
-    assert flat["edge_loaded"] and flat["edge_pressure_at"] == end
+    assert flat["edge_loaded"] and flat["edge_pressure_at"] in (f"pinion_{end}", f"gear_{end}")
     assert flat["edge_pressure_MPa"] > 0.5 * flat["bem_p_max_MPa"]

@@ -228,6 +228,37 @@ def test_edge_pressure_converges_while_raw_peak_grows(truncated):
         assert 1.25 < fine / coarse < 1.5
 
 
+def rotated_truncation(theta, n=256):
+    """The truncated ellipse turned by theta on the grid (gap and face end together)."""
+    A, B, load = TRUNCATED["A"], TRUNCATED["B"], TRUNCATED["load"]
+    exact = hertz.hertz_point(A, B, load, 1.0 / E_STAR)
+    half = 1.6 * exact.a
+    step = 2 * half / n
+    x = -half + (np.arange(n) + 0.5) * step
+    X, Y = np.meshgrid(x, x, indexing="ij")
+    c, s = math.cos(theta), math.sin(theta)
+    along, across = c * X + s * Y, -s * X + c * Y
+    mask = along < 1.125 * exact.a
+    h = A * (along - 0.6 * exact.a) ** 2 + B * across**2
+    return P.solve_contact(h, step, step, load, E_STAR, mask=mask)
+
+
+def test_edge_pressure_does_not_depend_on_how_the_edge_lies_on_the_grid():
+    """The truncated ellipse turned with its face end by 15, 30 and 45 deg on the grid (a
+    helical flank's tip or a tilted face end): the 0.1 mm edge pressure stays within 3 % of
+    the unturned one. Each grid line's own strip read 72 % high at 15 deg (the staircase
+    edge's cell-to-cell spikes decided it, and a strip along the line is shallower across
+    an oblique edge); the strip stretched to 0.1 mm across the edge and averaged over
+    0.1 mm along it does not see how the edge lies."""
+    def edge_pressure(theta):
+        sol = rotated_truncation(math.radians(theta))
+        return max(e.edge_pressure_MPa for axis in (0, 1) for e in sol.edge_loads(axis, 0.1))
+
+    straight = edge_pressure(0.0)
+    for theta in (15.0, 30.0, 45.0):
+        assert edge_pressure(theta) == pytest.approx(straight, rel=0.03)
+
+
 def test_edge_strip_counts_partial_cells():
     """A uniform pressure of 1 MPa on the material: every strip average is 1 MPa, and a strip
     of 2.5 cells carries 2.5 cells' load per line, partial cell included."""

@@ -1156,10 +1156,9 @@ def pressure_scene(result, case=None, name: str = "", patch: Patch | None = None
     edges_loaded = loaded_edges(cycle)
     warnings = []
     if edges_loaded:
-        side = "" if patch.member == "pinion" else f", the field's sides named as on the {names[0]}"
         warnings.append("EDGE LOAD: " + ", ".join(
             f"{e.replace('_', ' ')} {p:.0f} MPa" for e, p in edges_loaded.items())
-            + f" (averaged over the edge strip{side})")
+            + " (averaged over the edge strip)")
     if crossed:
         warnings.append("Hertz ellipses cross the " + ", ".join(
             e.replace("_", " ") for e in crossed))

@@ -94,12 +94,15 @@ def ease_off(pinion: Flank, gear: Flank, pinion_frames: Frame, gear_frames: Fram
 class GapField:
     """The gap around one contact on an (nx, ny) grid of its tangent plane: x (nx,) along e1
     and y (ny,) along e2 (mm, from the contact point); gap (mm, NaN where a surface does not
-    exist), and `material`: both flanks have material on the line (inside their domains)."""
+    exist), `material`: both flanks have material on the line (inside their domains), and
+    `beyond`: for each flank edge the field crosses (named as in the results, e.g.
+    "gear_tip"; "beyond_surface" where a surface does not exist), the cells beyond it."""
 
     x: np.ndarray
     y: np.ndarray
     gap: np.ndarray
     material: np.ndarray
+    beyond: dict[str, np.ndarray]
 
     @property
     def spacing(self) -> tuple[float, float]:
@@ -135,19 +138,21 @@ def gap_fields(pinion: Flank, gear: Flank, pinion_frames: Frame, gear_frames: Fr
         nearest = _nearest_met(met)
         # the gap, and each flank parameter that may cross its domain's edge in the field
         quantities, limits = [(hg.s - hp.s)[k].reshape(grid)[nearest]], []
-        for flank, hits in ((pinion, hp), (gear, hg)):
+        for member, flank, hits in (("pinion", pinion, hp), ("gear", gear, hg)):
             for name, (low, high) in zip(("u", "v"), flank.domain):
                 value = getattr(hits, name)[k].reshape(grid)[nearest]
                 if not _clear_of(value, low, high):
                     quantities.append(value)
-                    limits.append((low, high))
+                    limits.append((low, high, f"{member}_{flank.edges[name + '0']}",
+                                   f"{member}_{flank.edges[name + '1']}"))
         carried = to_fine[0] @ np.stack(quantities) @ to_fine[1].T
-        inside = np.ones(carried.shape[1:], bool)
-        for value, (low, high) in zip(carried[1:], limits):
-            inside &= (value >= low) & (value <= high)
         exists = met[np.ix_(ix, iy)]
+        beyond = {"beyond_surface": ~exists}
+        for value, (low, high, below, above) in zip(carried[1:], limits):
+            beyond[below], beyond[above] = value < low, value > high
+        material = exists & ~np.logical_or.reduce(list(beyond.values()))
         out.append(GapField(half[k, 0] * fine[0], half[k, 1] * fine[1],
-                            np.where(exists, carried[0], np.nan), inside & exists))
+                            np.where(exists, carried[0], np.nan), material, beyond))
     return out
 
 

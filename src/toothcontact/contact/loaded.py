@@ -44,14 +44,12 @@ class LoadedContact:
     solution: ContactSolution
 
     def summary(self) -> dict:
-        """The result keys of a loaded contact (edges named by the side of the field they
-        are on: x along the pinion's face toward end B, y across it)."""
+        """The result keys of a loaded contact; the most loaded edge is named by the flank
+        edge it is (e.g. "gear_tip", "pinion_end_B")."""
         s = self.solution
-        edges = {}
-        for axis, names in ((0, ("end_A", "end_B")), (1, ("profile_low", "profile_high"))):
-            for name, edge in zip(names, s.edge_loads(axis, EDGE_STRIP)):
-                edges[name] = edge
-        name, worst = max(edges.items(), key=lambda item: item[1].edge_pressure_MPa)
+        edges = [edge for axis in (0, 1) for edge in s.edge_loads(axis, EDGE_STRIP)]
+        worst = max(edges, key=lambda edge: edge.edge_pressure_MPa)
+        name = self.edge_name(worst)
         edge_pressure = worst.edge_pressure_MPa if worst.load_N > 0 else 0.0
         interior = self.interior_peak()
         return {"bem_load_N": s.load_N,
@@ -62,6 +60,22 @@ class LoadedContact:
                 "edge_pressure_MPa": edge_pressure, "edge_load_fraction": worst.load_fraction,
                 "edge_pressure_at": name, "edge_strip_mm": EDGE_STRIP,
                 "bem_raw_peak_MPa": s.peak_pressure_MPa}
+
+    def edge_name(self, edge) -> str:
+        """The flank edge an edge load (pressure.EdgeLoad) is at: the one beyond the last
+        material cell of its grid line; named by the field's side ("field_x_low", ...)
+        where the material reaches the field's border."""
+        material = self.field.material if edge.axis == 0 else self.field.material.T
+        line = material[:, edge.line_index]
+        cells = np.flatnonzero(line)
+        if cells.size:
+            outside = cells[0] - 1 if edge.side == "low" else cells[-1] + 1
+            if 0 <= outside < line.size:
+                index = (outside, edge.line_index) if edge.axis == 0 else (edge.line_index, outside)
+                for name, beyond in self.field.beyond.items():
+                    if beyond[index]:
+                        return name
+        return f"field_{'xy'[edge.axis]}_{edge.side}"
 
     def interior_peak(self) -> float:
         """The largest pressure (MPa) more than EDGE_STRIP from every edge of the material:
