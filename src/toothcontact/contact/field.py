@@ -9,10 +9,12 @@ gap a marking compound must bridge elsewhere.
 Gap field: around a contact, on a grid in the common tangent plane (x along e1, the pinion's
 face direction; y along e2), the distance along the common normal from the pinion flank to
 the gear flank, and where both flanks have material. The lines are solved exactly (rays.py)
-on a 25 × 25 grid and carried to the requested grid by bicubic splines of the
-gap and of both flanks' parameters: the surfaces are smooth, so the splines are exact to far
-below a micrometre (tested), and the flank edges, from the interpolated parameters, fall
-where they lie. Units: mm.
+on a 25 × 25 grid and carried to the requested grid by bicubic splines of the gap and of
+both flanks' parameters: the surfaces are smooth, so the splines are exact to far below a
+micrometre (tested: 1e-4 µm), and the flank edges, from the interpolated parameters, fall
+where they lie. A sample counts only where its line meets the flank continued smoothly from
+the contact (past an involute's cusp on its base circle a line meets the surface's other
+branch); the others take their nearest sample's values. Units: mm.
 """
 
 from __future__ import annotations

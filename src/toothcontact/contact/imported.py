@@ -63,7 +63,8 @@ def imported_cycle(mesh: ParallelMesh, pinion: TriangleSurface, gear: TriangleSu
              for name, body, form in (("pinion", pinion, form_radii[0]), ("gear", gear, form_radii[1]))}
     pitch = mesh.driver_pitch
     # the patch must rise well above the facets' chordal error to show its curvature
-    band = max(FIT_GAP, 20.0 * max(chordal_error(pinion), chordal_error(gear)))
+    chordal = {"pinion": chordal_error(pinion), "gear": chordal_error(gear)}
+    band = max(FIT_GAP, 20.0 * max(chordal.values()))
     rows, placed, lag = [], [], None
     for phi in np.linspace(-0.5 * pitch, 0.5 * pitch, settings.positions):
         frame = mesh.pinion_frame(phi)
@@ -103,7 +104,7 @@ def imported_cycle(mesh: ParallelMesh, pinion: TriangleSurface, gear: TriangleSu
                               edges)
             rows.append(row)
             placed.append(where)
-    _add_profile_margins(rows, placed, {"pinion": pinion, "gear": gear}, edges)
+    _add_profile_margins(rows, placed, {"pinion": pinion, "gear": gear}, edges, chordal)
     # the files' phase is arbitrary: the transmission error is the lag about its mean
     lags = {r["roll_deg"]: r["transmission_error_urad"] for r in rows}
     mean = float(np.mean(list(lags.values())))
@@ -273,11 +274,12 @@ class _Placed:
     frames: dict
 
 
-def _add_profile_margins(rows: list[dict], placed: list[_Placed], bodies: dict, edges: dict) -> None:
+def _add_profile_margins(rows: list[dict], placed: list[_Placed], bodies: dict, edges: dict,
+                         chordal: dict) -> None:
     """Each row's margins to both bodies' tip circles (and form circles where known), then
     its worst margin and edge flag: the length along the body's transverse profile from the
-    contact to the circle (walked on the mesh for all rows at once), less the ellipse's
-    reach along that profile."""
+    contact to the circle (walked on the mesh for all rows at once, to within each body's
+    chordal error `chordal` (mm) of the circle), less the ellipse's reach along it."""
     for name, surface in bodies.items():
         edge = edges[name]
         local = np.array([c.frames[name].to_local(c.point) for c in placed])
@@ -292,7 +294,7 @@ def _add_profile_margins(rows: list[dict], placed: list[_Placed], bodies: dict, 
                                     (f"{name}_form", edge.form, False)):
             if radius is None:
                 continue
-            arcs = _profile_arcs(surface, local, radius, upward, chordal_error(surface))
+            arcs = _profile_arcs(surface, local, radius, upward, chordal[name])
             for row, arc, r in zip(rows, arcs, reach):
                 row["edge_margins_mm"][key] = float(arc - r)
     for row in rows:

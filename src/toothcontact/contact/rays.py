@@ -17,7 +17,6 @@ from ..surfaces.base import Flank, cross, dot
 #: it worth following (another branch of a long surface, or none): it stops, unconverged
 LOST_SPANS = 5.0
 
-
 #: a ray has converged once its residual is below this (mm): Newton's step from there
 #: leaves a residual of about curvature × tolerance², far below a nanometre, so the step
 #: is taken and no further evaluation is spent confirming it
