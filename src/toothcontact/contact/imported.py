@@ -119,8 +119,8 @@ def _solve_lag(distances, count: int, reach: float, mesh: ParallelMesh,
     driving side. `distances(delta, which)` measures probes `which` (of `count`) at lag
     delta; `reach` (mm) is the gear's outer radius. The closure is bracketed from the
     previous position's lag, or first by a scan of two gear pitches (every eighth probe),
-    then found by regula falsi on the probes that can matter: those within the bracket's
-    travel of the surface."""
+    then found by regula falsi on the probes that can matter: those within twice the
+    bracket's travel of the least, a set that shrinks with the bracket."""
     every = np.arange(count)
 
     def least(delta, which=every):
@@ -139,26 +139,31 @@ def _solve_lag(distances, count: int, reach: float, mesh: ParallelMesh,
             raise ValueError("the gear never closes on the pinion over two pitches: no contact "
                              "(check the centre distance and the bodies' placement)")
         end = ends[np.argmin(np.abs(grid[ends]))]
-        lo, hi = grid[end] - 0.5 * (grid[1] - grid[0]), grid[end + 1]
-        while least(lo) <= 0:
-            lo -= grid[1] - grid[0]
+        lo, hi, step = grid[end] - 0.5 * (grid[1] - grid[0]), grid[end + 1], grid[1] - grid[0]
     else:
         step = 1e-4
         lo, hi = previous - step, previous + step
-        while least(lo) <= 0:
-            step *= 4
-            lo -= step
     d_lo = distances(lo, every)
-    near = every[d_lo < np.min(d_lo) + (hi - lo) * reach + 0.05]
+    while np.min(d_lo) <= 0:
+        step *= 4
+        lo -= step
+        d_lo = distances(lo, every)
+
+    def within_reach(d, width):
+        """The probes that can be least anywhere in a bracket `width` (rad) wide: a gear
+        point moves at most reach·width across it."""
+        return d < np.min(d) + 2.0 * reach * width + 1e-3
+
+    near = every[within_reach(d_lo, hi - lo)]
     while least(hi, near) > 0:
         hi += 4 * (hi - lo)
-        d_lo = distances(lo, every)
-        near = every[d_lo < np.min(d_lo) + (hi - lo) * reach + 0.05]
+        near = every[within_reach(d_lo, hi - lo)]
     f_lo, f_hi = least(lo, near), least(hi, near)
     mid = lo
     for _ in range(100):   # regula falsi (Illinois), bracketing the closure
         mid = hi - f_hi * (hi - lo) / (f_hi - f_lo)
-        f_mid = least(mid, near)
+        d_mid = distances(mid, near)
+        f_mid = float(np.min(d_mid))
         if abs(f_mid) < tolerance or hi - lo < 1e-13:
             break
         if f_mid > 0:
@@ -167,6 +172,7 @@ def _solve_lag(distances, count: int, reach: float, mesh: ParallelMesh,
         else:
             hi, f_hi = mid, f_mid
             f_lo *= 0.5
+        near = near[within_reach(d_mid, hi - lo)]
     return mid
 
 
