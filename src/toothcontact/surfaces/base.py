@@ -77,7 +77,7 @@ class Flank:
             self._guess_tree = (cKDTree(np.stack(self.point(u, v), axis=-1).reshape(-1, 3)),
                                 u.ravel(), v.ravel())
         tree, u, v = self._guess_tree
-        _, index = tree.query(np.asarray(points).reshape(-1, 3))
+        _, index = tree.query(np.asarray(points).reshape(-1, 3), workers=-1)
         shape = np.shape(points)[:-1]
         return u[index].reshape(shape), v[index].reshape(shape)
 

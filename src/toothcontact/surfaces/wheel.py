@@ -369,7 +369,9 @@ class WormWheelFlank(Flank):
                 g = self._zeta(uf[active], fpf[active], Jet(psi[active], 1.0)) - vf[active]
                 step = g.f / g.u
                 psi[active] = np.clip(psi[active] - step, -1.5, 1.5)
-                converged = np.abs(step) <= 1e-14
+                # Newton: the step just taken leaves an error of order step², so a step
+                # below 1e-8 rad has converged to round-off
+                converged = np.abs(step) <= 1e-8
                 done[active[converged]] = True
                 active = active[~converged & np.isfinite(step)]
                 if active.size == 0:
