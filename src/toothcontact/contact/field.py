@@ -264,8 +264,8 @@ def rigid_patterns(cycle, points: int, margin: float = 1.25, growths: int = 3) -
     out: list[RigidPattern | None] = [None] * len(rows)
     todo = np.arange(len(rows))
     for attempt in range(growths + 1):
-        fields = contact_fields(cycle, todo, (points, points), margins[todo], semi_axes[todo])
-        for k, field in zip(todo, fields):
+        solved = contact_fields(cycle, todo, (points, points), margins[todo], semi_axes[todo])
+        for k, field in zip(todo, solved):
             pattern = field.material & (field.gap - rows[k]["separation_mm"] <= approach)
             rim = np.zeros(pattern.shape, bool)
             rim[[0, -1], :] = rim[:, [0, -1]] = True
