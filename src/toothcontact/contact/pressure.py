@@ -235,12 +235,7 @@ class ContactSolution:
         decide it."""
         if axis not in (0, 1):
             raise ValueError(f"axis: {axis!r} must be 0 (x) or 1 (y)")
-        try:
-            width = float(width_mm)
-        except (TypeError, ValueError):
-            raise ValueError(f"width_mm: {width_mm!r} must be a length > 0 mm") from None
-        if not (math.isfinite(width) and width > 0):
-            raise ValueError(f"width_mm: {width_mm!r} must be a finite length > 0 mm")
+        width = _positive("width_mm", width_mm, "mm")
         p, mask = self.pressure_MPa, self.mask
         step = self.dx_mm if axis == 0 else self.dy_mm
         if axis == 1:
