@@ -45,19 +45,25 @@ class LoadedContact:
 
     def summary(self) -> dict:
         """The result keys of a loaded contact; the most loaded edge is named by the flank
-        edge it is (e.g. "gear_tip", "pinion_end_B")."""
+        edge it is (e.g. "gear_tip", "pinion_end_B"). Where the material runs on to the
+        field's border there is no edge (the contact never reaches that border: the solver
+        widens the field until it does not); with no flank edge in the field the edge keys
+        are zero and edge_pressure_at is "none"."""
         s = self.solution
-        edges = [edge for axis in (0, 1) for edge in s.edge_loads(axis, EDGE_STRIP)]
-        worst = max(edges, key=lambda edge: edge.edge_pressure_MPa)
-        name = self.edge_name(worst)
-        edge_pressure = worst.edge_pressure_MPa if worst.load_N > 0 else 0.0
+        named = [(self.edge_name(edge), edge) for axis in (0, 1)
+                 for edge in s.edge_loads(axis, EDGE_STRIP)]
+        named = [(name, edge) for name, edge in named if not name.startswith("field_")]
+        name, worst = max(named, key=lambda item: item[1].edge_pressure_MPa,
+                          default=("none", None))
+        edge_pressure = worst.edge_pressure_MPa if worst is not None and worst.load_N > 0 else 0.0
         interior = self.interior_peak()
         return {"bem_load_N": s.load_N,
                 "bem_p_max_MPa": max(interior, edge_pressure),
                 "edge_loaded": bool(edge_pressure > EDGE_LOAD_RATIO * max(interior, edge_pressure)),
                 "bem_area_mm2": s.area_mm2, "bem_approach_mm": s.approach_mm,
                 "bem_grid": list(s.pressure_MPa.shape),
-                "edge_pressure_MPa": edge_pressure, "edge_load_fraction": worst.load_fraction,
+                "edge_pressure_MPa": edge_pressure,
+                "edge_load_fraction": worst.load_fraction if worst is not None else 0.0,
                 "edge_pressure_at": name, "edge_strip_mm": EDGE_STRIP,
                 "bem_raw_peak_MPa": s.peak_pressure_MPa}
 
