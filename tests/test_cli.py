@@ -1,8 +1,6 @@
 """The console script as a user meets it: bundled cases run, bad input gets one line."""
 
 import json
-import subprocess
-import sys
 from pathlib import Path
 
 import pytest
@@ -95,10 +93,9 @@ def test_impossible_geometry_names_the_file_and_fields(tmp_path):
     assert "interference" in result.output
 
 
-def test_help_does_not_import_the_heavy_stack():
+def test_help_does_not_import_the_heavy_stack(fresh_python):
     code = ("import sys; from toothcontact.cli import app\n"
             "try:\n    app(['--help'])\nexcept SystemExit:\n    pass\n"
             "heavy = {'cadquery', 'pyvista', 'vtk', 'OCP', 'scipy', 'pint', 'matplotlib'}\n"
             "print(sorted(heavy & set(sys.modules)))")
-    out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True)
-    assert out.stdout.strip().splitlines()[-1] == "[]"
+    assert fresh_python(code) == "[]"

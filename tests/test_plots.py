@@ -3,8 +3,6 @@
 Pixel checks read the written PNG: a blank or missing element changes the colours found."""
 
 import json
-import subprocess
-import sys
 
 import numpy as np
 import pytest
@@ -284,11 +282,10 @@ def test_a_failed_write_leaves_no_file(tmp_path, monkeypatch):
     assert list(tmp_path.iterdir()) == []
 
 
-def test_plots_never_load_pyplot():
+def test_plots_never_load_pyplot(fresh_python):
     """The object API only: no pyplot state, no display backend."""
     code = ("import sys, numpy as np; from toothcontact import plots; import tempfile, pathlib;"
             "d = pathlib.Path(tempfile.mkdtemp());"
             "plots.ease_off_map([0, 1], [0, 1], np.eye(2), d / 'm.png');"
             "print('matplotlib.pyplot' in sys.modules)")
-    out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True)
-    assert out.stdout.strip() == "False"
+    assert fresh_python(code) == "False"
