@@ -79,8 +79,9 @@ def _arc(flank: Flank, name: str, start: np.ndarray, end: float, other: np.ndarr
     with np.errstate(all="ignore"):
         sample = flank.evaluate(*((t, fixed) if name == "u" else (fixed, t)), order=1)
         speed = np.linalg.norm(sample.r_u if name == "u" else sample.r_v, axis=-1)
-        edge = flank.evaluate(*((np.clip(start, low, high), other) if name == "u"
-                                else (other, np.clip(start, low, high))), order=1)
-        fallback = np.linalg.norm(edge.r_u if name == "u" else edge.r_v, axis=-1)
-    speed = np.where(np.isfinite(speed), speed, fallback[..., None])
+        if not np.isfinite(speed).all():
+            edge = flank.evaluate(*((np.clip(start, low, high), other) if name == "u"
+                                    else (other, np.clip(start, low, high))), order=1)
+            fallback = np.linalg.norm(edge.r_u if name == "u" else edge.r_v, axis=-1)
+            speed = np.where(np.isfinite(speed), speed, fallback[..., None])
     return half * (speed @ _WEIGHTS)
