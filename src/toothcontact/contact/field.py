@@ -14,7 +14,11 @@ both flanks' parameters: the surfaces are smooth, so the splines are exact to fa
 micrometre (tested: 1e-4 µm), and the flank edges, from the interpolated parameters, fall
 where they lie. A sample counts only where its line meets the flank continued smoothly from
 the contact (past an involute's cusp on its base circle a line meets the surface's other
-branch); the others take their nearest sample's values. Units: mm.
+branch). The others are filled by the smoothest continuation of the samples that count
+(least squared second differences), so that the splines do not ring across the boundary
+of the surfaces' existence: a jump there would carry into the material next to it
+(before: -213 µm of false gap on a worm's line contact where the exact gap is +8 µm).
+Units: mm.
 """
 
 from __future__ import annotations
@@ -132,22 +136,21 @@ def gap_fields(pinion: Flank, gear: Flank, pinion_frames: Frame, gear_frames: Fr
     pinion_normals = pinion_frames.vectors_to_local(planes.normal[:, None, :])[:, 0]
     gear_normals = gear_frames.vectors_to_local(planes.normal[:, None, :])[:, 0]
     for k in range(len(half)):
-        reach = float(np.max(half[k]))
-        met = (_continued(_take(hp, k), pinion_normals[k], reach, grid)
-               & _continued(_take(hg, k), gear_normals[k], reach, grid))
+        reach = min(float(np.max(half[k])), FAR)
+        met = (_continued(_take(hp, k), pinion, pinion_normals[k], reach, grid)
+               & _continued(_take(hg, k), gear, gear_normals[k], reach, grid))
         if not met.any():
             raise ValueError("no line of the gap field meets both flanks")
-        nearest = _nearest_met(met)
         # the gap, and each flank parameter that may cross its domain's edge in the field
-        quantities, limits = [(hg.s - hp.s)[k].reshape(grid)[nearest]], []
+        quantities, limits = [(hg.s - hp.s)[k].reshape(grid)], []
         for member, flank, hits in (("pinion", pinion, hp), ("gear", gear, hg)):
             for name, (low, high) in zip(("u", "v"), flank.domain):
-                value = getattr(hits, name)[k].reshape(grid)[nearest]
-                if not _clear_of(value, low, high):
+                value = getattr(hits, name)[k].reshape(grid)
+                if not _clear_of(value[met], low, high):
                     quantities.append(value)
                     limits.append((low, high, f"{member}_{flank.edges[name + '0']}",
                                    f"{member}_{flank.edges[name + '1']}"))
-        carried = to_fine[0] @ np.stack(quantities) @ to_fine[1].T
+        carried = to_fine[0] @ smooth_fill(np.stack(quantities), met) @ to_fine[1].T
         exists = met[np.ix_(ix, iy)]
         beyond = {"beyond_surface": ~exists}
         for value, (low, high, below, above) in zip(carried[1:], limits):
@@ -169,20 +172,32 @@ def _cardinal_splines(samples: int, points: int) -> np.ndarray:
     return make_interp_spline(unit, np.eye(samples), k=3)(np.linspace(-1.0, 1.0, points))
 
 
-def _continued(hits, normal: np.ndarray, reach: float, shape: tuple[int, int]) -> np.ndarray:
+#: height (mm) above the tangent plane beyond which a line's hit is no part of the flank
+#: here but another part of a long surface (a worm thread's next turn, a wheel flank's fold):
+#: far above any contact's gap
+FAR = 0.5
+
+
+def _continued(hits, flank: Flank, normal: np.ndarray, reach: float,
+               shape: tuple[int, int]) -> np.ndarray:
     """The samples of one contact's field (hits of its lines, (n,); `normal` the plane's
     normal in the flank's frame) where the lines meet the flank continued smoothly from the
-    contact at the centre sample: converged within `reach` (mm) of the plane, the flank
-    facing the plane as it does at the contact (the parameter map does not fold), and
-    connected to the centre through such samples. Past a fold (an involute's cusp on its
-    base circle) or far off, a line meets another branch of the surface: no part of the
-    flank."""
+    contact at the centre sample: converged within `reach` (mm) of the plane and within a
+    domain's span of the flank's domain, the flank facing the plane as it does at the
+    contact (the parameter map does not fold), and connected to the centre through such
+    samples. Past a fold (an involute's cusp on its base circle) or far off, a line meets
+    another branch of the surface: no part of the flank."""
     from scipy.ndimage import label
 
     with np.errstate(invalid="ignore"):
         facing = np.sign(hits.normal @ normal).reshape(shape)
+        near = np.ones(hits.u.shape, bool)
+        for value, (low, high) in zip((hits.u, hits.v), flank.domain):
+            span = high - low
+            near &= (value > low - span) & (value < high + span)
     c = (shape[0] // 2, shape[1] // 2)
-    ok = (hits.converged & (np.abs(hits.s) <= reach)).reshape(shape) & (facing == facing[c])
+    ok = ((hits.converged & near & (np.abs(hits.s) <= reach)).reshape(shape)
+          & (facing == facing[c]))
     if not ok[c]:
         return ok
     labels, _ = label(ok)
@@ -195,21 +210,41 @@ def _take(hits: RayHits, k: int) -> RayHits:
 
 
 def _clear_of(samples: np.ndarray, low: float, high: float) -> bool:
-    """Whether a parameter sampled on the grid stays inside [low, high] everywhere between
-    the samples too: every sample lies farther inside than the largest step between
-    neighbouring samples (a bicubic spline overshoots its samples by less than that)."""
-    step = max(np.max(np.abs(np.diff(samples, axis=0))), np.max(np.abs(np.diff(samples, axis=1))))
-    return bool(np.min(samples) - low > step and high - np.max(samples) > step)
+    """Whether a parameter sampled at the points `samples` (those that count) stays inside
+    [low, high] everywhere in the field: every sample lies farther inside than the samples'
+    spread (a bicubic spline through them, continued smoothly beyond, stays within it)."""
+    spread = float(np.ptp(samples))
+    return bool(np.min(samples) - low > spread and high - np.max(samples) > spread)
 
 
-def _nearest_met(met: np.ndarray):
-    """Index arrays taking each sample to its nearest sample where both lines met."""
-    from scipy.ndimage import distance_transform_edt
+def smooth_fill(values: np.ndarray, known: np.ndarray) -> np.ndarray:
+    """`values` (q, n0, n1): q quantities on a grid, kept where `known` (n0, n1) and
+    filled elsewhere by the smoothest continuation: the fill minimises the sum of squared
+    second differences (along both axes and across) over the whole grid, a discrete
+    thin-plate (biharmonic) extension. It reproduces linear fields exactly and joins the
+    known values without a kink, so a spline through the filled grid stays close to the
+    known values' own continuation."""
+    if known.all():
+        return values
+    from scipy.sparse import diags, identity, kron, vstack
+    from scipy.sparse.linalg import splu
 
-    if met.all():
-        return tuple(np.indices(met.shape))
-    _, index = distance_transform_edt(~met, return_indices=True)
-    return tuple(index)
+    n0, n1 = known.shape
+    def second(n):
+        return diags([1.0, -2.0, 1.0], [0, 1, 2], shape=(n - 2, n))
+
+    def first(n):
+        return diags([-1.0, 1.0], [0, 1], shape=(n - 1, n))
+
+    D = vstack([kron(second(n0), identity(n1)), kron(identity(n0), second(n1)),
+                2 ** 0.5 * kron(first(n0), first(n1))]).tocsc()
+    unknown = ~known.ravel()
+    Du, Dk = D[:, unknown], D[:, ~unknown]
+    flat = values.reshape(len(values), -1)
+    rhs = -(Du.T @ (Dk @ flat[:, ~unknown].T))
+    filled = flat.copy()
+    filled[:, unknown] = splu((Du.T @ Du).tocsc()).solve(np.asarray(rhs)).T
+    return filled.reshape(values.shape)
 
 
 def contact_fields(cycle, rows, shape: tuple[int, int], margin=1.3,
