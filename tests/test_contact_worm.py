@@ -41,7 +41,7 @@ def test_a_two_start_worm_meshes_periodically_over_one_start_pitch():
 
 def test_hob_identical_to_the_worm_gives_line_contact_without_transmission_error():
     rows = contact("worm_saba_set")
-    assert rows and all(r["line_contact"] for r in rows)
+    assert rows and all(r["contact_model"] == "line" for r in rows)
     assert all(abs(r["transmission_error_urad"]) < 0.5 for r in rows)
 
 
@@ -53,7 +53,7 @@ def oversized():
 def test_oversized_hob_gives_point_contact_with_a_finite_ellipse(oversized):
     assert oversized
     for r in oversized:
-        assert not r["line_contact"]
+        assert r["contact_model"] == "ellipse"
         assert r["A_per_mm"] == pytest.approx(r["A_analytic_per_mm"], rel=5e-3)
         assert r["B_per_mm"] == pytest.approx(r["B_analytic_per_mm"], rel=5e-3)
         assert 0 < r["b_mm"] < r["a_mm"] < 5.0

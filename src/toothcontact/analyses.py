@@ -522,17 +522,18 @@ def _contact_sections(cycle, loads: dict, result: Result) -> None:
                "transmission_error_peak_to_peak_urad": max(te) - min(te),
                "face_position_range_mm": [min(r["face_position_mm"] for r in rows),
                                           max(r["face_position_mm"] for r in rows)],
-               "line_contact": any(r["line_contact"] for r in rows),
+               "line_contacts": sum(r["contact_model"] == "line" for r in rows),
+               "edge_contacts": sum(r["edge_contact"] for r in rows),
                "load_sharing": LOAD_SHARING_RULE}
     for kind, label in (("face", "at the face ends (edge loading)"),
                         ("profile", "at the tip and form edges (corner contact)")):
         candidates = [(v, k, r["roll_deg"]) for r in rows for k, v in r["edge_margins_mm"].items()
                       if ("end_" in k) == (kind == "face")]
-        if not candidates:  # line contact only: no ellipse to hold against the edges
+        if not candidates:
             continue
         margin, edge, roll = min(candidates)
         summary[f"worst_{kind}_edge_margin_mm"], summary[f"worst_{kind}_edge"] = margin, edge
-        result.checks.append(Check(f"contact ellipse clear of the edges {label}", margin >= 0,
+        result.checks.append(Check(f"contact pattern clear of the edges {label}", margin >= 0,
                                    f"worst margin {margin:.3f} mm ({edge}) at roll {roll:.2f} deg"))
     result.sections["summary"] = summary
 

@@ -233,7 +233,7 @@ def _winds(flank) -> bool:
 
 def ellipse_outlines(cycle, member: str = "pinion", samples: int = 97) -> np.ndarray:
     """Each row's Hertz ellipse (semi-axis a along cycle.axis_angle from e1, b across; for a
-    line contact the line's length and width) carried onto the member's tooth-0 flank along
+    contact line its part in contact, about its centre) carried onto the member's tooth-0 flank along
     the common normal: (K, samples, 3) in that member's own frame. The rays march out from
     the contact point, each starting where the last one landed, so that the outline follows
     this part of the flank (as contact.ellipse does); beyond the flank's edges the outline
@@ -245,11 +245,11 @@ def ellipse_outlines(cycle, member: str = "pinion", samples: int = 97) -> np.nda
     planes = cycle.planes
     a = np.array([r["a_mm"] for r in cycle.rows])
     b = np.array([r["b_mm"] for r in cycle.rows])
-    line = np.array([bool(r.get("line_contact")) for r in cycle.rows])
     theta = np.linspace(0.0, 2.0 * np.pi, samples)
-    # a line of contact runs along the face (e1): its direction of A means nothing
-    da = planes.direction(np.where(line, 0.0, np.asarray(cycle.axis_angle, float)))
+    da = planes.direction(np.asarray(cycle.axis_angle, float))
     db = np.cross(planes.normal, da)
+    # a contact line's part in contact may lie to one side of its contact point
+    centre = planes.at(*np.asarray(cycle.pattern_centre, float).T)
     direction = frames.vectors_to_local(planes.normal[:, None, :])
     u0, v0 = (np.asarray(getattr(cycle.contacts, f"{member}_{w}"), float) for w in ("u", "v"))
     u = np.repeat(u0[:, None], samples, axis=1)
@@ -258,7 +258,7 @@ def ellipse_outlines(cycle, member: str = "pinion", samples: int = 97) -> np.nda
     across = b[:, None, None] * np.sin(theta)[:, None] * db[:, None, :]
     with np.errstate(all="ignore"):
         for fraction in (0.25, 0.5, 0.75, 1.0):
-            world = planes.point[:, None, :] + fraction * (along + across)
+            world = centre[:, None, :] + fraction * (along + across)
             hits = intersect(flank, frames.to_local(world), direction, u, v, iterations=40)
             ok = hits.converged & (np.abs(hits.s) < 0.5)
             u, v = np.where(ok, hits.u, u), np.where(ok, hits.v, v)
@@ -267,7 +267,7 @@ def ellipse_outlines(cycle, member: str = "pinion", samples: int = 97) -> np.nda
         du, dv = 0.03 * (fu1 - fu0), 0.03 * (fv1 - fv0)
         u, v = np.clip(u, fu0 - du, fu1 + du), np.clip(v, fv0 - dv, fv1 + dv)
         on_flank = _flank_points(flank, u, v)
-    in_plane = frames.to_local(planes.point[:, None, :] + along + across)
+    in_plane = frames.to_local(centre[:, None, :] + along + across)
     return np.where(np.isfinite(on_flank).all(axis=-1)[..., None], on_flank, in_plane)
 
 

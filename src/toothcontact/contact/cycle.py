@@ -3,10 +3,13 @@
 At each pinion roll angle over one angular pitch, the gear's lag (transmission error) is
 solved so that the least separation over the tooth pairs is zero; every pair whose least
 separation is within the approach is in contact. For each of those: the contact point, the
-gap fitted in the common tangent plane (and the same from the flanks' curvatures), the Hertz
-ellipse under its share of the load, the rigid ellipse at the approach, and the margins to
-the edges of both flanks. Load sharing (until loaded contact is solved): the normal load is
-split equally among the pairs in contact. Units: mm, N, MPa, rad.
+gap fitted in the common tangent plane (and the same from the flanks' curvatures), the
+contact model under its share of the load - the Hertz ellipse where the gap is a bowl and
+the ellipse fits the face, else the contact line (contact.line) with Hertz's line contact
+over the length in contact - the rigid pattern at the approach, and the margins to the
+edges of both flanks (negative where the pattern is cut; `edge_contact` when a face end
+cuts it). Load sharing (until loaded contact is solved): the normal load is split equally
+among the pairs in contact. Units: mm, N, MPa, rad.
 """
 
 from __future__ import annotations
@@ -21,6 +24,7 @@ from ..assembly import Frame
 from ..surfaces.base import Flank
 from .ellipse import edge_margins
 from .field import EaseOff, ease_off, rigid_patterns
+from .line import contact_lines
 from .local import TangentPlanes, analytic_gaps, face_length, fit_gaps, planes_at, tangent_planes
 from .search import ContactPoints, lowest, refine_minima, separation, solve_transmission_error
 
@@ -48,7 +52,9 @@ class ContactCycle:
     """The contact over one mesh cycle: a result row per mesh position and tooth pair in
     contact, and what a closer look needs (pictures, the pressure solver): the flanks, each
     row's placed frames (stacked (K,)) and tangent plane, the direction of each row's A axis
-    (rad from e1, the ellipse's long axis) and the ease-off of the pinion flank."""
+    (rad from e1, the ellipse's long axis or the contact line), the centre of each row's
+    pattern in its plane ((K, 2), mm along e1 and e2 from the contact point: a contact
+    line's part in contact may lie to one side of it) and the ease-off of the pinion flank."""
 
     rows: list[dict]
     pinion: Flank
@@ -58,6 +64,7 @@ class ContactCycle:
     contacts: ContactPoints
     planes: TangentPlanes
     axis_angle: np.ndarray
+    pattern_centre: np.ndarray
     ease_off: EaseOff
     settings: CycleSettings
 
@@ -130,11 +137,12 @@ def parallel_cycle(mesh, pinion: Flank, gear: Flank, normal_load: float,
     share = normal_load / np.bincount(P, minlength=len(phis))[P]
     pf, gf, contacts = pinion_frames[P, J], gear_frames(P, J, delta[P]), _take(contacts, keep)
     with np.errstate(all="ignore"):
-        rows, planes, angle = _pair_results(pinion, gear, pf, gf, np.degrees(phis[P]), pairs[J],
+        rows, planes, angle, centre = _pair_results(pinion, gear, pf, gf, np.degrees(phis[P]), pairs[J],
                                             delta[P], contacts, gaps[keep], share, C_E, settings)
         ease = _ease_off(mesh, pinion, gear, phis, pairs, pinion_frames, gear_frames, delta,
                          *near_pairs, settings.ease_off_grid)
-    cycle = ContactCycle(rows, pinion, gear, pf, gf, contacts, planes, angle, ease, settings)
+    cycle = ContactCycle(rows, pinion, gear, pf, gf, contacts, planes, angle, centre, ease,
+                         settings)
     if settings.field_grid:
         for row, pattern in zip(rows, rigid_patterns(cycle, settings.field_grid)):
             row.update({"rigid_pattern_area_mm2": pattern.area,
@@ -172,44 +180,66 @@ def _lag_slope(mesh, pinion, gear, phis, pairs, P, J, delta, contacts, step=1e-6
 def _pair_results(pinion, gear, pf, gf, roll_deg, pairs, delta, cp: ContactPoints, gaps,
                   loads, C_E, settings):
     """The result rows of K contacts (frames stacked (K,)): the gap fitted and from the
-    curvatures, Hertz (ellipse, or a line along the face), rigid ellipse and edge margins;
-    with the tangent planes and the angles of the A axes."""
+    curvatures, the contact model (a Hertz ellipse, or a contact line: contact.line) with
+    its size, pressure and edge margins, and the rigid pattern's size; with the tangent
+    planes, the angles of the A axes and the centre of each contact's pattern in its plane
+    ((K, 2), mm along e1 and e2: the middle of a contact line's part in contact, 0 for an
+    ellipse)."""
     p_uv, g_uv = (cp.pinion_u, cp.pinion_v), (cp.gear_u, cp.gear_v)
     planes = tangent_planes(pinion, pf, *p_uv)
     analytic = analytic_gaps(pinion, gear, pf, gf, planes, p_uv, g_uv)
     A = np.array([g.A for g in analytic])
     B = np.array([g.B for g in analytic])
     angle = np.array([g.angle for g in analytic])
-    # line contact: the rigid pattern would be longer than the shorter flank's face
     face = np.minimum(face_length(pinion, p_uv), face_length(gear, g_uv))
-    line = A <= settings.approach / (0.5 * face) ** 2
     fit_limit = np.minimum(face_length(pinion, p_uv) / 3.0, 10.0 * np.sqrt(FIT_GAP / B))
     extent = np.stack([np.where(A > 0, np.minimum(np.sqrt(FIT_GAP / A), fit_limit), fit_limit),
                        np.sqrt(FIT_GAP / B)], axis=-1)
     fit = fit_gaps(pinion, gear, pf, gf, planes, p_uv, g_uv, extent, settings.fit_points)
     points = pinion.evaluate(p_uv[0], p_uv[1], order=1).points
-    a, b, p0, approach = (np.empty(len(A)) for _ in range(4))
-    for k in range(len(A)):
-        if line[k]:
-            contact = hertz_line(loads[k] / face[k], 1.0 / (2.0 * B[k]), C_E)
-            a[k], b[k], p0[k], approach[k] = 0.5 * face[k], contact.b, contact.p0, np.nan
-        else:
-            e = hertz_point(A[k], B[k], loads[k], C_E)
-            a[k], b[k], p0[k], approach[k] = e.a, e.b, e.p0, e.approach
-    # a contact line has no ellipse to hold against the edges
-    point = np.flatnonzero(~line)
-    margins = {}
+    # an ellipse where the gap is a bowl and the loaded ellipse fits the face; else a line
+    ellipses = [hertz_point(A[k], B[k], loads[k], C_E) if A[k] > 0 else None
+                for k in range(len(A))]
+    line = np.array([e is None or e.a > 0.5 * f for e, f in zip(ellipses, face)], bool)
+    point, along = np.flatnonzero(~line), np.flatnonzero(line)
+    margins = [dict() for _ in range(len(A))]
+    found = {}
     for name, flank, frames, uv in (("pinion", pinion, pf, p_uv), ("gear", gear, gf, g_uv)):
-        found = edge_margins(flank, frames[point], planes_at(planes, point), a[point], b[point],
-                             angle[point], uv[0][point], uv[1][point])
-        margins.update({f"{name}_{edge}": value for edge, value in found.items()})
+        ends = edge_margins(flank, frames[point], planes_at(planes, point),
+                            np.array([ellipses[k].a for k in point]),
+                            np.array([ellipses[k].b for k in point]), angle[point],
+                            uv[0][point], uv[1][point])
+        found.update({f"{name}_{edge}": value for edge, value in ends.items()})
+    for i, k in enumerate(point):
+        margins[k] = {name: float(value[i]) for name, value in found.items()
+                      if np.isfinite(value[i])}
+    centre = np.zeros((len(A), 2))
+    length = np.array([2.0 * e.a if e is not None else 0.0 for e in ellipses])
+    if along.size:
+        lines = contact_lines(pinion, gear, pf[along], gf[along], planes_at(planes, along),
+                              (p_uv[0][along], p_uv[1][along]), (g_uv[0][along], g_uv[1][along]),
+                              angle[along], gaps[along], B[along], face[along],
+                              settings.approach, 2 * max(settings.field_grid, 100) + 1)
+        length[along], centre[along] = lines.length, lines.centre
+        for i, k in enumerate(along):
+            margins[k] = lines.margins[i]
     rows = []
     for k in range(len(A)):
-        own = {}
-        if not line[k]:
-            i = int(np.searchsorted(point, k))
-            own = {name: float(value[i]) for name, value in margins.items() if np.isfinite(value[i])}
-        worst = min(own.values()) if own else float("nan")
+        own = margins[k]
+        ends = {edge: m for edge, m in own.items() if "_end_" in edge and m < 0.0}
+        if line[k]:
+            contact = hertz_line(loads[k] / length[k], 1.0 / (2.0 * B[k]), C_E)
+            a, b, p0, approach = 0.5 * length[k], contact.b, contact.p0, None
+            rigid_a = 0.5 * length[k]
+        else:
+            e = ellipses[k]
+            a, b, p0, approach = e.a, e.b, e.p0, e.approach
+            rigid_a = math.sqrt(settings.approach / A[k])
+            # the ellipse's length on the flanks: what a face end cuts off is not in contact
+            for side in ("A", "B"):
+                length[k] += min([0.0] + [m for edge, m in ends.items()
+                                          if edge.endswith(f"_end_{side}")])
+            length[k] = max(length[k], 0.0)
         rows.append({
             "roll_deg": float(roll_deg[k]), "pair": int(pairs[k]),
             "contact_radius_pinion_mm": float(np.hypot(*points[k, :2])),
@@ -218,12 +248,14 @@ def _pair_results(pinion, gear, pf, gf, roll_deg, pairs, delta, cp: ContactPoint
             "A_per_mm": float(fit.A[k]), "B_per_mm": float(fit.B[k]),
             "A_analytic_per_mm": float(A[k]), "B_analytic_per_mm": float(B[k]),
             "fit_rms_mm": float(fit.rms[k]), "transmission_error_urad": float(delta[k] * 1e6),
-            "normal_load_N": float(loads[k]), "line_contact": bool(line[k]),
-            "a_mm": float(a[k]), "b_mm": float(b[k]), "p_max_MPa": float(p0[k]),
-            "approach_mm": float(approach[k]),
-            "rigid_a_mm": math.sqrt(settings.approach / A[k]) if not line[k] else float("inf"),
-            "rigid_b_mm": math.sqrt(settings.approach / B[k]),
-            "edge_margin_mm": worst, "edge_contact": bool(worst < 0.0),
+            "normal_load_N": float(loads[k]),
+            "contact_model": "line" if line[k] else "ellipse",
+            "contact_length_mm": float(length[k]),
+            "a_mm": float(a), "b_mm": float(b), "p_max_MPa": float(p0),
+            "approach_mm": None if approach is None else float(approach),
+            "rigid_a_mm": float(rigid_a), "rigid_b_mm": math.sqrt(settings.approach / B[k]),
+            "edge_margin_mm": min(own.values()) if own else None,
+            "edge_contact": bool(ends),
+            "edge_contact_at": min(ends, key=ends.get) if ends else None,
             "edge_margins_mm": own})
-    return rows, planes, angle
-
+    return rows, planes, angle, centre

@@ -45,10 +45,10 @@ def edge_margins(flank: Flank, frames: Frame, planes: TangentPlanes, a: np.ndarr
     (u0, u1), (v0, v1) = flank.domain
     u, v = np.nan_to_num(hits.u), np.nan_to_num(hits.v)
     margins = {
-        flank.edges["u0"]: -_arc(flank, "u", u, u0, v),
-        flank.edges["u1"]: _arc(flank, "u", u, u1, v),
-        flank.edges["v0"]: -_arc(flank, "v", v, v0, u),
-        flank.edges["v1"]: _arc(flank, "v", v, v1, u),
+        flank.edges["u0"]: -arc_to_edge(flank, "u", u, u0, v),
+        flank.edges["u1"]: arc_to_edge(flank, "u", u, u1, v),
+        flank.edges["v0"]: -arc_to_edge(flank, "v", v, v0, u),
+        flank.edges["v1"]: arc_to_edge(flank, "v", v, v1, u),
     }
     # a hit far off the tangent plane, or parameters more than a domain's span beyond its
     # edges, is another part of a long (continued) surface, not the flank here
@@ -65,7 +65,7 @@ def edge_margins(flank: Flank, frames: Frame, planes: TangentPlanes, a: np.ndarr
 _NODES, _WEIGHTS = np.polynomial.legendre.leggauss(6)
 
 
-def _arc(flank: Flank, name: str, start: np.ndarray, end: float, other: np.ndarray) -> np.ndarray:
+def arc_to_edge(flank: Flank, name: str, start: np.ndarray, end: float, other: np.ndarray) -> np.ndarray:
     """Signed length (mm) along the flank's `name` ("u" or "v") parameter line from `start`
     to the edge at `end`, the other parameter held at `other`: the integral of the line's
     speed, by 6-point Gauss-Legendre (the speed is smooth; an involute's is linear in its

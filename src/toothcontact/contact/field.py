@@ -102,13 +102,16 @@ class GapField:
     and y (ny,) along e2 (mm, from the contact point); gap (mm, NaN where a surface does not
     exist), `material`: both flanks have material on the line (inside their domains), and
     `beyond`: for each flank edge the field crosses (named as in the results, e.g.
-    "gear_tip"; "beyond_surface" where a surface does not exist), the cells beyond it."""
+    "gear_tip"; "beyond_surface" where a surface does not exist), the cells beyond it;
+    `parameters`: each flank's parameters on the lines ("pinion_u", "pinion_v", "gear_u",
+    "gear_v"; continued smoothly beyond the flanks)."""
 
     x: np.ndarray
     y: np.ndarray
     gap: np.ndarray
     material: np.ndarray
     beyond: dict[str, np.ndarray]
+    parameters: dict[str, np.ndarray]
 
     @property
     def spacing(self) -> tuple[float, float]:
@@ -141,23 +144,25 @@ def gap_fields(pinion: Flank, gear: Flank, pinion_frames: Frame, gear_frames: Fr
                & _continued(_take(hg, k), gear, gear_normals[k], reach, grid))
         if not met.any():
             raise ValueError("no line of the gap field meets both flanks")
-        # the gap, and each flank parameter that may cross its domain's edge in the field
-        quantities, limits = [(hg.s - hp.s)[k].reshape(grid)], []
-        for member, flank, hits in (("pinion", pinion, hp), ("gear", gear, hg)):
-            for name, (low, high) in zip(("u", "v"), flank.domain):
-                value = getattr(hits, name)[k].reshape(grid)
-                if not _clear_of(value[met], low, high):
-                    quantities.append(value)
-                    limits.append((low, high, f"{member}_{flank.edges[name + '0']}",
-                                   f"{member}_{flank.edges[name + '1']}"))
-        carried = to_fine[0] @ smooth_fill(np.stack(quantities), met) @ to_fine[1].T
+        # the gap, and both flanks' parameters (to place their edges in the field)
+        names = [f"{member}_{name}" for member in ("pinion", "gear") for name in ("u", "v")]
+        samples_ = [(hg.s - hp.s)[k]] + [getattr(hits, name)[k] for hits in (hp, hg)
+                                         for name in ("u", "v")]
+        carried = to_fine[0] @ smooth_fill(np.stack([q.reshape(grid) for q in samples_]),
+                                           met) @ to_fine[1].T
         exists = met[np.ix_(ix, iy)]
+        parameters = dict(zip(names, carried[1:]))
         beyond = {"beyond_surface": ~exists}
-        for value, (low, high, below, above) in zip(carried[1:], limits):
-            beyond[below], beyond[above] = value < low, value > high
+        for member, flank in (("pinion", pinion), ("gear", gear)):
+            for name, (low, high) in zip(("u", "v"), flank.domain):
+                value = parameters[f"{member}_{name}"]
+                for edge, cells in ((flank.edges[name + "0"], value < low),
+                                    (flank.edges[name + "1"], value > high)):
+                    if cells.any():
+                        beyond[f"{member}_{edge}"] = cells
         material = exists & ~np.logical_or.reduce(list(beyond.values()))
         out.append(GapField(half[k, 0] * fine[0], half[k, 1] * fine[1],
-                            np.where(exists, carried[0], np.nan), material, beyond))
+                            np.where(exists, carried[0], np.nan), material, beyond, parameters))
     return out
 
 
@@ -176,14 +181,18 @@ def _cardinal_splines(samples: int, points: int) -> np.ndarray:
 #: here but another part of a long surface (a worm thread's next turn, a wheel flank's fold):
 #: far above any contact's gap
 FAR = 0.5
+#: how far (in domain spans of u, v) beyond its domain a hit is still the flank continued:
+#: along the face (v) a flank runs on smoothly (a helicoid, a generated wheel tooth), across
+#: the profile (u) it soon meets a fold or cusp (past a worm wheel's tip, an involute's base)
+REACH_SPANS = (1.0, 3.0)
 
 
 def _continued(hits, flank: Flank, normal: np.ndarray, reach: float,
                shape: tuple[int, int]) -> np.ndarray:
     """The samples of one contact's field (hits of its lines, (n,); `normal` the plane's
     normal in the flank's frame) where the lines meet the flank continued smoothly from the
-    contact at the centre sample: converged within `reach` (mm) of the plane and within a
-    domain's span of the flank's domain, the flank facing the plane as it does at the
+    contact at the centre sample: converged within `reach` (mm) of the plane and near the
+    flank's domain (REACH_SPANS), the flank facing the plane as it does at the
     contact (the parameter map does not fold), and connected to the centre through such
     samples. Past a fold (an involute's cusp on its base circle) or far off, a line meets
     another branch of the surface: no part of the flank."""
@@ -192,8 +201,8 @@ def _continued(hits, flank: Flank, normal: np.ndarray, reach: float,
     with np.errstate(invalid="ignore"):
         facing = np.sign(hits.normal @ normal).reshape(shape)
         near = np.ones(hits.u.shape, bool)
-        for value, (low, high) in zip((hits.u, hits.v), flank.domain):
-            span = high - low
+        for value, (low, high), spans in zip((hits.u, hits.v), flank.domain, REACH_SPANS):
+            span = spans * (high - low)
             near &= (value > low - span) & (value < high + span)
     c = (shape[0] // 2, shape[1] // 2)
     ok = ((hits.converged & near & (np.abs(hits.s) <= reach)).reshape(shape)
@@ -209,41 +218,39 @@ def _take(hits: RayHits, k: int) -> RayHits:
     return RayHits(*(getattr(hits, f.name)[k] for f in fields(RayHits)))
 
 
-def _clear_of(samples: np.ndarray, low: float, high: float) -> bool:
-    """Whether a parameter sampled at the points `samples` (those that count) stays inside
-    [low, high] everywhere in the field: every sample lies farther inside than the samples'
-    spread (a bicubic spline through them, continued smoothly beyond, stays within it)."""
-    spread = float(np.ptp(samples))
-    return bool(np.min(samples) - low > spread and high - np.max(samples) > spread)
+#: finite-difference stencils by order
+_STENCILS = {1: (-1.0, 1.0), 2: (1.0, -2.0, 1.0), 3: (-1.0, 3.0, -3.0, 1.0)}
 
 
 def smooth_fill(values: np.ndarray, known: np.ndarray) -> np.ndarray:
     """`values` (q, n0, n1): q quantities on a grid, kept where `known` (n0, n1) and
     filled elsewhere by the smoothest continuation: the fill minimises the sum of squared
-    second differences (along both axes and across) over the whole grid, a discrete
-    thin-plate (biharmonic) extension. It reproduces linear fields exactly and joins the
-    known values without a kink, so a spline through the filled grid stays close to the
-    known values' own continuation."""
+    third differences (the rotation-invariant form d³/dx³, d³/dy³ and the mixed ones) over
+    the whole grid. It reproduces quadratic fields exactly - a gap A x² + B y² continues as
+    itself - and joins the known values without a kink in slope or curvature, so a spline
+    through the filled grid stays close to the known values' own continuation."""
     if known.all():
         return values
     from scipy.sparse import diags, identity, kron, vstack
     from scipy.sparse.linalg import splu
 
     n0, n1 = known.shape
-    def second(n):
-        return diags([1.0, -2.0, 1.0], [0, 1, 2], shape=(n - 2, n))
 
-    def first(n):
-        return diags([-1.0, 1.0], [0, 1], shape=(n - 1, n))
+    def difference(n, order):
+        return diags(list(_STENCILS[order]), list(range(order + 1)), shape=(n - order, n))
 
-    D = vstack([kron(second(n0), identity(n1)), kron(identity(n0), second(n1)),
-                2 ** 0.5 * kron(first(n0), first(n1))]).tocsc()
+    D = vstack([kron(difference(n0, 3), identity(n1)), kron(identity(n0), difference(n1, 3)),
+                3 ** 0.5 * kron(difference(n0, 2), difference(n1, 1)),
+                3 ** 0.5 * kron(difference(n0, 1), difference(n1, 2))]).tocsc()
     unknown = ~known.ravel()
     Du, Dk = D[:, unknown], D[:, ~unknown]
     flat = values.reshape(len(values), -1)
     rhs = -(Du.T @ (Dk @ flat[:, ~unknown].T))
     filled = flat.copy()
-    filled[:, unknown] = splu((Du.T @ Du).tocsc()).solve(np.asarray(rhs)).T
+    # a whisker of damping keeps the system regular where few known values pin the fill
+    normal = (Du.T @ Du).tocsc()
+    normal = normal + 1e-12 * normal.diagonal().max() * identity(normal.shape[0], format="csc")
+    filled[:, unknown] = splu(normal).solve(np.asarray(rhs)).T
     return filled.reshape(values.shape)
 
 
@@ -251,10 +258,13 @@ def contact_fields(cycle, rows, shape: tuple[int, int], margin=1.3,
                    semi_axes: np.ndarray | None = None) -> list[GapField]:
     """The gap fields of the given rows of a contact cycle, each over the bounding box of an
     ellipse about its contact (A axis along the row's axis angle) enlarged by `margin`
-    (scalar or one per row): the Hertz ellipse, or the semi-axes given ((K, 2), mm)."""
+    (scalar or one per row): the Hertz ellipse (a contact line's reaching to the far end of
+    its part in contact), or the semi-axes given ((K, 2), mm)."""
     rows = np.atleast_1d(np.asarray(rows, int))
-    if semi_axes is None:
-        semi_axes = np.array([[cycle.rows[k]["a_mm"], cycle.rows[k]["b_mm"]] for k in rows])
+    if semi_axes is None:   # a contact line's pattern may lie to one side of its contact
+        reach = np.hypot(*np.asarray(cycle.pattern_centre, float)[rows].T)
+        semi_axes = np.array([[cycle.rows[k]["a_mm"] + r, cycle.rows[k]["b_mm"]]
+                              for k, r in zip(rows, reach)])
     a, b = np.asarray(semi_axes, float).reshape(-1, 2).T
     angle = np.asarray(cycle.axis_angle, float)[rows]
     half = np.broadcast_to(np.asarray(margin, float), rows.shape)[:, None] * np.stack(
@@ -294,7 +304,9 @@ def rigid_patterns(cycle, points: int, margin: float = 1.25, growths: int = 3) -
 
     rows, approach = cycle.rows, cycle.settings.approach
     face = face_length(cycle.pinion, (np.asarray(cycle.contacts.pinion_u), np.asarray(cycle.contacts.pinion_v)))
-    semi_axes = np.array([[min(r["rigid_a_mm"], f), r["rigid_b_mm"]] for r, f in zip(rows, face)])
+    # a contact line's box spans the face both ways: its part in contact may lie to one side
+    semi_axes = np.array([[f if r["contact_model"] == "line" else min(r["rigid_a_mm"], f),
+                           r["rigid_b_mm"]] for r, f in zip(rows, face)])
     margins = np.full(len(rows), float(margin))
     out: list[RigidPattern | None] = [None] * len(rows)
     todo = np.arange(len(rows))

@@ -259,7 +259,7 @@ def _row(mesh, frame, phi, tooth, lag, fit, gap, load, C_E, settings, edges):
            "face_position_mm": float(local[2]), "separation_mm": gap,
            "A_per_mm": fit["A"], "B_per_mm": fit["B"], "fit_rms_mm": fit["rms"],
            "fit_vertices": fit["vertices"], "transmission_error_urad": lag * 1e6,
-           "normal_load_N": load, "line_contact": False, "a_mm": e.a, "b_mm": e.b,
+           "normal_load_N": load, "contact_model": "ellipse", "a_mm": e.a, "b_mm": e.b,
            "p_max_MPa": e.p0, "approach_mm": e.approach,
            "rigid_a_mm": math.sqrt(settings.approach / fit["A"]),
            "rigid_b_mm": math.sqrt(settings.approach / fit["B"]),

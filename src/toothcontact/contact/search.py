@@ -78,8 +78,8 @@ def refine_minima(pinion: Flank, gear: Flank, pinion_frames: Frame, gear_frames:
                   refinements: int = 6) -> ContactPoints:
     """The pinion points of least separation near (start_u, start_v), for a batch of K pairs
     (frames stacked (K,)): a quadratic is fitted to the separation on a 5 × 5 patch
-    (half-sizes `half`) and the patch moves to its minimum (kept inside the flank's domain),
-    shrinking each time. The best point seen (patch points and the final fitted minimum)
+    (half-sizes `half`) and the patch moves to its least point in the flank's domain (on an
+    edge where the separation falls toward it), shrinking each time. The best point seen (patch points and the final fitted minimum)
     is returned for each pair."""
     (u0, u1), (v0, v1) = pinion.domain
     lo, hi = np.array([u0, v0]), np.array([u1, v1])
@@ -87,7 +87,6 @@ def refine_minima(pinion: Flank, gear: Flank, pinion_frames: Frame, gear_frames:
     half = np.array(half, float)
     offsets = np.linspace(-1.0, 1.0, 5)
     du, dv = (x.ravel() for x in np.meshgrid(offsets, offsets, indexing="ij"))
-    design = np.stack([np.ones(25), du, dv, du**2, du * dv, dv**2], axis=-1)   # (25, 6)
     best_uv, best_s = centre.copy(), np.full(len(centre), np.inf)
     rows = np.arange(len(centre))
     for _ in range(refinements):
@@ -99,24 +98,21 @@ def refine_minima(pinion: Flank, gear: Flank, pinion_frames: Frame, gear_frames:
         better = values[rows, k] < best_s
         best_uv[better] = np.stack([pu[rows, k], pv[rows, k]], axis=-1)[better]
         best_s[better] = values[rows, k][better]
-        centre = best_uv.copy()
-        # least squares over each patch's finite points: normal equations, batched
+        # least squares over each patch's finite points (at their places after the clip to
+        # the domain, in half-sizes from the patch centre): normal equations, batched
+        x, y = (pu - centre[:, :1]) / half[0], (pv - centre[:, 1:]) / half[1]
+        design = np.stack([np.ones_like(x), x, y, x * x, x * y, y * y], axis=-1)  # (K, 25, 6)
         weights = ok.astype(float)
-        normal = np.einsum("kn,ni,nj->kij", weights, design, design)
-        rhs = np.einsum("kn,ni,kn->ki", weights, design, np.where(ok, values, 0.0))
-        fitted = ok.sum(axis=-1) >= 6
+        normal = np.einsum("kn,kni,knj->kij", weights, design, design)
+        rhs = np.einsum("kn,kni,kn->ki", weights, design, np.where(ok, values, 0.0))
+        fitted = np.flatnonzero(ok.sum(axis=-1) >= 6)
         c = np.einsum("kij,kj->ki", np.linalg.pinv(normal[fitted]), rhs[fitted])
-        h00, h01, h11 = 2 * c[:, 3], c[:, 4], 2 * c[:, 5]
-        det = h00 * h11 - h01 * h01
-        convex = (h00 > 0) & (det > 0)
-        with np.errstate(all="ignore"):
-            step = np.stack([(-h11 * c[:, 1] + h01 * c[:, 2]) / det,
-                             (h01 * c[:, 1] - h00 * c[:, 2]) / det], axis=-1)
-        step = np.clip(step, -1.5, 1.5)
-        patch_centre = np.stack([pu[fitted, 12], pv[fitted, 12]], axis=-1)
-        moved = np.clip(patch_centre + step * half, lo, hi)
-        index = np.flatnonzero(fitted)[convex]
-        centre[index] = moved[convex]
+        # the fitted quadratic's least point in the domain, within 1.5 half-sizes
+        low = np.maximum((lo - centre[fitted]) / half, -1.5)
+        high = np.minimum((hi - centre[fitted]) / half, 1.5)
+        moved = np.clip(centre[fitted] + _box_minimum(c, low, high) * half, lo, hi)
+        centre = best_uv.copy()
+        centre[fitted] = moved
         half = 0.3 * half
     hit = separation(pinion, gear, pinion_frames, gear_frames, centre[:, :1], centre[:, 1:])
     take_centre = np.isfinite(hit.s[:, 0]) & (hit.s[:, 0] <= best_s)
@@ -127,6 +123,42 @@ def refine_minima(pinion: Flank, gear: Flank, pinion_frames: Frame, gear_frames:
                            for a, b in zip((hit.s, hit.gear_u, hit.gear_v),
                                            (other.s, other.gear_u, other.gear_v))))
     return ContactPoints(centre[:, 0], centre[:, 1], hit.gear_u[:, 0], hit.gear_v[:, 0], hit.s[:, 0])
+
+
+def _box_minimum(c: np.ndarray, low: np.ndarray, high: np.ndarray) -> np.ndarray:
+    """The least point (K, 2) of the quadratics c0 + c1 x + c2 y + c3 x² + c4 xy + c5 y²
+    (c: (K, 6)) in the boxes low <= (x, y) <= high ((K, 2)): the least of the candidates a
+    box-constrained minimum can be - the free minimum (where convex and inside), each side's
+    one-dimensional minimum (clipped to the side) and the corners. A separation that falls
+    toward a flank edge (no crown, or a slope beyond the crown) has its contact on the edge."""
+    def value(x, y):
+        return c[:, 1] * x + c[:, 2] * y + c[:, 3] * x * x + c[:, 4] * x * y + c[:, 5] * y * y
+
+    candidates = []
+    det = 4.0 * c[:, 3] * c[:, 5] - c[:, 4] ** 2
+    with np.errstate(all="ignore"):
+        free = np.stack([(c[:, 4] * c[:, 2] - 2.0 * c[:, 5] * c[:, 1]) / det,
+                         (c[:, 4] * c[:, 1] - 2.0 * c[:, 3] * c[:, 2]) / det], axis=-1)
+        convex = (c[:, 3] > 0) & (det > 0) & np.all((free >= low) & (free <= high), axis=-1)
+        candidates.append(np.where(convex[:, None], free, np.nan))
+        for axis in (0, 1):          # sides x = bound (y free) and y = bound (x free)
+            other = 1 - axis
+            curvature = c[:, 3 + 2 * other]
+            for bound in (low[:, axis], high[:, axis]):
+                linear = c[:, 1 + other] + c[:, 4] * bound
+                t = np.clip(np.where(curvature > 0, -linear / (2.0 * curvature), low[:, other]),
+                            low[:, other], high[:, other])
+                point = np.empty_like(free)
+                point[:, axis], point[:, other] = bound, t
+                candidates.append(point)
+    for x in (low[:, 0], high[:, 0]):
+        for y in (low[:, 1], high[:, 1]):
+            candidates.append(np.stack([x, y], axis=-1))
+    points = np.stack(candidates, axis=1)                                  # (K, n, 2)
+    with np.errstate(invalid="ignore"):
+        scores = np.stack([value(p[:, 0], p[:, 1]) for p in np.moveaxis(points, 1, 0)], axis=-1)
+    scores = np.where(np.isfinite(scores), scores, np.inf)
+    return points[np.arange(len(c)), np.argmin(scores, axis=-1)]
 
 
 def solve_transmission_error(least, delta0: np.ndarray, tolerance: float = 1e-10,
