@@ -106,3 +106,36 @@ def test_designed_crown_has_no_edge_load_and_a_flatter_one_has(slope):
     assert designed["edge_pressure_MPa"] < 0.15 * designed["bem_p_max_MPa"]
     assert flat["edge_loaded"] and flat["edge_pressure_at"] in (f"pinion_{end}", f"gear_{end}")
     assert flat["edge_pressure_MPa"] > 0.5 * flat["bem_p_max_MPa"]
+
+
+def test_a_position_the_solver_cannot_answer_keeps_every_other_result(monkeypatch):
+    """When the half-space solver fails at one mesh position, that position's rows say so
+    (bem_status "failed", the reason, no numbers) and a failed check counts them; every
+    other row keeps its loaded solution and every row its geometry, contact and Hertz keys."""
+    from toothcontact.contact import loaded
+
+    solve = loaded.solve_contact
+    calls = []
+
+    def fail_first_position(gap, dx, dy, load, E_star, mask=None):
+        calls.append(load)
+        if len(calls) == 1:
+            raise RuntimeError("solve_contact: relative gap error 0.97 after 500 iterations")
+        return solve(gap, dx, dy, load, E_star, mask=mask)
+
+    monkeypatch.setattr(loaded, "solve_contact", fail_first_position)
+    result = analyse(parse_case(spur({"radius": "4000 mm"}, 0.0, positions=3, grid=64)))
+    rows = result.sections["positions"]
+    first = rows[0]["roll_deg"]
+    for r in rows:
+        assert math.isfinite(r["p_max_MPa"]) and math.isfinite(r["a_mm"])
+        if r["roll_deg"] == first:
+            assert r["bem_status"] == "failed" and "gap error" in r["bem_reason"]
+            assert r["bem_p_max_MPa"] is None
+        else:
+            assert r["bem_status"] == "solved" and r["bem_p_max_MPa"] > 0
+            assert r["bem_iterations"] >= 1 and r["bem_relative_error"] < 1e-8
+    failed = [c for c in result.checks if c.name == "loaded contact solved at every contact"]
+    assert failed and not failed[0].ok
+    assert result.sections["summary"]["bem_failed_contacts"] == sum(r["roll_deg"] == first
+                                                                    for r in rows)

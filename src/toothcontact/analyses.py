@@ -460,30 +460,43 @@ def _spur_interference(mesh, pair, rows: list[dict], result: Result) -> None:
 
 def _loaded_sections(cycle, C_E: float, grid: int, stiffness: float | None, bending: str,
                      result: Result) -> None:
-    """The loaded contact of every row (contact.loaded): bem_* and edge keys on each row,
-    their worst in the summary, and the edge-load check."""
+    """The loaded contact of every row (contact.loaded): bem_* and edge keys on each row
+    (bem_status "solved", "unloaded" or "failed" with bem_reason: a position the solver
+    cannot answer says so in its own rows and the others keep theirs), their worst in the
+    summary, and the checks that every contact was solved and none is edge-loaded."""
     if not grid:
         return
-    from .contact.loaded import EDGE_LOAD_RATIO, EDGE_STRIP, loaded_cycle
+    from .contact.loaded import EDGE_LOAD_RATIO, EDGE_STRIP, loaded_cycle, unsolved
 
+    rows = cycle.rows
     try:
-        loaded = loaded_cycle(cycle, C_E, (grid, grid), stiffness)
-    except (ValueError, RuntimeError) as exc:
-        raise CaseError(f"analysis.pressure_grid: the loaded contact could not be solved: {exc}") from None
+        loaded, failed = loaded_cycle(cycle, C_E, (grid, grid), stiffness)
+    except (ValueError, RuntimeError) as exc:   # no gap field to solve on: the stage fails
+        loaded, failed = [None] * len(rows), {k: str(exc) for k in range(len(rows))}
     result.loaded = loaded
-    for row, contact in zip(cycle.rows, loaded):
-        row.update(contact.summary() if contact is not None else
-                   {"bem_load_N": 0.0, "bem_p_max_MPa": 0.0, "bem_area_mm2": 0.0,
-                    "edge_pressure_MPa": 0.0, "edge_load_fraction": 0.0, "edge_loaded": False})
+    for k, (row, contact) in enumerate(zip(rows, loaded)):
+        row.update(unsolved("failed", failed[k]) if k in failed else
+                   unsolved("unloaded") if contact is None else contact.summary())
     summary = result.sections["summary"]
-    worst = max(cycle.rows, key=lambda r: r["edge_pressure_MPa"] / max(r["bem_p_max_MPa"], 1e-300))
     summary.update(
         load_sharing="one rigid rotation for all pairs of a position; each pair's approach "
                      f"from its half-space solution; {bending}",
-        bem_max_p_max_MPa=max(r["bem_p_max_MPa"] for r in cycle.rows),
-        max_edge_pressure_MPa=max(r["edge_pressure_MPa"] for r in cycle.rows),
-        max_edge_load_fraction=max(r["edge_load_fraction"] for r in cycle.rows),
-        edge_loaded_contacts=sum(r["edge_loaded"] for r in cycle.rows),
+        bem_failed_contacts=len(failed))
+    result.checks.append(Check(
+        "loaded contact solved at every contact", not failed,
+        f"{len(failed)} of {len(rows)} contacts not solved"
+        + (f", first at roll {rows[min(failed)]['roll_deg']:.2f} deg: {failed[min(failed)]}"
+           if failed else "")))
+    answered = [r for r in rows if r["bem_status"] != "failed"]
+    if not answered:
+        return
+    edged = [r for r in answered if r["edge_loaded"]]
+    worst = max(edged or answered, key=lambda r: r["edge_pressure_MPa"])
+    summary.update(
+        bem_max_p_max_MPa=max(r["bem_p_max_MPa"] for r in answered),
+        max_edge_pressure_MPa=max(r["edge_pressure_MPa"] for r in answered),
+        max_edge_load_fraction=max(r["edge_load_fraction"] for r in answered),
+        edge_loaded_contacts=len(edged),
         edge_pressure_note=f"edge_pressure_MPa is the pressure averaged over a {EDGE_STRIP} mm "
                            "strip at the edge, and bem_p_max_MPa the larger of it and the peak "
                            f"more than {EDGE_STRIP} mm inside the edges: both converge as the "
@@ -492,9 +505,9 @@ def _loaded_sections(cycle, C_E: float, grid: int, stiffness: float | None, bend
                            f"is edge_loaded when its edge pressure exceeds {EDGE_LOAD_RATIO:g} "
                            "of bem_p_max_MPa")
     result.checks.append(Check(
-        "loaded contact: no edge load (half-space solution)", not worst["edge_loaded"],
+        "loaded contact: no edge load (half-space solution)", not edged,
         f"highest edge pressure {worst['edge_pressure_MPa']:.0f} MPa averaged over "
-        f"{EDGE_STRIP} mm ({worst.get('edge_pressure_at', '-')}), "
+        f"{EDGE_STRIP} mm ({worst['edge_pressure_at']}), "
         f"{worst['edge_pressure_MPa'] / max(worst['bem_p_max_MPa'], 1e-300):.2f} of the "
         f"contact's peak {worst['bem_p_max_MPa']:.0f} MPa, at roll {worst['roll_deg']:.2f} deg "
         f"pair {worst['pair']}; {100 * worst['edge_load_fraction']:.2f} % of its load in the "

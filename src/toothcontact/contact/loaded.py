@@ -36,6 +36,25 @@ EDGE_LOAD_RATIO = 0.25
 SHARE_TOLERANCE = 0.005
 
 
+#: the result keys of a loaded contact (LoadedContact.summary); a row without a solution
+#: carries them as None, with bem_status "unloaded" (the other pairs of its position carry
+#: the load) or "failed" and the reason in bem_reason
+RESULT_KEYS = ("bem_status", "bem_load_N", "bem_p_max_MPa", "edge_loaded", "bem_area_mm2",
+               "bem_approach_mm", "bem_grid", "edge_pressure_MPa", "edge_load_fraction",
+               "edge_pressure_at", "edge_strip_mm", "bem_raw_peak_MPa", "bem_iterations",
+               "bem_relative_error", "bem_reason")
+
+
+def unsolved(status: str, reason: str | None = None) -> dict:
+    """The result keys of a row without a loaded solution (see RESULT_KEYS): "unloaded"
+    carries nothing (zero load, pressure and area), "failed" is not known (None)."""
+    row = dict.fromkeys(RESULT_KEYS)
+    if status == "unloaded":
+        row.update(bem_load_N=0.0, bem_p_max_MPa=0.0, bem_area_mm2=0.0, edge_pressure_MPa=0.0,
+                   edge_load_fraction=0.0, edge_loaded=False)
+    return {**row, "bem_status": status, "bem_reason": reason}
+
+
 @dataclass(frozen=True)
 class LoadedContact:
     """One contact's loaded solution: its gap field and the pressure on it."""
@@ -57,7 +76,7 @@ class LoadedContact:
                           default=("none", None))
         edge_pressure = worst.edge_pressure_MPa if worst is not None and worst.load_N > 0 else 0.0
         interior = self.interior_peak()
-        return {"bem_load_N": s.load_N,
+        return {"bem_status": "solved", "bem_load_N": s.load_N,
                 "bem_p_max_MPa": max(interior, edge_pressure),
                 "edge_loaded": bool(edge_pressure > EDGE_LOAD_RATIO * max(interior, edge_pressure)),
                 "bem_area_mm2": s.area_mm2, "bem_approach_mm": s.approach_mm,
@@ -65,7 +84,8 @@ class LoadedContact:
                 "edge_pressure_MPa": edge_pressure,
                 "edge_load_fraction": worst.load_fraction if worst is not None else 0.0,
                 "edge_pressure_at": name, "edge_strip_mm": EDGE_STRIP,
-                "bem_raw_peak_MPa": s.peak_pressure_MPa}
+                "bem_raw_peak_MPa": s.peak_pressure_MPa, "bem_iterations": s.iterations,
+                "bem_relative_error": s.relative_error, "bem_reason": None}
 
     def edge_name(self, edge) -> str:
         """The flank edge an edge load (pressure.EdgeLoad) is at: the one beyond the last
@@ -97,13 +117,17 @@ class LoadedContact:
 
 
 def loaded_cycle(cycle, C_E: float, shape: tuple[int, int] = (128, 128),
-                 pair_stiffness: float | None = None) -> list[LoadedContact | None]:
+                 pair_stiffness: float | None = None
+                 ) -> tuple[list[LoadedContact | None], dict[int, str]]:
     """The loaded solution of every row of a contact.cycle.ContactCycle, loads shared per
-    position (None for a pair the others keep unloaded). `pair_stiffness` (N/mm): a tooth
-    pair's bending stiffness, None to leave bending out (the pairs then share by their
-    contact approaches alone)."""
+    position (None for a pair the others keep unloaded), and the rows whose position could
+    not be solved, with the reason (row index -> text; those rows are None too: the other
+    positions keep their solutions). `pair_stiffness` (N/mm): a tooth pair's bending
+    stiffness, None to leave bending out (the pairs then share by their contact approaches
+    alone)."""
     rows = cycle.rows
     out: list[LoadedContact | None] = [None] * len(rows)
+    failed: dict[int, str] = {}
     positions: dict[float, list[int]] = {}
     for k, row in enumerate(rows):
         positions.setdefault(row["roll_deg"], []).append(k)
@@ -111,10 +135,15 @@ def loaded_cycle(cycle, C_E: float, shape: tuple[int, int] = (128, 128),
     for ks in positions.values():
         pairs = [_Pair(cycle, k, shape, 1.0 / C_E, fields[k]) for k in ks]
         load = sum(rows[k]["normal_load_N"] for k in ks)
-        for k, pair, solution in zip(ks, pairs, _share(pairs, load, pair_stiffness)):
+        try:
+            solutions = _share(pairs, load, pair_stiffness)
+        except (ValueError, RuntimeError) as exc:
+            failed.update({k: str(exc) for k in ks})
+            continue
+        for k, pair, solution in zip(ks, pairs, solutions):
             if solution is not None:
                 out[k] = LoadedContact(pair.field, solution)
-    return out
+    return out, failed
 
 
 class _Pair:
