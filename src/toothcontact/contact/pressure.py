@@ -255,7 +255,7 @@ class ContactSolution:
             strip_width = covered.sum(axis=0) * step                     # mm, per line
             line_load = (covered * ps).sum(axis=0) * step                # MPa·mm per line
             # and as deep along the edge: the mean over lines within width/2 of each other
-            window = np.ones(2 * int(0.5 * width / across) + 1)
+            window = np.ones(2 * min(int(0.5 * width / across), (len(line_load) - 1) // 2) + 1)
             patch_load = np.convolve(line_load, window, mode="same")
             patch_width = np.convolve(strip_width, window, mode="same")
             averaged = np.divide(patch_load, patch_width, out=np.zeros_like(line_load),

@@ -55,8 +55,8 @@ class CylindricalGear:
             problems.append(f"teeth {self.teeth} must be at least 3")
         if not self.normal_module > 0:
             problems.append(f"module {self.normal_module} must be > 0")
-        if not 0 < self.pressure_angle < math.radians(45):
-            problems.append("pressure angle must lie between 0 and 45 deg")
+        if not 0 < self.pressure_angle <= math.radians(45) * (1 + 1e-12):   # 45°: splines
+            problems.append("pressure angle must lie in (0, 45] deg")
         if not 0 <= self.helix_angle < math.radians(60):
             problems.append("helix angle must lie in [0, 60) deg")
         if self.hand not in ("right", "left"):
