@@ -411,25 +411,32 @@ def _spur_contact(case: schema.SpurCase, pair, result: Result) -> None:
 INTERFERENCE_BAND = 0.05
 
 
+#: chordal tolerance (mm) of the meshes the bodies are collided as: a fifth of the band
+INTERFERENCE_MESH = 0.01
+
+
 def _spur_interference(mesh, pair, rows: list[dict], result: Result) -> None:
-    """Tip and root interference of the placed bodies (python-fcl, meshes of sectors of five
-    teeth, 5 µm STL tolerance) at every mesh position."""
+    """Tip and root interference of the placed bodies (python-fcl) at every mesh position:
+    meshes (INTERFERENCE_MESH) of sectors holding the teeth in contact over the cycle and
+    one more on each side (a tooth entering mesh), their BVHs built once and placed at each
+    position."""
     from . import cad
-    from .mesh import interference, placed_model
+    from .mesh import collision_body, interference, place
     from .surfaces.generation import generate_ring_side, generate_side
 
-    models, bands = {}, {}
+    reach = max(abs(r["pair"]) for r in rows) + 1     # the teeth in contact, and one more
+    bodies, bands = {}, {}
     for name, gear, mods in (("pinion", pair.pinion, pair.pinion_modifications),
                              ("gear", pair.gear, pair.gear_modifications)):
-        sector = None if gear.internal else min(5, gear.teeth)
+        sector = None if gear.internal or 2 * reach + 1 >= gear.teeth else 2 * reach + 1
         body = cad.build_gear(gear, mods, teeth=sector)
-        mesh_ = cad.tessellate(body.solid, 0.005)
+        mesh_ = cad.tessellate(body.solid, INTERFERENCE_MESH)
         vertices = mesh_.vertices
         if sector is not None:  # centre the sector on tooth 0
-            turn = -2.0 * 2.0 * math.pi / gear.teeth
+            turn = -reach * 2.0 * math.pi / gear.teeth
             c, sn = math.cos(turn), math.sin(turn)
             vertices = vertices @ np.array([[c, sn, 0.0], [-sn, c, 0.0], [0.0, 0.0, 1.0]])
-        models[name] = (vertices, mesh_.faces)
+        bodies[name] = collision_body(vertices, mesh_.faces)
         form = (generate_ring_side(gear) if gear.internal else generate_side(gear)).form_radius
         bands[name] = tuple(sorted((form, gear.tip_radius)))
     found = []
@@ -437,7 +444,7 @@ def _spur_interference(mesh, pair, rows: list[dict], result: Result) -> None:
         lag = next(r["transmission_error_urad"] for r in rows if r["roll_deg"] == roll) * 1e-6
         phi = math.radians(roll)
         frames = {"pinion": mesh.pinion_frame(phi), "gear": mesh.gear_frame(phi, 0, lag)}
-        hit = interference(*(placed_model(*models[n], frames[n].R, frames[n].origin)
+        hit = interference(*(place(bodies[n], frames[n].R, frames[n].origin)
                              for n in ("pinion", "gear")))
         if not hit.found:
             continue

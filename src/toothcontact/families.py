@@ -96,18 +96,20 @@ def _working_angle(z1: int, z2: int, alpha: float, beta: float, x1: float, x2: f
 
 
 def worm_designs(count: int, seed: int, analysis: dict | None = None) -> list[dict]:
-    """`count` worm sets: every form, 1 to 4 starts, both hands and loaded flanks, hobs
-    identical or up to 15 % oversized, misalignments on most."""
+    """`count` worm sets: every form, 1 to 4 starts (lead angles 3 to 34°), both hands and
+    loaded flanks, hobs identical or up to 15 % oversized, misalignments on most."""
     rng = np.random.default_rng(seed)
     out = []
     for i in range(count):
         form = ["ZA", "ZN", "ZI", "ZK"][i % 4]
         starts = int(rng.integers(1, 5))
         mn = float(rng.choice([0.5, 1.0, 1.5, 2.0, 2.5, 3.0, 4.0, 5.0, 6.0]))
-        gamma = float(rng.uniform(3.0, 25.0))
+        # the diameter quotient q = d1/mx of practice (DIN 3976: about 6 to 17) fixes the lead
+        quotient = float(rng.uniform(6.0, 17.0))
+        gamma = math.degrees(math.atan(starts / quotient))
         z2 = int(rng.integers(20, 81))
         mx = mn / math.cos(math.radians(gamma))
-        d1 = starts * mx / math.tan(math.radians(gamma))
+        d1 = quotient * mx
         oversize = 0.0 if rng.random() < 0.35 else float(rng.uniform(0.02, 0.15))
         torque = 0.02 * (mn * z2) ** 2 * float(rng.uniform(0.3, 1.5))   # N·m, ~wheel size²
         case = {"kind": "worm", "title": f"family worm {i}",

@@ -32,19 +32,28 @@ class Interference:
         return len(self.points) > 0
 
 
-def placed_model(vertices: np.ndarray, faces: np.ndarray, R: np.ndarray, origin: np.ndarray):
-    """An fcl collision object of a triangle mesh placed by world = R·local + origin."""
+def collision_body(vertices: np.ndarray, faces: np.ndarray):
+    """An fcl collision object of a triangle mesh (its BVH built once), to be placed by
+    `place` before each query."""
     import fcl
 
     model = fcl.BVHModel()
     model.beginModel(len(vertices), len(faces))
     model.addSubModel(np.asarray(vertices, float), np.asarray(faces, np.int32))
     model.endModel()
-    return fcl.CollisionObject(model, fcl.Transform(np.asarray(R, float), np.asarray(origin, float)))
+    return fcl.CollisionObject(model, fcl.Transform())
+
+
+def place(body, R: np.ndarray, origin: np.ndarray):
+    """Place a collision body by world = R·local + origin (returns it)."""
+    import fcl
+
+    body.setTransform(fcl.Transform(np.asarray(R, float), np.asarray(origin, float)))
+    return body
 
 
 def interference(a, b, max_points: int = 50) -> Interference:
-    """Overlap of two placed collision objects (see `placed_model`)."""
+    """Overlap of two placed collision bodies (see `collision_body`, `place`)."""
     import fcl
 
     request = fcl.CollisionRequest(num_max_contacts=max_points, enable_contact=True)
@@ -52,14 +61,6 @@ def interference(a, b, max_points: int = 50) -> Interference:
     fcl.collide(a, b, request, result)
     points = np.array([c.pos for c in result.contacts], float).reshape(-1, 3)
     return Interference(points)
-
-
-def clearance(a, b) -> float:
-    """Least distance (mm) between two placed collision objects that do not overlap."""
-    import fcl
-
-    result = fcl.DistanceResult()
-    return float(fcl.distance(a, b, fcl.DistanceRequest(enable_nearest_points=True), result))
 
 
 class TriangleSurface:
