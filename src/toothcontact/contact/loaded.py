@@ -8,8 +8,10 @@ rigid rotation of the gear: each closes by the same approach D, taken up by its 
 approach (the solver's delta_k(W_k), measured from its own gap, which includes its
 separation at first touch) and, for gears, its teeth's bending W_k/K (K = c'·b of the pair,
 analytic.stiffness); the loads sum to the normal load. The split is found by modelling each
-pair as delta_k(W) = s_k + c_k·W^(2/3) (Hertz's law), c_k calibrated from its last solve,
-solving the model for D, solving each pair again, until the loads settle.
+pair as delta_k(W) = s_k + c_k·W^n_k (n_k = 2/3, Hertz's law, at first; then fitted through
+the pair's last two solves, since a line contact's approach grows nearly linearly), c_k
+calibrated from its last solve, solving the model for D, solving each pair again, until
+the loads settle.
 
 The pressure at a sharp face end is singular: the raw peak grows as the grid is refined. The
 edge is therefore reported as the pressure averaged over a strip `EDGE_STRIP` wide at the
@@ -19,6 +21,7 @@ Units: mm, N, MPa.
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass
 
 import numpy as np
@@ -174,30 +177,42 @@ class _Pair:
 
 
 def _share(pairs: list[_Pair], load: float, stiffness: float | None) -> list[ContactSolution | None]:
-    """Solutions of the pairs of one position under their shares of `load` (see module)."""
+    """Solutions of the pairs of one position under their shares of `load` (see module):
+    each pair's approach modelled as s_k + c_k·W^n_k, n_k = 2/3 (Hertz's point contact) at
+    first and then fitted through its last two solutions (a line contact's approach grows
+    nearly linearly), the model solved for the split, each pair solved again, until the
+    loads settle."""
     if len(pairs) == 1:
         return [pairs[0].solve(load)]
     s = np.array([p.separation for p in pairs])
     compliance = 0.0 if stiffness is None else 1.0 / stiffness
     loads = np.full(len(pairs), load / len(pairs))       # start: the equal split
     solutions = [p.solve(w) for p, w in zip(pairs, loads)]
-    for _ in range(12):
-        c = np.array([(sol.approach_mm - p.separation) / w ** (2.0 / 3.0)
-                      for sol, p, w in zip(solutions, pairs, loads)])
-        new = _split(c, s, compliance, load)
+    exponent = np.full(len(pairs), 2.0 / 3.0)
+    carried = np.ones(len(pairs), bool)
+    for _ in range(20):
+        rise = np.array([max(sol.approach_mm - p.separation, 1e-12)
+                         for sol, p in zip(solutions, pairs)])
+        c = rise / loads ** exponent
+        new = _split(c, exponent, s, compliance, load)
         settled = np.max(np.abs(new - loads)) <= SHARE_TOLERANCE * load
         # a pair the split leaves (nearly) unloaded keeps its last calibration
         carried = new > 1e-6 * load
-        solutions = [p.solve(w) if on else sol
-                     for p, w, on, sol in zip(pairs, new, carried, solutions)]
-        loads = np.where(carried, new, loads)
+        again = [p.solve(w) if on else sol
+                 for p, w, on, sol in zip(pairs, new, carried, solutions)]
+        for k in np.flatnonzero(carried & (np.abs(np.log(new / loads)) > 0.01)):
+            fitted = (math.log(max(again[k].approach_mm - s[k], 1e-12) / rise[k])
+                      / math.log(new[k] / loads[k]))
+            exponent[k] = min(max(fitted, 0.5), 1.0)
+        solutions, loads = again, np.where(carried, new, loads)
         if settled:
-            return [sol if on else None for sol, on in zip(solutions, carried)]
-    return solutions
+            break
+    return [sol if on else None for sol, on in zip(solutions, carried)]
 
 
-def _split(c: np.ndarray, s: np.ndarray, compliance: float, load: float) -> np.ndarray:
-    """Loads W_k >= 0 with s_k + c_k W_k^(2/3) + compliance·W_k = D for the loaded pairs
+def _split(c: np.ndarray, n: np.ndarray, s: np.ndarray, compliance: float,
+           load: float) -> np.ndarray:
+    """Loads W_k >= 0 with s_k + c_k W_k^n_k + compliance·W_k = D for the loaded pairs
     and sum W_k = load: bisection on D."""
 
     def load_at(D):
@@ -208,14 +223,14 @@ def _split(c: np.ndarray, s: np.ndarray, compliance: float, load: float) -> np.n
             lo, hi = 0.0, load
             for _ in range(60):   # the pair's load at approach D (monotone in W)
                 mid = 0.5 * (lo + hi)
-                if s[k] + c[k] * mid ** (2.0 / 3.0) + compliance * mid < D:
+                if s[k] + c[k] * mid ** n[k] + compliance * mid < D:
                     lo = mid
                 else:
                     hi = mid
             w[k] = 0.5 * (lo + hi)
         return w
 
-    lo, hi = float(np.min(s)), float(np.max(s + c * load ** (2.0 / 3.0) + compliance * load))
+    lo, hi = float(np.min(s)), float(np.max(s + c * load ** n + compliance * load))
     for _ in range(60):
         mid = 0.5 * (lo + hi)
         if load_at(mid).sum() < load:

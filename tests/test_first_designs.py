@@ -1,0 +1,66 @@
+"""Ordinary designs a new user tried first, which the first release failed on (issue 11),
+each run at the tool's default settings and checked for the physics it must show."""
+
+import json
+import math
+
+import pytest
+
+from toothcontact import families
+from toothcontact.analyses import analyse
+from toothcontact.case import parse_case
+from toothcontact.report import result_document
+from toothcontact.runner import bundled_cases_dir
+
+
+def run(raw: dict) -> dict:
+    case = parse_case(raw)
+    document = result_document("first", case, raw, analyse(case))
+    json.dumps(document, allow_nan=False)
+    assert families.check({"title": "first", **raw}, document) == []
+    return document
+
+
+def solved_everywhere(document: dict) -> bool:
+    return all(r["bem_status"] in ("solved", "unloaded") for r in document["positions"])
+
+
+def test_uncrowned_pair_under_slope_is_edge_contact_at_the_end_it_closes():
+    """z = 20/60, m = 3 mm, b = 30 mm, no crown, slope 0.0005, 8000 N: every contact is a
+    line cut by end B, touching over delta/theta = 12.6 mm, and the loaded contact finds
+    the edge load there."""
+    doc = run({"kind": "spur", "teeth": [20, 60], "module": "3 mm", "pressure_angle": "20 deg",
+               "face_width": "30 mm", "misalignment": {"slope": "0.0005"},
+               "load": {"tangential_load": "8000 N"}})
+    rows = doc["positions"]
+    touching = [r for r in rows if r["separation_mm"] < 1e-4]
+    assert touching and all(r["contact_model"] == "line" for r in rows)
+    for r in touching:
+        assert r["edge_contact"] and r["edge_contact_at"].endswith("end_B")
+        assert r["contact_length_mm"] == pytest.approx(0.00632 / 0.0005, rel=0.01)
+        assert r["a_mm"] < 15.0
+    assert solved_everywhere(doc)
+    assert any(r["edge_loaded"] and r["edge_pressure_at"].endswith("end_B") for r in rows)
+
+
+def test_ordinary_helical_pair_is_solved_at_every_contact():
+    """z = 27/71, mn 2.5 mm, 20°, beta 15°, b 40 mm, 12 µm crown, slope 0.0004, 300 N·m."""
+    doc = run({"kind": "spur", "teeth": [27, 71], "module": "2.5 mm",
+               "pressure_angle": "20 deg", "helix_angle": "15 deg", "face_width": "40 mm",
+               "pinion": {"crown": {"height": "12 um"}}, "misalignment": {"slope": "0.0004"},
+               "load": {"torque": "300 N*m"}})
+    assert solved_everywhere(doc)
+    assert doc["summary"]["bem_failed_contacts"] == 0
+
+
+def test_seed_000_worm_set_loaded():
+    """The SABA worm set with 20 N·m on the wheel: a line contact (hob identical to the
+    worm) solved at every contact, without transmission error."""
+    import tomllib
+
+    raw = tomllib.loads((bundled_cases_dir() / "worm_saba_set.toml").read_text())
+    raw["load"] = {"output_torque": "20 N*m"}
+    doc = run(raw)
+    assert all(r["contact_model"] == "line" for r in doc["positions"])
+    assert solved_everywhere(doc)
+    assert doc["summary"]["transmission_error_peak_to_peak_urad"] < 1.0
