@@ -5,28 +5,18 @@ import math
 
 import numpy as np
 import pytest
+from pairs import spur_cycle
 
-from toothcontact import gearset
-from toothcontact.analytic.hertz import compliance
-from toothcontact.assembly import Misalignment, ParallelMesh
-from toothcontact.case import parse_case
-from toothcontact.contact.cycle import CycleSettings, parallel_cycle
 from toothcontact.contact.field import contact_field
 from toothcontact.contact.local import heights, planes_at
 
-STEEL = compliance(206000.0, 0.3, 206000.0, 0.3)
 CROWN_RADIUS, FACE = 4000.0, 30.0
 CASE = {"kind": "spur", "teeth": [20, 60], "module": "3 mm", "pressure_angle": "20 deg",
         "face_width": f"{FACE} mm", "pinion": {"crown": {"radius": f"{CROWN_RADIUS} mm"}}}
 
 
 def cycle(slope=0.0, positions=3):
-    pair = gearset.gear_pair(parse_case(CASE))
-    mesh = ParallelMesh(pair, Misalignment(slope=slope))
-    pinion = gearset.working_flank(pair.pinion, pair.pinion_modifications, 1)
-    gear = gearset.working_flank(pair.gear, pair.gear_modifications, mesh.gear_side)
-    load = 8000.0 / math.cos(pair.working_pressure_angle)
-    return parallel_cycle(mesh, pinion, gear, load, STEEL, CycleSettings(positions=positions))
+    return spur_cycle(CASE, slope, positions)[1]
 
 
 @pytest.fixture(scope="module")

@@ -10,26 +10,18 @@ in contact gives the pressure (Johnson eq 4.45 with the profile radii of the con
 import math
 
 import pytest
+from pairs import STEEL, spur_cycle
 
-from toothcontact import gearset
-from toothcontact.analytic.hertz import compliance, hertz_line
-from toothcontact.assembly import Misalignment, ParallelMesh
-from toothcontact.case import parse_case
-from toothcontact.contact.cycle import CycleSettings, parallel_cycle
+from toothcontact.analytic.hertz import hertz_line
+from toothcontact.contact.cycle import CycleSettings
 
-STEEL = compliance(206000.0, 0.3, 206000.0, 0.3)
 SPUR = {"kind": "spur", "teeth": [20, 60], "module": "3 mm", "pressure_angle": "20 deg",
         "face_width": "30 mm"}
 DELTA = CycleSettings().approach
 
 
 def cycle(case=SPUR, slope=0.0, positions=3):
-    pair = gearset.gear_pair(parse_case(case))
-    mesh = ParallelMesh(pair, Misalignment(slope=slope))
-    pinion = gearset.working_flank(pair.pinion, pair.pinion_modifications, 1)
-    gear = gearset.working_flank(pair.gear, pair.gear_modifications, mesh.gear_side)
-    load = 8000.0 / math.cos(pair.working_pressure_angle)
-    return pair, parallel_cycle(mesh, pinion, gear, load, STEEL, CycleSettings(positions=positions))
+    return spur_cycle(case, slope, positions)
 
 
 @pytest.mark.parametrize("slope, end", [(0.0005, "B"), (-0.0008, "A")])

@@ -5,26 +5,20 @@ from pathlib import Path
 
 import numpy as np
 import pytest
+from pairs import STEEL, spur_cycle
 
 from toothcontact import gearset
-from toothcontact.analytic.hertz import compliance, roark_point
-from toothcontact.assembly import Misalignment, ParallelMesh
+from toothcontact.analytic.hertz import roark_point
 from toothcontact.case import parse_case
-from toothcontact.contact.cycle import CycleSettings, parallel_cycle
+from toothcontact.contact.cycle import CycleSettings
 
-STEEL = compliance(206000.0, 0.3, 206000.0, 0.3)
 CASE = {"kind": "spur", "teeth": [20, 60], "module": "3 mm", "pressure_angle": "20 deg",
         "face_width": "30 mm", "pinion": {"crown": {"radius": "4000 mm"}}}
 
 
 def run(case=CASE, slope=0.0, positions=3):
-    pair = gearset.gear_pair(parse_case(case))
-    mesh = ParallelMesh(pair, Misalignment(slope=slope))
-
-    pinion = gearset.working_flank(pair.pinion, pair.pinion_modifications, 1)
-    gear = gearset.working_flank(pair.gear, pair.gear_modifications, mesh.gear_side)
-    load = 8000.0 / math.cos(pair.working_pressure_angle)
-    return pair, parallel_cycle(mesh, pinion, gear, load, STEEL, CycleSettings(positions=positions)).rows
+    pair, cycle = spur_cycle(case, slope, positions)
+    return pair, cycle.rows
 
 
 @pytest.fixture(scope="module")

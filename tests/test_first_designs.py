@@ -2,7 +2,6 @@
 each run at the tool's default settings and checked for the physics it must show."""
 
 import json
-import math
 
 import pytest
 
