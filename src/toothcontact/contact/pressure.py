@@ -461,8 +461,9 @@ def _ccg(h, m, p, u, op, compliance, load, cell, tol, max_iter, single):
     Polonsky & Keer's p = -tau·gap is a pressure only for the unpreconditioned step (with
     the preconditioner tau is a pure number, and -tau·gap a length), and their step is 0/0
     when S holds one cell (e = 0 on S), where ours is a steepest-descent step over S ∪ J.
-    Returns p, u, steps taken, converged. Raises RuntimeError when the step breaks down
-    (t·K·t not a number > 0: no descent left while the error is above tol)."""
+    Returns p and the steps taken (max_iter unless the error fell below tol). Raises
+    RuntimeError when the step breaks down (t·K·t not a number > 0: no descent left while the
+    error is above tol)."""
     shape, n = h.shape, h.size
     hf, mf = h.ravel(), m.ravel()
     pf, uf = p.ravel().copy(), np.ascontiguousarray(u).ravel().copy()
@@ -481,7 +482,7 @@ def _ccg(h, m, p, u, op, compliance, load, cell, tol, max_iter, single):
         approach, e, join, error = _state(g, idx, mf)
         error /= float(uf[mf].max())
         if error < tol:
-            return pf.reshape(shape), uf.reshape(shape), step, True
+            return pf.reshape(shape), step
         if step == max_iter:
             break
         work = idx
@@ -515,7 +516,7 @@ def _ccg(h, m, p, u, op, compliance, load, cell, tol, max_iter, single):
         factor = load / (cell * float(pf[idx].sum()))
         pf[idx] *= factor
         uf *= factor
-    return pf.reshape(shape), uf.reshape(shape), step, False
+    return pf.reshape(shape), step
 
 
 def solve_contact(gap_mm, dx_mm: float, dy_mm: float, load_N: float, E_star_MPa: float,
@@ -538,7 +539,8 @@ def solve_contact(gap_mm, dx_mm: float, dy_mm: float, load_N: float, E_star_MPa:
     Raises ValueError for a load, E*, dx or dy that is not a finite number > 0, a mask of
     another shape or without material, a gap that is not finite on material, or a contact
     that reaches the grid's edge on material (the gap does not close within the grid under
-    this load); RuntimeError if tol is not met in max_iter steps."""
+    this load); RuntimeError if tol is not met in max_iter steps, or at once if a step breaks
+    down (both with the error reached)."""
     h, dx, dy, W, E_star, m = _check_inputs(gap_mm, dx_mm, dy_mm, load_N, E_star_MPa, mask)
     tol = _positive("tol", tol, "(relative gap error)")
     if not (isinstance(max_iter, (int, np.integer)) and max_iter >= 1):
@@ -566,8 +568,7 @@ def solve_contact(gap_mm, dx_mm: float, dy_mm: float, load_N: float, E_star_MPa:
         if iterations >= max_iter:
             raise RuntimeError(f"solve_contact: relative gap error {error:.3g} after "
                                f"{iterations} iterations, above tol = {tol:g}")
-        p, _, steps, _ = _ccg(h, m, p, u, op, compliance, W, cell, tol, max_iter - iterations,
-                              single)
+        p, steps = _ccg(h, m, p, u, op, compliance, W, cell, tol, max_iter - iterations, single)
         iterations += steps
 
     S = p > 0.0
