@@ -30,7 +30,8 @@ Method:
   the DC-FFT circulant (an FFT approximate inverse of the Toeplitz influence matrix, as in
   Zhao, Vollebregt & Oosterlee, Numer. Linear Algebra Appl. 21 (2014) 256-274; its use
   inside the constrained iteration is ours), and started from the Hertz ellipse fitted to
-  the gap (:func:`hertz_start`).
+  the gap (:func:`hertz_start`), or from the rigid interference where that ellipse lies
+  mostly off the material (:func:`interference_start`).
 
 Units: mm, N, MPa.
 """
@@ -51,6 +52,7 @@ __all__ = [
     "EdgeLoad",
     "InfluenceOperator",
     "hertz_start",
+    "interference_start",
     "influence_operator",
     "rectangle_displacement",
     "solve_contact",
@@ -341,8 +343,10 @@ def hertz_start(h, dx: float, dy: float, mask, load: float, E_star: float):
     and analytic.hertz.hertz_point gives a, b and p0 for the load (Johnson eqs 4.36-4.39);
     the fit is repeated over the rigid interference at Hertz's approach. The start is
     p0·sqrt(1 - ξ²/a² - η²/b²) about the fitted minimum in the ellipse's axes, on material
-    cells. None when the fit is no bowl (or its cells lie on a line) or the ellipse covers
-    no material cell."""
+    cells. None when the fit is no bowl (or its cells lie on a line), or when the material
+    cells under the ellipse carry less than half of its load: the fitted bowl then lies
+    mostly beyond the material or the grid (a contact cut by an edge, a gap with no bowl
+    near its minimum), and so does not resemble the contact (see :func:`interference_start`)."""
     i0, j0 = np.unravel_index(np.argmin(np.where(mask, h, np.inf)), h.shape)
     x = ((np.arange(h.shape[0]) - i0) * dx)[:, None]
     y = ((np.arange(h.shape[1]) - j0) * dy)[None, :]
@@ -375,7 +379,32 @@ def hertz_start(h, dx: float, dy: float, mask, load: float, E_star: float):
     eta = (y - centre[1]) * ex - (x - centre[0]) * ey
     inside = 1.0 - (xi / contact.a) ** 2 - (eta / contact.b) ** 2
     p = contact.p0 * np.sqrt(np.clip(inside, 0.0, None)) * mask
-    return p if p.sum() > 0 else None
+    return p if p.sum() * dx * dy >= 0.5 * load else None
+
+
+def interference_start(h, dx: float, dy: float, mask, load: float, E_star: float):
+    """Initial pressure (MPa) on the grid from the rigid interference, for any gap (a cut
+    ellipse, a line contact, several patches): p = sqrt(L - (h - h_min)) on the material
+    cells with h - h_min < L (the caller scales it to the load).
+
+    The level L follows from the Hertz sphere (Johnson 1985, eqs 4.22-4.23: a² = R·delta,
+    W = 4 E* a³ / (3R)): the contact's edge lies where the gap is delta/2, so with L = delta/2
+    and the contact area A(L) = pi·a², W = (8/3)·E*·L·sqrt(A(L)/pi), and p0·sqrt(1 - r²/a²)
+    is p0·sqrt(1 - (h - h_min)/L). Here A(L) is the area of the material cells with
+    h - h_min <= L, and L solves W = (8/3)·E*·L·sqrt(A(L)/pi) (increasing in L; linear
+    between the sorted gap values). None when even the whole material falls short of the
+    load by this estimate (a gap flat on all of it, as under a flat punch)."""
+    levels = np.sort(h[mask])
+    lowest = levels[0]
+    levels -= lowest
+    carried = (8.0 / 3.0) * E_star * levels * np.sqrt(
+        np.arange(1, levels.size + 1) * (dx * dy / math.pi))
+    k = int(np.searchsorted(carried, load))           # carried[k - 1] < load <= carried[k]
+    if k == levels.size:
+        return None
+    level = levels[k - 1] + (levels[k] - levels[k - 1]) * (
+        (load - carried[k - 1]) / (carried[k] - carried[k - 1]))
+    return np.sqrt(np.clip(level - (h - lowest), 0.0, None)) * mask
 
 
 # --------------------------------------------------------------------------------------------
@@ -383,15 +412,9 @@ def hertz_start(h, dx: float, dy: float, mask, load: float, E_star: float):
 
 
 def _error(h, u, p, m):
-    """(relative gap error, approach, separation) of the state p, u: the gap residual's rms in
-    contact and the largest penetration outside it, over the largest displacement."""
-    S = p > 0.0
-    g = h + u
-    approach = float(g[S].mean())
-    separation = np.where(m, g - approach, 0.0)
-    rms = math.sqrt(float(np.mean(separation[S] ** 2)))
-    pen = max(0.0, -float(separation[m & ~S].min(initial=0.0)))
-    return max(rms, pen) / float(u[m].max()), approach, separation
+    """(relative gap error, approach, separation) of the state p, u (see :func:`_state`)."""
+    approach, _, _, error = _state((h + u).ravel(), np.flatnonzero(p.ravel() > 0.0), m.ravel())
+    return error / float(u[m].max()), approach, np.where(m, h + u - approach, 0.0)
 
 
 def _dot(a: np.ndarray, b: np.ndarray) -> float:
@@ -400,24 +423,51 @@ def _dot(a: np.ndarray, b: np.ndarray) -> float:
     return float(np.multiply(a, b).sum())
 
 
+def _state(g, contact, material):
+    """The flattened state's (approach, residual on contact, penetrating cells, gap error
+    (mm)), from the loaded gap g = h + u, the indices `contact` of the cells with p > 0 and
+    the material mask.
+
+    The approach is the mean of g over the contact (the rigid-body approach that the load
+    fixes); the residual is g - approach there; a material cell outside the contact
+    penetrates where g < approach. The gap error is max(rms of the residual, largest
+    penetration); over the largest displacement of the material it is the relative gap error
+    of ContactSolution."""
+    approach = float(g[contact].mean())
+    residual = g[contact] - approach
+    outside = material.copy()
+    outside[contact] = False
+    join = np.flatnonzero(outside & (g < approach))
+    penetration = approach - float(g[join].min()) if join.size else 0.0
+    return approach, residual, join, max(math.sqrt(_dot(residual, residual) / contact.size),
+                                         penetration)
+
+
 def _ccg(h, m, p, u, op, compliance, load, cell, tol, max_iter, single):
     """Preconditioned constrained conjugate gradients (Polonsky & Keer 1999) from p, u.
 
-    Works on the flattened grid and the index set S of cells in contact. Per step: gap
-    residual g - mean_S(g) (the mean is the approach), preconditioned residual
-    z = P·M·(g - mean) with M the circulant inverse and P the removal of the mean on S,
-    direction t = z + (G/G_old)·t (G = g·z; reset to z when cells joined the contact),
-    r = K t, step tau = g·t / (r - mean r)·t, p -= tau·t, negative pressures cut to 0,
-    penetrating cells outside S joined with -tau·g, and p scaled to carry the load
-    (Polonsky & Keer's sequence, with z for g). u follows p: u -= tau·r, plus one
-    convolution of the cut and joined pressures when there are any. Returns p, u, steps
-    taken, converged."""
+    Works on the flattened grid with S, the cells in contact (p > 0), and J, the material
+    cells outside S that penetrate (loaded gap below the approach; see :func:`_state`).
+    Per step, on the working set S ∪ J: residual e = g - approach (zero mean on S, negative
+    on J), preconditioned residual z = P·M·e with M the circulant inverse and P the removal
+    of the mean on S ∪ J (a direction that keeps the load), direction t = z + (G/G_old)·t
+    (G = e·z), or t = z when cells join (Polonsky & Keer's δ = 0), r = K t, exact line
+    search tau = e·t / r·t, p -= tau·t, negative pressures cut to 0 (those cells leave S and
+    t; t, re-centred, keeps the load), and p scaled to carry the load (Polonsky & Keer's
+    sequence). u follows p: u -= tau·r, plus one convolution of the cut pressures when
+    there are any.
+
+    The penetrating cells join inside the preconditioned step itself (p = -tau·t there):
+    Polonsky & Keer's p = -tau·gap is a pressure only for the unpreconditioned step (with
+    the preconditioner tau is a pure number, and -tau·gap a length), and their step is 0/0
+    when S holds one cell (e = 0 on S), where ours is a steepest-descent step over S ∪ J.
+    Returns p and the steps taken (max_iter unless the error fell below tol). Raises
+    RuntimeError when the step breaks down (t·K·t not a number > 0: no descent left while the
+    error is above tol)."""
     shape, n = h.shape, h.size
     hf, mf = h.ravel(), m.ravel()
     pf, uf = p.ravel().copy(), np.ascontiguousarray(u).ravel().copy()
     idx = np.flatnonzero(pf > 0.0)
-    free = mf.copy()
-    free[idx] = False
     buffer = np.zeros(n)
     t = np.zeros(idx.size)
     G_old, conjugate = 1.0, False
@@ -429,58 +479,44 @@ def _ccg(h, m, p, u, op, compliance, load, cell, tol, max_iter, single):
 
     for step in range(max_iter + 1):
         g = hf + uf
-        gS = g[idx]
-        approach = float(gS.mean())
-        gS -= approach
-        join = np.flatnonzero(free & (g < approach))
-        penetration = approach - float(g[join].min()) if join.size else 0.0
-        error = max(math.sqrt(_dot(gS, gS) / idx.size), penetration) / float(uf.max())
+        approach, e, join, error = _state(g, idx, mf)
+        error /= float(uf[mf].max())
         if error < tol:
-            return pf.reshape(shape), uf.reshape(shape), step, True
+            return pf.reshape(shape), step
         if step == max_iter:
             break
-        z = op.approximate_inverse(on_grid(gS, idx), single).ravel()[idx]
-        z = z - z.mean()
-        G = _dot(gS, z)
-        t = z + (G / G_old) * t if conjugate and G_old > 0 else z
+        work = idx
+        if join.size:
+            work = np.concatenate([idx, join])
+            e = np.concatenate([e, g[join] - approach])
+            conjugate = False
+        z = op.approximate_inverse(on_grid(e, work), single).ravel()[work]
+        z -= z.mean()
+        G = _dot(e, z)
+        t = z + (G / G_old) * t if conjugate else z
         G_old = G
-        r = op(on_grid(t, idx), single).ravel() * compliance
-        rS = r[idx]
-        denom = _dot(rS - rS.mean(), t)
-        if not denom > 0:
-            break
-        tau = _dot(gS, t) / denom
-        pS = pf[idx] - tau * t
+        r = op(on_grid(t, work), single).ravel() * compliance
+        denom = _dot(r[work], t)
+        if not (math.isfinite(denom) and denom > 0):
+            raise RuntimeError(
+                f"solve_contact: the conjugate-gradient step broke down (t·K·t = {denom:.3g}) "
+                f"at iteration {step} with relative gap error {error:.3g} on "
+                f"{idx.size} contact cells")
+        tau = _dot(e, t) / denom
+        pw = pf[work] - tau * t
         uf -= tau * r
-        cut = pS < 0.0
-        if cut.any() or join.size:
-            corr = np.zeros(n)
-            corr[idx[cut]] = -pS[cut]
-            pS[cut] = 0.0
-            pf[idx] = pS
-            pf[join] = -tau * (g[join] - approach)
-            corr[join] = pf[join]
-            uf += op(corr.reshape(shape), single).ravel() * compliance
-            if join.size or cut.all():
-                idx = np.flatnonzero(pf > 0.0)
-                conjugate = False
-                if not idx.size:                 # everything cut: restart at the lowest gap
-                    idx = np.array([np.argmin(np.where(mf, hf + uf, np.inf))])
-                    pf[idx] = 1.0
-                    uf = op(pf.reshape(shape)).ravel() * compliance
-            else:
-                keep = ~cut
-                idx, t = idx[keep], t[keep]
-                conjugate = True
-            free = mf.copy()
-            free[idx] = False
-        else:
-            pf[idx] = pS
-            conjugate = True
-        scale = load / (cell * float(pf[idx].sum()))
-        pf[idx] *= scale
-        uf *= scale
-    return pf.reshape(shape), uf.reshape(shape), step, False
+        cut = pw < 0.0
+        pf[work] = np.where(cut, 0.0, pw)
+        if cut.any():
+            uf += op(on_grid(-pw[cut], work[cut]), single).ravel() * compliance
+            work, t = work[~cut], t[~cut]
+            t -= t.mean()
+        idx = work
+        conjugate = True
+        factor = load / (cell * float(pf[idx].sum()))
+        pf[idx] *= factor
+        uf *= factor
+    return pf.reshape(shape), step
 
 
 def solve_contact(gap_mm, dx_mm: float, dy_mm: float, load_N: float, E_star_MPa: float,
@@ -493,8 +529,9 @@ def solve_contact(gap_mm, dx_mm: float, dy_mm: float, load_N: float, E_star_MPa:
     mask: bool array of the gap's shape, False = no material (no pressure, gap not used;
         the gap may be NaN there). Default: material everywhere.
     tol: converged when the relative gap error (see ContactSolution) is below it.
-    warm_start: start from the Hertz ellipse fitted to the gap (:func:`hertz_start`), else
-        from uniform pressure on the material.
+    warm_start: start from the Hertz ellipse fitted to the gap (:func:`hertz_start`), or
+        where that ellipse lies mostly off the material, from the rigid interference
+        (:func:`interference_start`); False: from uniform pressure on the material.
     dtype: np.float64, or np.float32 for the transforms inside the iteration (faster); the
         start and the final check are float64 either way, and the iteration is continued
         from a fresh float64 displacement until the check meets tol.
@@ -502,7 +539,8 @@ def solve_contact(gap_mm, dx_mm: float, dy_mm: float, load_N: float, E_star_MPa:
     Raises ValueError for a load, E*, dx or dy that is not a finite number > 0, a mask of
     another shape or without material, a gap that is not finite on material, or a contact
     that reaches the grid's edge on material (the gap does not close within the grid under
-    this load); RuntimeError if tol is not met in max_iter steps."""
+    this load); RuntimeError if tol is not met in max_iter steps, or at once if a step breaks
+    down (both with the error reached)."""
     h, dx, dy, W, E_star, m = _check_inputs(gap_mm, dx_mm, dy_mm, load_N, E_star_MPa, mask)
     tol = _positive("tol", tol, "(relative gap error)")
     if not (isinstance(max_iter, (int, np.integer)) and max_iter >= 1):
@@ -513,7 +551,11 @@ def solve_contact(gap_mm, dx_mm: float, dy_mm: float, load_N: float, E_star_MPa:
     op = influence_operator(tuple(int(k) for k in h.shape), dx, dy)
     compliance, cell = 1.0 / E_star, dx * dy
 
-    p = hertz_start(h, dx, dy, m, W, E_star) if warm_start else None
+    p = None
+    if warm_start:
+        p = hertz_start(h, dx, dy, m, W, E_star)
+        if p is None:
+            p = interference_start(h, dx, dy, m, W, E_star)
     if p is None:
         p = m.astype(float)
     p *= W / (cell * p.sum())
@@ -526,9 +568,8 @@ def solve_contact(gap_mm, dx_mm: float, dy_mm: float, load_N: float, E_star_MPa:
         if iterations >= max_iter:
             raise RuntimeError(f"solve_contact: relative gap error {error:.3g} after "
                                f"{iterations} iterations, above tol = {tol:g}")
-        p, _, steps, _ = _ccg(h, m, p, u, op, compliance, W, cell, tol, max_iter - iterations,
-                              single)
-        iterations += max(steps, 1)
+        p, steps = _ccg(h, m, p, u, op, compliance, W, cell, tol, max_iter - iterations, single)
+        iterations += steps
 
     S = p > 0.0
     border = np.zeros_like(S)
