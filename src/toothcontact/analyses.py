@@ -477,7 +477,7 @@ def _loaded_sections(cycle, C_E: float, grid: int, stiffness: float | None, bend
 
     rows = cycle.rows
     try:
-        loaded, failed = loaded_cycle(cycle, C_E, (grid, grid), stiffness)
+        loaded, failed = loaded_cycle(cycle, C_E, grid, stiffness)
     except (ValueError, RuntimeError) as exc:   # no gap field to solve on: the stage fails
         loaded, failed = [None] * len(rows), {k: str(exc) for k in range(len(rows))}
     result.loaded = loaded

@@ -241,8 +241,9 @@ class AnalysisSpec(Model):
                                         "is measured; 0 = none")
     interference: bool = Field(True, description="collide the bodies (python-fcl)")
     pressure_grid: int = Field(128, ge=0, le=1024,
-                               description="cells per side of the loaded-contact (half-space) "
-                                           "grid of each contact; 0 = Hertz only")
+                               description="n: the loaded-contact (half-space) grid of each "
+                                           "contact has about n² cells, as square as the "
+                                           "contact's box allows; 0 = Hertz only")
 
 
 STEEL = {"E": "206 GPa", "nu": 0.3}

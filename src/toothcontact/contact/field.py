@@ -120,25 +120,28 @@ class GapField:
 
 def gap_fields(pinion: Flank, gear: Flank, pinion_frames: Frame, gear_frames: Frame,
                planes: TangentPlanes, pinion_uv, gear_uv, half: np.ndarray,
-               shape: tuple[int, int], samples: int = 25) -> list[GapField]:
+               shape, samples: int = 25) -> list[GapField]:
     """The gap fields of K contacts (frames and planes stacked (K,), parameters (K,)), each
-    over [-half[k, 0], half[k, 0]] × [-half[k, 1], half[k, 1]] mm on `shape` points: the
-    exact samples of all of them in one ray solve per flank, then per contact the splines."""
+    over [-half[k, 0], half[k, 0]] × [-half[k, 1], half[k, 1]] mm on `shape` points (one
+    (nx, ny) for all, or one per contact, (K, 2)): the exact samples of all of them in one
+    ray solve per flank, then per contact the splines."""
     half = np.asarray(half, float).reshape(-1, 2)
+    shapes = np.broadcast_to(np.asarray(shape, int), half.shape)
     unit = np.linspace(-1.0, 1.0, samples)
     U, V = (a.ravel() for a in np.meshgrid(unit, unit, indexing="ij"))
     X, Y = half[:, :1] * U, half[:, 1:] * V                             # (K, samples²)
     hp = heights(pinion, pinion_frames, planes, X, Y, *pinion_uv)
     hg = heights(gear, gear_frames, planes, X, Y, *gear_uv)
-    fine = (np.linspace(-1.0, 1.0, shape[0]), np.linspace(-1.0, 1.0, shape[1]))
-    to_fine = (_cardinal_splines(samples, shape[0]), _cardinal_splines(samples, shape[1]))
-    # each fine point's nearest sample: where it did not meet both surfaces, nothing exists
-    ix, iy = (np.rint((f + 1.0) * 0.5 * (samples - 1)).astype(int) for f in fine)
     out = []
     grid = (samples, samples)
     pinion_normals = pinion_frames.vectors_to_local(planes.normal[:, None, :])[:, 0]
     gear_normals = gear_frames.vectors_to_local(planes.normal[:, None, :])[:, 0]
     for k in range(len(half)):
+        nx, ny = (int(n) for n in shapes[k])
+        fine = (np.linspace(-1.0, 1.0, nx), np.linspace(-1.0, 1.0, ny))
+        to_fine = (_cardinal_splines(samples, nx), _cardinal_splines(samples, ny))
+        # each fine point's nearest sample: where it did not meet both surfaces, none exists
+        ix, iy = (np.rint((f + 1.0) * 0.5 * (samples - 1)).astype(int) for f in fine)
         reach = min(float(np.max(half[k])), FAR)
         met = (_continued(_take(hp, k), pinion, pinion_normals[k], reach, grid)
                & _continued(_take(hg, k), gear, gear_normals[k], reach, grid))
@@ -254,12 +257,14 @@ def smooth_fill(values: np.ndarray, known: np.ndarray) -> np.ndarray:
     return filled.reshape(values.shape)
 
 
-def contact_fields(cycle, rows, shape: tuple[int, int], margin=1.3,
-                   semi_axes: np.ndarray | None = None) -> list[GapField]:
+def contact_fields(cycle, rows, shape, margin=1.3, semi_axes: np.ndarray | None = None,
+                   largest_cell: float | None = None) -> list[GapField]:
     """The gap fields of the given rows of a contact cycle, each over the bounding box of an
     ellipse about its contact (A axis along the row's axis angle) enlarged by `margin`
     (scalar or one per row): the Hertz ellipse (a contact line's reaching to the far end of
-    its part in contact), or the semi-axes given ((K, 2), mm)."""
+    its part in contact), or the semi-axes given ((K, 2), mm). `shape`: (nx, ny) points for
+    every field, or an int n: n² points each, on cells as square as `square_cells` makes
+    them (no longer than `largest_cell`, mm, where it can)."""
     rows = np.atleast_1d(np.asarray(rows, int))
     if semi_axes is None:   # a contact line's pattern may lie to one side of its contact
         reach = np.hypot(*np.asarray(cycle.pattern_centre, float)[rows].T)
@@ -272,13 +277,40 @@ def contact_fields(cycle, rows, shape: tuple[int, int], margin=1.3,
          np.hypot(a * np.sin(angle), b * np.cos(angle))], axis=-1)
     uv = {m: (np.asarray(getattr(cycle.contacts, f"{m}_u"))[rows],
               np.asarray(getattr(cycle.contacts, f"{m}_v"))[rows]) for m in ("pinion", "gear")}
+    if np.ndim(shape) == 0:
+        shape = square_cells(half, int(shape), largest_cell)
     return gap_fields(cycle.pinion, cycle.gear, cycle.pinion_frames[rows], cycle.gear_frames[rows],
                       planes_at(cycle.planes, rows), uv["pinion"], uv["gear"], half, shape)
 
 
-def contact_field(cycle, k: int, shape: tuple[int, int], margin: float = 1.3) -> GapField:
+#: fewest points along either side of a field cut into square cells (a contact's width
+#: needs a few tens of cells) and the most, in multiples of n
+FEWEST_POINTS, MOST_POINTS = 48, 8
+
+
+def square_cells(half: np.ndarray, n: int, largest: float | None = None) -> np.ndarray:
+    """Points (nx, ny) per field ((K, 2)) for boxes of half-sides `half` ((K, 2), mm): about
+    n² each, on cells as square as FEWEST_POINTS and MOST_POINTS·n per side allow, and
+    more along the long side where its cells would be longer than `largest` (mm; up to
+    MOST_POINTS·n). A long contact (a line along the face) then keeps the resolution along
+    its length that its edge strip needs instead of cells hundreds of times longer than
+    wide."""
+    half = np.asarray(half, float).reshape(-1, 2)
+    low, high = min(FEWEST_POINTS, n), MOST_POINTS * n
+    short = np.clip(np.rint(n * np.sqrt(half.min(axis=1) / half.max(axis=1))), low, n)
+    long = np.rint(n * n / short)
+    if largest is not None:
+        long = np.maximum(long, np.ceil(2.0 * half.max(axis=1) / largest) + 1)
+    long = np.clip(long, n, high)
+    along_x = half[:, 0] >= half[:, 1]
+    return np.stack([np.where(along_x, long, short), np.where(along_x, short, long)],
+                    axis=-1).astype(int)
+
+
+def contact_field(cycle, k: int, shape, margin: float = 1.3,
+                  largest_cell: float | None = None) -> GapField:
     """The gap field of row k of a contact cycle (see contact_fields)."""
-    return contact_fields(cycle, [k], shape, margin)[0]
+    return contact_fields(cycle, [k], shape, margin, largest_cell=largest_cell)[0]
 
 
 @dataclass(frozen=True)

@@ -175,16 +175,20 @@ def _length(field: GapField, rel: np.ndarray, inside: np.ndarray, approach: floa
 
 def _edge_margins(field: GapField, member: str, flank: Flank, cells, inside, rel,
                   face: float) -> dict[str, float]:
-    """The margins of one flank's four edges (see the module docstring)."""
+    """The margins of one flank's four edges (see the module docstring). Beyond a face end
+    (v) the line runs on along itself; beyond a profile edge (u: tip, form, root) it lies
+    beside its part in contact, in the same columns: only there does it count."""
     rim = np.zeros(cells.shape, bool)
-    rim[[0, -1], :] = rim[:, [0, -1]] = True
+    rim[[0, -1], :] = True                            # the field's ends along the line
+    columns = inside.any(axis=1)[:, None]
     out = {}
     for name, other, (low, high) in (("u", "v", flank.domain[0]), ("v", "u", flank.domain[1])):
         value = field.parameters[f"{member}_{name}"]
         fixed = field.parameters[f"{member}_{other}"]
+        near = cells if name == "v" else cells & columns
         for key, limit, sign in ((name + "0", low, -1.0), (name + "1", high, 1.0)):
             inward = sign * (limit - value)           # parameter distance inside the edge
-            beyond = cells & (inward < 0)
+            beyond = near & (inward < 0)
             edge = f"{member}_{flank.edges[key]}"
             if not beyond.any():
                 if not inside.any():
@@ -193,7 +197,7 @@ def _edge_margins(field: GapField, member: str, flank: Flank, cells, inside, rel
             elif rel[beyond].min() >= -PRESS:
                 out[edge] = 0.0                       # runs on past the edge, not pressing
                 continue
-            elif (beyond & rim).any():
+            elif name == "v" and (beyond & rim).any():
                 out[edge] = -face                     # runs on farther than the field shows
                 continue
             else:

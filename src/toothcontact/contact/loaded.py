@@ -35,6 +35,9 @@ EDGE_STRIP = 0.1
 #: peak: an ellipse that just reaches an edge averages about 0.1 of its peak over the strip
 #: (sqrt(2·0.05/a) for a ≈ 10 mm), one cut by a few tenths of a millimetre well over 0.25
 EDGE_LOAD_RATIO = 0.25
+#: longest cell (mm) of a loaded contact's grid along a long contact, where the grid's size
+#: allows: a third of the edge strip, which then averages over three cells or more
+CELL = EDGE_STRIP / 3.0
 #: relative change of the pairs' loads at which the shared solve stops
 SHARE_TOLERANCE = 0.005
 
@@ -119,7 +122,7 @@ class LoadedContact:
         return float(p[inside].max()) if inside.any() else 0.0
 
 
-def loaded_cycle(cycle, C_E: float, shape: tuple[int, int] = (128, 128),
+def loaded_cycle(cycle, C_E: float, points: int = 128,
                  pair_stiffness: float | None = None
                  ) -> tuple[list[LoadedContact | None], dict[int, str]]:
     """The loaded solution of every row of a contact.cycle.ContactCycle, loads shared per
@@ -134,9 +137,10 @@ def loaded_cycle(cycle, C_E: float, shape: tuple[int, int] = (128, 128),
     positions: dict[float, list[int]] = {}
     for k, row in enumerate(rows):
         positions.setdefault(row["roll_deg"], []).append(k)
-    fields = contact_fields(cycle, range(len(rows)), shape, _Pair.MARGIN)   # one batch
+    fields = contact_fields(cycle, range(len(rows)), points, _Pair.MARGIN,   # one batch
+                            largest_cell=CELL)
     for ks in positions.values():
-        pairs = [_Pair(cycle, k, shape, 1.0 / C_E, fields[k]) for k in ks]
+        pairs = [_Pair(cycle, k, points, 1.0 / C_E, fields[k]) for k in ks]
         load = sum(rows[k]["normal_load_N"] for k in ks)
         try:
             solutions = _share(pairs, load, pair_stiffness)
@@ -156,22 +160,32 @@ class _Pair:
     #: the Hertz ellipse's box enlarged by this much at first
     MARGIN = 1.5
 
-    def __init__(self, cycle, k: int, shape, E_star: float, field: GapField):
-        self.cycle, self.k, self.shape, self.E_star = cycle, k, shape, E_star
+    def __init__(self, cycle, k: int, points: int, E_star: float, field: GapField):
+        self.cycle, self.k, self.points, self.E_star = cycle, k, points, E_star
         self.separation = cycle.rows[k]["separation_mm"]
         self.margin, self.field = self.MARGIN, field
+        self.last: ContactSolution | None = None
+
+    @property
+    def last_pressure(self):
+        return None if self.last is None else self.last.pressure_MPa
 
     def solve(self, load: float) -> ContactSolution:
+        """The contact under `load` (N), started from its last solution on this field (the
+        load sharing solves each pair a few times at nearby loads)."""
         for _ in range(5):
             dx, dy = self.field.spacing
             try:
-                return solve_contact(self.field.gap, dx, dy, load, self.E_star,
-                                     mask=self.field.material)
+                self.last = solve_contact(self.field.gap, dx, dy, load, self.E_star,
+                                          mask=self.field.material, start=self.last_pressure,
+                                          dtype=np.float32)
+                return self.last
             except ValueError as exc:
                 if "reaches the grid's edge" not in str(exc):
                     raise
             self.margin *= 1.6
-            self.field = contact_field(self.cycle, self.k, self.shape, self.margin)
+            self.field = contact_field(self.cycle, self.k, self.points, self.margin, CELL)
+            self.last = None
         raise ValueError(f"the loaded contact at roll {self.cycle.rows[self.k]['roll_deg']:.3f} "
                          "deg outgrows its gap field (the surfaces end around it)")
 

@@ -276,15 +276,20 @@ class ContactSolution:
 def _edge_slope(first: np.ndarray, has: np.ndarray, reach: int = 3) -> np.ndarray:
     """d(first)/d(line) (cells per line) of an edge's position per line, by a least-squares
     line over the 2·reach + 1 neighbouring lines that have material (0 where fewer than
-    three do)."""
-    n = len(first)
-    slope = np.zeros(n)
-    for i in np.flatnonzero(has):
-        window = np.arange(max(0, i - reach), min(n, i + reach + 1))
-        window = window[has[window]]
-        if window.size >= 3:
-            slope[i] = np.polyfit(window, first[window], 1)[0]
-    return slope
+    three do): the window sums of the normal equations by one convolution each."""
+    i = np.arange(len(first), dtype=float)
+    weight = has.astype(float)
+    y = np.where(has, first, 0.0).astype(float)
+    window = np.ones(2 * reach + 1)
+
+    def total(values):
+        return np.convolve(values, window)[reach:reach + len(values)]
+
+    n, sx, sxx, sy, sxy = (total(v) for v in (weight, weight * i, weight * i * i, y, y * i))
+    det = n * sxx - sx * sx
+    with np.errstate(invalid="ignore", divide="ignore"):
+        slope = (n * sxy - sx * sy) / det
+    return np.where(has & (n >= 3) & (det > 0), slope, 0.0)
 
 
 # --------------------------------------------------------------------------------------------
@@ -521,7 +526,7 @@ def _ccg(h, m, p, u, op, compliance, load, cell, tol, max_iter, single):
 
 def solve_contact(gap_mm, dx_mm: float, dy_mm: float, load_N: float, E_star_MPa: float,
                   mask=None, *, tol: float = 1e-8, max_iter: int = 500,
-                  warm_start: bool = True, dtype=np.float64) -> ContactSolution:
+                  warm_start: bool = True, start=None, dtype=np.float64) -> ContactSolution:
     """Pressure between two elastic bodies with initial gap `gap_mm` (mm; x along axis 0 in
     steps dx_mm, y along axis 1 in steps dy_mm) under the normal load `load_N` (N), composite
     modulus `E_star_MPa` (1/E* = (1-ν1²)/E1 + (1-ν2²)/E2, MPa).
@@ -532,6 +537,9 @@ def solve_contact(gap_mm, dx_mm: float, dy_mm: float, load_N: float, E_star_MPa:
     warm_start: start from the Hertz ellipse fitted to the gap (:func:`hertz_start`), or
         where that ellipse lies mostly off the material, from the rigid interference
         (:func:`interference_start`); False: from uniform pressure on the material.
+    start: a pressure (MPa, the gap's shape) to start from instead, e.g. the solution of
+        the same gap under another load (scaled to this load; ignored where it carries
+        nothing on the material).
     dtype: np.float64, or np.float32 for the transforms inside the iteration (faster); the
         start and the final check are float64 either way, and the iteration is continued
         from a fresh float64 displacement until the check meets tol.
@@ -552,7 +560,11 @@ def solve_contact(gap_mm, dx_mm: float, dy_mm: float, load_N: float, E_star_MPa:
     compliance, cell = 1.0 / E_star, dx * dy
 
     p = None
-    if warm_start:
+    if start is not None:
+        p = np.where(m, np.clip(np.asarray(start, float), 0.0, None), 0.0)
+        if p.shape != h.shape or not p.sum() > 0:
+            p = None
+    if p is None and warm_start:
         p = hertz_start(h, dx, dy, m, W, E_star)
         if p is None:
             p = interference_start(h, dx, dy, m, W, E_star)
