@@ -32,7 +32,7 @@ def test_signed_distance_is_exact_on_long_thin_facets():
     box = trimesh.creation.box(extents=[100.0, 1.0, 1.0])
     surface = TriangleSurface(box.vertices, box.faces)
     q = np.random.default_rng(2).uniform([-51, -1, -1], [51, 1, 1], (3000, 3))
-    d, _ = surface.signed_distance(q)
+    d, _, _ = surface.signed_distance(q)
     half = np.array([50.0, 0.5, 0.5])
     inside = np.all(np.abs(q) <= half, axis=1)
     outside = np.linalg.norm(np.maximum(np.abs(q) - half, 0.0), axis=1)
@@ -50,11 +50,11 @@ def test_signed_distance_matches_brute_force_on_a_gear_sector():
     surface = TriangleSurface(mesh.vertices, mesh.faces)
     rng = np.random.default_rng(3)
     near = mesh.sample(400, return_index=False) + rng.normal(scale=0.2, size=(400, 3))
-    d, _ = surface.signed_distance(near)
+    d, _, _ = surface.signed_distance(near)
     assert np.max(np.abs(np.abs(d) - brute_force(mesh, near))) < 1e-9
     # along the middle of tooth 0 (on the +x axis): inside below the tip radius
     r = np.linspace(85.0, 95.0, 41)
-    d, _ = surface.signed_distance(np.stack([r, 0 * r, 0 * r], -1))
+    d, _, _ = surface.signed_distance(np.stack([r, 0 * r, 0 * r], -1))
     tip = pair.gear.tip_radius
     assert np.all((d < 0) == (r < tip))
     assert d[r > tip] == pytest.approx(r[r > tip] - tip, abs=0.01)
