@@ -54,7 +54,9 @@ STATION_STEP = 1.0
 #: least number of sections over the common face
 STATIONS_MIN = 11
 #: the sections at the face ends lie this far (mm) inside them (not in the end faces' plane)
-END_INSET = 1e-4
+END_INSET = 1e-3
+#: a body's tips: its points within this fraction of its largest radius
+TIP_BAND = 0.02
 #: the gear's tip land: its facets whose corners all lie within this (mm) of its tip circle
 TIP_LAND = 0.01
 #: a probe faces a facet squarely where its offset from the closest point is within this
@@ -136,8 +138,7 @@ def _stations(mesh: ParallelMesh, edges: dict) -> tuple[np.ndarray, tuple]:
     """The heights (pinion z, mm) of the transverse sections over the face both bodies
     share, and that face: (low end, high end, name of the body whose end is the low one,
     name of the one whose end is the high one). The gear's end planes are taken where they
-    cross the pinion's axis's parallel through the pitch point (its tilt moves them by less
-    than a micrometre per 0.001 rad over the tooth depth)."""
+    cross the pinion's axis's parallel through the pitch point."""
     frame = mesh.gear_frame(0.0)
     normal = frame.R[:, 2]
     pitch_point = mesh.center * np.array([mesh.pinion_teeth / (mesh.pinion_teeth + mesh.gear_teeth),
@@ -150,12 +151,15 @@ def _stations(mesh: ParallelMesh, edges: dict) -> tuple[np.ndarray, tuple]:
     (p0, p1) = edges["pinion"].ends
     low = (p0, "pinion") if p0 >= low_gear else (low_gear, "gear")
     high = (p1, "pinion") if p1 <= high_gear else (high_gear, "gear")
-    if high[0] - low[0] <= 2.0 * END_INSET:
+    if high[0] - low[0] <= 2.0 * STATION_STEP:
         raise ValueError(f"the bodies' faces do not overlap along the axis (pinion z "
                          f"{p0:.3f}..{p1:.3f} mm, gear {low_gear:.3f}..{high_gear:.3f} mm): "
                          "check misalignment.axial_shift and the files' z origins")
     count = max(STATIONS_MIN, int(math.ceil((high[0] - low[0]) / STATION_STEP)) + 1)
-    heights = np.linspace(low[0] + END_INSET, high[0] - END_INSET, count)
+    # a tilted gear's end planes cross the pinion's sections: its end sections stay inside
+    # the gear's face over the pinion's whole depth
+    inset = END_INSET + math.hypot(normal[0], normal[1]) / abs(normal[2]) * edges["pinion"].tip
+    heights = np.linspace(low[0] + inset, high[0] - inset, count)
     return heights, (low[0], high[0], low[1], high[1])
 
 
@@ -393,6 +397,28 @@ def _solve_lag(distances, count: int, reach: float, mesh: ParallelMesh,
             f_lo *= 0.5
         near = near[within_reach(d_mid, hi - lo)]
     return mid
+
+
+def teeth_per_turn(surface: TriangleSurface) -> float:
+    """How many teeth a whole turn of the body would hold: 2π over the median angle between
+    neighbouring tooth tips (the clusters of its points within TIP_BAND of its largest
+    radius about its z axis); a sector gives the same as its whole gear. nan where the body
+    shows fewer than two tips."""
+    v = surface.vertices
+    r = np.hypot(v[:, 0], v[:, 1])
+    angle = np.sort(np.arctan2(v[r >= (1.0 - TIP_BAND) * r.max(), 1], v[r >= (1.0 - TIP_BAND) * r.max(), 0]))
+    if angle.size < 2:
+        return float("nan")
+    # start the circle in its widest empty stretch (between two tips, or a sector's gap)
+    step = np.diff(np.append(angle, angle[0] + 2.0 * math.pi))
+    widest = int(np.argmax(step))
+    angle = np.unwrap(np.roll(angle, -(widest + 1)))
+    step = np.diff(angle)
+    split = np.flatnonzero(step > 0.5 * step.max()) + 1
+    if split.size == 0:
+        return float("nan")
+    centres = np.array([0.5 * (a[0] + a[-1]) for a in np.split(angle, split)])
+    return float(2.0 * math.pi / np.median(np.diff(centres)))
 
 
 def chordal_error(surface: TriangleSurface) -> float:
