@@ -319,8 +319,8 @@ class TriangleSurface:
         vertex = self.faces[faces]
         # each edge once: the first facet that has it
         key = np.sort(np.stack([vertex[:, start], vertex[:, end]], -1), axis=-1).reshape(-1, 2)
-        _, first = np.unique(key[:, 0].astype(np.int64) * len(self.vertices) + key[:, 1],
-                             return_index=True)
+        code, first = np.unique(key[:, 0].astype(np.int64) * len(self.vertices) + key[:, 1],
+                                return_index=True)
         facet, corner = np.divmod(first, 3)
         a, b = tri[facet, corner], tri[facet, (corner + 1) % 3]
         low, high = np.minimum(a[:, 2], b[:, 2]), np.maximum(a[:, 2], b[:, 2])
@@ -335,7 +335,44 @@ class TriangleSurface:
         bary[rows, corner] = 1.0 - t
         bary[rows, (corner + 1) % 3] = t
         points, normal = self.lift_barycentric(tri[facet], normals[facet], bary)
+        # on a crease two faces of the body meet, each lifting the edge along its own
+        # normal: the crease's point is the one at both faces' heights (each face's lift
+        # along its normal), off the chord square to it
+        codes, across = self._crease_edges
+        at = np.minimum(np.searchsorted(codes, code[edge]), len(codes) - 1)
+        on = np.flatnonzero(codes[at] == code[edge])
+        if on.size:
+            other = np.where(across[at[on], 0] == faces[facet[on]], across[at[on], 1],
+                             across[at[on], 0])
+            chord = np.einsum("ij,ijk->ik", bary[on], tri[facet[on]])
+            ends = np.stack([self.faces[faces[facet[on]], corner[on]],
+                             self.faces[faces[facet[on]], (corner[on] + 1) % 3]], -1)
+            mine = np.stack([1.0 - t[on], t[on]], -1)
+            theirs = np.zeros((on.size, 3))
+            for k in range(3):
+                for e in range(2):
+                    theirs[:, k] += np.where(self.faces[other, k] == ends[:, e], mine[:, e], 0.0)
+            lifted_b, normal_b = self.lift_barycentric(self.triangles[other],
+                                                       self.corner_normals(other), theirs)
+            normal_a = normal[on]
+            h_a = np.einsum("ij,ij->i", points[on] - chord, normal_a)
+            h_b = np.einsum("ij,ij->i", lifted_b - chord, normal_b)
+            c = np.einsum("ij,ij->i", normal_a, normal_b)
+            a = (h_a - c * h_b) / (1.0 - c * c)
+            b = (h_b - c * h_a) / (1.0 - c * c)
+            points[on] = chord + a[:, None] * normal_a + b[:, None] * normal_b
         return points, normal, plane
+
+    @cached_property
+    def _crease_edges(self) -> tuple[np.ndarray, np.ndarray]:
+        """The edges between two faces of the body (facets at SMOOTH_ANGLE or more): their
+        codes (v_low * n + v_high, sorted) and the two facets of each."""
+        mesh, n = self.mesh, len(self.vertices)
+        sharp = mesh.face_adjacency_angles >= SMOOTH_ANGLE
+        pairs = np.sort(mesh.face_adjacency_edges[sharp], axis=1).astype(np.int64)
+        codes = pairs[:, 0] * n + pairs[:, 1]
+        order = np.argsort(codes)
+        return codes[order], mesh.face_adjacency[sharp][order]
 
     def _closest(self, points: np.ndarray, which: np.ndarray, k: int, exact_within: float):
         """Distance, closest point and face for points[which]: the best of the triangles of
@@ -347,7 +384,8 @@ class TriangleSurface:
         tree, owner, radius = self._samples
         k = min(k, tree.n)
         p = points[which]
-        reach, index = tree.query(p, k=k, workers=-1)
+        # threads pay off on large queries only (starting them costs more on small ones)
+        reach, index = tree.query(p, k=k, workers=-1 if len(p) > 20000 else 1)
         reach, index = reach.reshape(len(p), k), index.reshape(len(p), k)
         candidates = owner[index]
         repeated = np.repeat(p, k, axis=0)

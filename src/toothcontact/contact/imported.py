@@ -62,6 +62,8 @@ TIP_LAND = 0.01
 #: a probe faces a facet squarely where its offset from the closest point is within this
 #: cosine of the facet's normal (a surface's curvature tilts it by about half a facet's turn)
 SQUARE = 0.999
+#: the probes within this (mm) of the least are measured again as the lag settles
+SETTLE_BAND = 0.05
 #: least spacing (mm) along a profile of the points a parabola is put through
 DISTINCT = 1e-3
 #: half-width (mm) across the profile of the parabola fitted for the curvature B
@@ -310,8 +312,17 @@ def _settle(probes: _Probes, profile: _Profiles, lag: float, frame, pitch: float
     profiles' least separations then (a tip corner's where it comes closer: on the
     pinion's tooth it faces, at its station)."""
     n = len(profile.points)
-    for _ in range(6):
-        d, near, face = probes.measure(lag)
+    d, near, face = probes.measure(lag)
+    for step in range(6):
+        if step:
+            # the probes that can matter are measured again; the others move with them
+            again = np.flatnonzero(d < np.min(d) + SETTLE_BAND)
+            before = d[again]
+            d[again], near[again], face[again] = probes.measure(lag, again)
+            shift = np.mean((d[again] - before)[np.isfinite(before)])
+            others = np.ones(len(d), bool)
+            others[again] = False
+            d[others] += shift
         local = probes.mesh.gear_frame(probes.phi, 0, lag).to_local(probes.world)
         least = _least_across(profile, d[:n], _facing(probes.gear, local, near[:n], face[:n]))
         tip = np.flatnonzero(np.isfinite(d[n:]))
@@ -349,7 +360,7 @@ def _solve_lag(distances, count: int, reach: float, mesh: ParallelMesh,
 
     if previous is None:
         pitch = 2.0 * math.pi / mesh.gear_teeth
-        grid = np.linspace(-pitch, pitch, 49)
+        grid = np.linspace(-pitch, pitch, 33)
         sparse = every[::8]
         clear = np.array([least(d, sparse) for d in grid]) > 0
         if not clear.any():
