@@ -239,7 +239,8 @@ class _Least:
     point and their neighbours, within them; at a profile's end, that end (`corner`); or
     the gear's tip corner where that comes closer. `point`, `normal`: where, on the pinion
     (its frame), `s` the arc along the profile there, `index` the least point, `points_gap`
-    the separation of every profile point (mm)."""
+    the separation of every profile point (mm), `points_part` the face of the gear each
+    faces squarely (-1: a crease)."""
 
     gap: np.ndarray
     s: np.ndarray
@@ -248,6 +249,7 @@ class _Least:
     point: np.ndarray
     normal: np.ndarray
     points_gap: np.ndarray
+    points_part: np.ndarray
 
 
 def _least_across(profile: _Profiles, gap: np.ndarray, part: np.ndarray) -> _Least:
@@ -291,7 +293,7 @@ def _least_across(profile: _Profiles, gap: np.ndarray, part: np.ndarray) -> _Lea
     point = profile.points[i] + t[:, None] * (profile.points[other] - profile.points[i])
     normal = profile.normals[i] + t[:, None] * (profile.normals[other] - profile.normals[i])
     normal /= np.linalg.norm(normal, axis=-1, keepdims=True)
-    return _Least(least_gap, least_s, i, corner, point, normal, gap)
+    return _Least(least_gap, least_s, i, corner, point, normal, gap, part)
 
 
 def _facing(gear: TriangleSurface, points: np.ndarray, closest: np.ndarray, face: np.ndarray):
@@ -490,7 +492,7 @@ def _along(least: _Least, mine: np.ndarray, profile: _Profiles, heights: np.ndar
     point[station], normal[station] = least.point[groups], least.normal[groups]
     B = np.full(len(heights), np.nan)
     for k, grp in zip(station, groups):
-        B[k] = _curvature_across(profile, least.points_gap, grp, least.s[grp])
+        B[k] = _curvature_across(profile, least, grp)
     valid = np.isfinite(g)
     z, gv = heights[valid], g[valid]
     k = int(np.argmin(gv))
@@ -507,44 +509,40 @@ def _along(least: _Least, mine: np.ndarray, profile: _Profiles, heights: np.ndar
     A_line = float(fit[0])
     interior = 0 < k < len(z) - 1
     bowl = interior and A_line > 0 and 2.0 * math.sqrt(approach / A_line) < width
-    valid_B = B[valid][np.isfinite(B[valid]) & (B[valid] > 0)]
+    zv, pv, nv, Bv = heights[valid], point[valid], normal[valid], B[valid]
+    known = np.isfinite(Bv)
+    if not known.any():
+        raise ValueError("the separation across the pinion's profile does not open upward "
+                         f"at any section of tooth {profile.tooth_of[groups[0]]} (fewer than "
+                         "four section points on the flank round the contact)")
+    ends = [_interpolate(zv, pv, zz) for zz in pattern] + [pv[k]]
     if bowl:
         # the bowl's vertex, from the stations near the least
         use = np.abs(z - z[k]) <= max(2.0 * math.sqrt(approach / A_line), 3.0 * (z[1] - z[0]))
         c2, c1, _ = np.polyfit(z[use], gv[use], 2) if use.sum() >= 3 else fit
-        z_least = float(np.clip(-c1 / (2.0 * c2), z[max(k - 1, 0)], z[min(k + 1, len(z) - 1)])) \
-            if c2 > 0 else float(z[k])
+        z_least = float(np.clip(-c1 / (2.0 * c2), z[k - 1], z[k + 1])) if c2 > 0 else float(z[k])
         A_line = float(c2) if c2 > 0 else A_line
-        centre = _interpolate(heights, point, z_least)
-        n = _interpolate(heights, normal, z_least)
+        centre, n = _interpolate(zv, pv, z_least), _interpolate(zv, nv, z_least)
         n /= np.linalg.norm(n)
         e1 = np.array([0.0, 0.0, 1.0]) - n[2] * n
         e1 /= np.linalg.norm(e1)
         e2 = np.cross(n, e1)
         # the contact's drift across the profile along the face gives the cross term
-        pts = point[valid][use]
-        x, y = (pts - centre) @ e1, (pts - centre) @ e2
+        x, y = (pv[use] - centre) @ e1, (pv[use] - centre) @ e2
         drift = float(np.polyfit(x, y, 1)[0]) if len(x) >= 2 and np.ptp(x) > 0 else 0.0
-        b_across = float(np.interp(z_least, heights[valid][np.isfinite(B[valid])],
-                                   B[valid][np.isfinite(B[valid])]))
+        b_across = float(np.interp(z_least, zv[known], Bv[known]))
         c = -b_across * drift
-        H = np.array([[A_line + c * c / b_across, c], [c, b_across]])
-        values, vectors = np.linalg.eigh(H)
+        values, vectors = np.linalg.eigh(np.array([[A_line + c * c / b_across, c], [c, b_across]]))
         along = vectors[0, 0] * e1 + vectors[1, 0] * e2
-        ends = [centre]
         return _Line("ellipse", centre, n, along, float(values[0]), float(values[1]), floor,
                      z_least, pattern, cut, ends)
-    inside = (heights >= pattern[0] - 1e-9) & (heights <= pattern[1] + 1e-9) & valid
     middle = 0.5 * (pattern[0] + pattern[1])
-    centre = _interpolate(heights[valid], point[valid], middle)
-    n = _interpolate(heights[valid], normal[valid], middle)
+    centre, n = _interpolate(zv, pv, middle), _interpolate(zv, nv, middle)
     n /= np.linalg.norm(n)
     e1 = np.array([0.0, 0.0, 1.0]) - n[2] * n
     e1 /= np.linalg.norm(e1)
-    in_B = B[inside][np.isfinite(B[inside]) & (B[inside] > 0)]
-    b_across = float(np.median(in_B)) if in_B.size else float(np.median(valid_B))
-    ends = [_interpolate(heights[valid], point[valid], zz) for zz in (pattern[0], pattern[1])]
-    ends.append(point[valid][k])
+    inside = known & (zv >= pattern[0] - 1e-9) & (zv <= pattern[1] + 1e-9)
+    b_across = float(np.median(Bv[inside] if inside.any() else Bv[known]))
     return _Line("line", centre, n, e1, A_line, b_across, floor, float(z[k]), pattern, cut, ends)
 
 
@@ -583,18 +581,25 @@ def _interpolate(heights: np.ndarray, values: np.ndarray, z: float) -> np.ndarra
     return np.array([np.interp(z, heights, values[:, i]) for i in range(values.shape[1])])
 
 
-def _curvature_across(profile: _Profiles, gap: np.ndarray, group: int, s: float) -> float:
-    """B (1/mm): half the second derivative across the profile of the separation `gap`
-    (mm, of every point) near arc s, from a parabola (with its slope: one-sided at a
-    corner) over the profile's points within B_WINDOW of s, at least its five nearest;
-    nan where the profile has fewer than four points."""
+def _curvature_across(profile: _Profiles, least: _Least, group: int) -> float:
+    """B (1/mm): half the second derivative across the profile of its points' separations
+    near its least, from a parabola (with its slope: one-sided at a corner) over the points
+    within B_WINDOW that face the same face of the gear as its least point (no kink where
+    they pass a corner of the gear), at least its five nearest; nan where fewer than four
+    or where the parabola does not open upward."""
     start = profile.starts[group]
     stop = profile.starts[group + 1] if group + 1 < len(profile.starts) else len(profile.s)
-    arc, g = profile.s[start:stop] - s, gap[start:stop]
+    arc = profile.s[start:stop] - least.s[group]
+    g, part = least.points_gap[start:stop], least.points_part[start:stop]
+    own = least.points_part[least.index[group]]
+    same = part == own
+    if own >= 0 and np.count_nonzero(same) >= 4:
+        arc, g = arc[same], g[same]
     if len(arc) < 4:
         return float("nan")
     use = np.abs(arc) <= max(B_WINDOW, np.sort(np.abs(arc))[min(4, len(arc) - 1)])
-    return float(np.polyfit(arc[use], g[use], 2)[0])
+    B = float(np.polyfit(arc[use], g[use], 2)[0])
+    return B if B > 0 else float("nan")
 
 
 def _row(phi, tooth, lag, line: _Line, floor, load, C_E, settings, frames, edges, common):
@@ -605,11 +610,14 @@ def _row(phi, tooth, lag, line: _Line, floor, load, C_E, settings, frames, edges
     point, normal, along = R @ line.point, R @ line.normal, R @ line.along
     across = np.cross(normal, along)
     length = line.pattern[1] - line.pattern[0]
-    if line.model == "ellipse":
+    model = line.model
+    if model == "ellipse":
         e = hertz_point(line.A, line.B, load, C_E)
         a, b, p0, approach = e.a, e.b, e.p0, e.approach
         rigid_a = math.sqrt(settings.approach / line.A)
-    else:
+        if 2.0 * a >= common[1] - common[0]:     # the loaded ellipse would span the face
+            model = "line"
+    if model == "line":
         contact = hertz_line(load / length, 1.0 / (2.0 * line.B), C_E)
         a, b, p0, approach = 0.5 * length, contact.b, contact.p0, None
         rigid_a = 0.5 * length
@@ -617,7 +625,7 @@ def _row(phi, tooth, lag, line: _Line, floor, load, C_E, settings, frames, edges
     for name, body_frame in frames.items():
         lo, hi = edges[name].ends
         axis = body_frame.R[:, 2]
-        if line.model == "ellipse":
+        if model == "ellipse":
             reach = math.hypot(a * float(along @ axis), b * float(across @ axis))
             z = float(body_frame.to_local(point)[2])
             margins[f"{name}_end_A"] = z - lo - reach
@@ -629,22 +637,23 @@ def _row(phi, tooth, lag, line: _Line, floor, load, C_E, settings, frames, edges
     # a line cut by a face end: minus what the end cut off (the face width where the gap
     # keeps falling beyond it)
     for side, end in (("low", 2), ("high", 3)):
-        if line.cut[side] is not None and line.model == "line":
+        if line.cut[side] is not None and model == "line":
             margins[f"{common[end]}_end_{'A' if side == 'low' else 'B'}"] = -line.cut[side]
     local = line.point
     row = {"roll_deg": math.degrees(phi), "pair": tooth, "method": "mesh",
-           "contact_model": line.model,
+           "contact_model": model,
            "contact_radius_pinion_mm": float(math.hypot(local[0], local[1])),
            "face_position_mm": float(local[2]), "separation_mm": line.floor - floor,
            "A_per_mm": line.A, "B_per_mm": line.B,
            "transmission_error_urad": lag * 1e6,
-           "normal_load_N": load, "line_contact": line.model == "line", "a_mm": a, "b_mm": b,
+           "normal_load_N": load, "line_contact": model == "line", "a_mm": a, "b_mm": b,
            "p_max_MPa": p0, "approach_mm": approach, "contact_length_mm": length,
            "rigid_a_mm": rigid_a, "rigid_b_mm": math.sqrt(settings.approach / line.B),
            "edge_margins_mm": margins}
-    starts = [R @ p for p in line.ends]
-    return row, [_Placed(p, normal, along, across, a, b, frames) if line.model == "ellipse"
-                 else _Placed(p, normal, along, across, 0.0, b, frames) for p in starts]
+    if model == "ellipse":
+        return row, [_Placed(point, normal, along, across, a, b, frames)]
+    # a line is held against the tip and form circles at its ends and its least point
+    return row, [_Placed(R @ p, normal, along, across, 0.0, b, frames) for p in line.ends]
 
 
 @dataclass(frozen=True)
