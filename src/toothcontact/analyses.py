@@ -736,7 +736,7 @@ def imported_case(case: schema.ImportedCase) -> Result:
         for name, body in bodies.items()}})
     unchecked = [name for name in ("pinion", "gear") if getattr(case, name).form_diameter is None]
     result.notes.append("imported bodies: contact on the smooth surfaces the facets stand for "
-                        "(Phong tessellation through quadric-fitted normals), by transverse "
+                        "(Phong tessellation through normals fitted to the facets), by transverse "
                         "sections of the pinion's driving flanks; tips at each body's largest "
                         "radius" + (f"; form edge not checked for the {' and '.join(unchecked)} "
                                     "(give form_diameter)" if unchecked else ""))

@@ -15,7 +15,7 @@ inside or outside it; the smooth surface is put back by Phong tessellation with 
 p + 1/2·Σ w_i ((P_i - p)·n_i) n_i (w_i its barycentric weights, P_i the corners, n_i the
 surface normals there), which is exact to second order (a quadric through the corners with
 those normals), so distances to it carry the facets' third-order error only, not their sag.
-The corner normals come from a quadric fitted to each vertex's neighbours on the same side of
+The corner normals come from a cubic fitted to each vertex's neighbours on the same side of
 every crease (facets meeting at more than SMOOTH_ANGLE are different faces of the body: a
 tooth's flank and its tip land, an end face). Units: mm.
 """
@@ -226,7 +226,7 @@ class TriangleSurface:
         return np.zeros(self._slots[2].shape[0], bool)
 
     def corner_normals(self, faces: np.ndarray) -> np.ndarray:
-        """(n, 3, 3): the surface normal at the corners of the given facets, from a quadric
+        """(n, 3, 3): the surface normal at the corners of the given facets, from a cubic
         fitted by least squares to the neighbours (two rings of edges, within the same face
         of the body) of each corner's vertex: exact to second order on either side of a
         crease and on uneven facets, where the angle-weighted mean of the facets' normals
@@ -239,9 +239,11 @@ class TriangleSurface:
         return self._slot_normals[slot]
 
     def _fit_normals(self, which: np.ndarray) -> None:
-        """Fit h = a x² + b xy + c y² + d x + e y over each slot's two-ring (x, y in the
-        tangent plane of its angle-weighted normal, h along it); the normal is then that one
-        tilted by the gradient (d, e); the least-norm fit where the neighbours leave terms open."""
+        """Fit a cubic h(x, y) = d x + e y + (quadratic) + (cubic) over each slot's two-ring
+        (x, y in the tangent plane of its angle-weighted normal, h along it; the cubic terms
+        keep a curvature that changes across the ring, as where a flank meets its fillet,
+        from tilting the fit); the normal is then that one tilted by the gradient (d, e);
+        the least-norm fit where the neighbours leave terms open."""
         _, vertex, adjacency = self._slots
         normals = self._slot_normals
         near = adjacency[which]
@@ -260,12 +262,13 @@ class TriangleSurface:
         scale = np.maximum(size, 1e-12)[owner]
         x, y = (rel * t1).sum(-1) / scale, (rel * t2).sum(-1) / scale
         h = (rel * n).sum(-1) / scale
-        phi = np.stack([x * x, x * y, y * y, x, y], -1)
-        M = np.zeros((len(which), 5, 5))
-        r = np.zeros((len(which), 5))
-        for i in range(5):
+        phi = np.stack([x, y, x * x, x * y, y * y, x ** 3, x * x * y, x * y * y, y ** 3], -1)
+        terms = phi.shape[1]
+        M = np.zeros((len(which), terms, terms))
+        r = np.zeros((len(which), terms))
+        for i in range(terms):
             r[:, i] = np.bincount(owner, phi[:, i] * h, minlength=len(which))
-            for j in range(i, 5):
+            for j in range(i, terms):
                 M[:, i, j] = M[:, j, i] = np.bincount(owner, phi[:, i] * phi[:, j],
                                                       minlength=len(which))
         # equilibrated (the terms' sizes differ by the facets' aspect ratio)
@@ -279,7 +282,7 @@ class TriangleSurface:
             coef = np.einsum("ijk,ik->ij", np.linalg.pinv(M[ok], rcond=1e-9), r[ok]) / D[ok]
             first = np.searchsorted(owner, np.flatnonzero(ok))
             n0, a1, a2 = normals[which[ok]], t1[first], t2[first]
-            tilted = n0 - coef[:, 3:4] * a1 - coef[:, 4:5] * a2
+            tilted = n0 - coef[:, 0:1] * a1 - coef[:, 1:2] * a2
             fitted[ok] = tilted / np.linalg.norm(tilted, axis=-1, keepdims=True)
         normals[which] = fitted
         self._fitted[which] = True

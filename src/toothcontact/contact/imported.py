@@ -598,6 +598,8 @@ def _curvature_across(profile: _Profiles, least: _Least, group: int) -> float:
     if len(arc) < 4:
         return float("nan")
     use = np.abs(arc) <= max(B_WINDOW, np.sort(np.abs(arc))[min(4, len(arc) - 1)])
+    if len(np.unique(np.round(arc[use] / DISTINCT))) < 3:
+        return float("nan")
     B = float(np.polyfit(arc[use], g[use], 2)[0])
     return B if B > 0 else float("nan")
 
