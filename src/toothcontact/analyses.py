@@ -8,9 +8,9 @@ Pure functions: nothing here reads or writes files.
 from __future__ import annotations
 
 import math
-from pathlib import Path
 import warnings
 from dataclasses import dataclass, field
+from pathlib import Path
 
 import numpy as np
 

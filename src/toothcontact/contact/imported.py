@@ -10,8 +10,11 @@ distance, negative inside). Across the profile, each station's least separation 
 vertex of the parabola through its least point and their neighbours, held within them (a
 contact at the tip or form end of the profile stays at that end: no contact is placed
 off the flank); along the face, the stations' least separations make the gap of the contact
-line. The gear's lag is solved until the least of all is zero (the lag window is found first
-by a scan over two gear pitches: the driving flanks close as the gear falls behind).
+line. Where the closest points of three neighbours are not squarely on one face of the gear
+(the separation has a kink as they pass the gear's tip corner), no parabola is put through
+them; the gear's tip corners are probed against the pinion's smooth surface instead. The
+gear's lag is solved until the least of all is zero (the lag window is found first by a
+scan over two gear pitches: the driving flanks close as the gear falls behind).
 
 Each tooth within the approach of the least is a contact, of one of two kinds:
   * "ellipse": the gap along the face is a bowl whose least lies inside the face and whose
@@ -116,7 +119,7 @@ def imported_cycle(mesh: ParallelMesh, pinion: TriangleSurface, gear: TriangleSu
         close = np.flatnonzero(np.hypot(tip_world[:, 0], tip_world[:, 1]) <= pinion_reach)
         probes = _Probes(mesh, phi, world, tips[0][close], tips[2][close], pinion, gear, driving)
         lag = _solve_lag(probes.distances, probes.count, gear_reach, mesh, lag)
-        lag, least = _settle(probes, profile, lag, frame, pitch)
+        lag, least = _settle(probes, profile, lag, pitch)
         floor = float(np.min(least.gap))
         frames = {"pinion": frame, "gear": mesh.gear_frame(phi, 0, lag)}
         in_contact = np.unique(profile.tooth_of[least.gap <= floor + settings.approach])
@@ -157,7 +160,7 @@ def _stations(mesh: ParallelMesh, edges: dict) -> tuple[np.ndarray, tuple]:
         raise ValueError(f"the bodies' faces do not overlap along the axis (pinion z "
                          f"{p0:.3f}..{p1:.3f} mm, gear {low_gear:.3f}..{high_gear:.3f} mm): "
                          "check misalignment.axial_shift and the files' z origins")
-    count = max(STATIONS_MIN, int(math.ceil((high[0] - low[0]) / STATION_STEP)) + 1)
+    count = max(STATIONS_MIN, math.ceil((high[0] - low[0]) / STATION_STEP) + 1)
     # a tilted gear's end planes cross the pinion's sections: its end sections stay inside
     # the gear's face over the pinion's whole depth
     inset = END_INSET + math.hypot(normal[0], normal[1]) / abs(normal[2]) * edges["pinion"].tip
@@ -182,7 +185,7 @@ class _Profiles:
 
     @classmethod
     def cut(cls, pinion: TriangleSurface, faces: np.ndarray, heights: np.ndarray,
-            pitch: float) -> "_Profiles":
+            pitch: float) -> _Profiles:
         points, normals, station = pinion.sections(faces, heights)
         tooth = np.rint(np.arctan2(points[:, 1], points[:, 0]) / pitch).astype(int)
         key = (tooth - tooth.min()) * len(heights) + station
@@ -307,7 +310,7 @@ def _facing(gear: TriangleSurface, points: np.ndarray, closest: np.ndarray, face
     return np.where(square | (length < 1e-6), gear.parts[face], -1)
 
 
-def _settle(probes: _Probes, profile: _Profiles, lag: float, frame, pitch: float,
+def _settle(probes: _Probes, profile: _Profiles, lag: float, pitch: float,
             tolerance: float = 1e-7):
     """The lag (rad) at which the least separation (profiles between their points, and the
     gear's tip corners) is zero, from a lag at which their least point's is, and the
@@ -462,9 +465,10 @@ class _Edges:
 
 @dataclass(frozen=True)
 class _Line:
-    """One tooth's contact along the face (pinion frame, mm): the stations' heights z and
-    least separations g (inf: the station's profile is not on this tooth), the points and
-    normals there, B across the profile at each, and what follows (see _along)."""
+    """One tooth's contact from its stations' least separations (pinion frame, mm): its
+    model ("ellipse" or "line"), centre, normal and A axis (ellipse) or direction (line),
+    A and B (1/mm), its least separation, the rigid pattern and what the face ends cut off
+    (see _along)."""
 
     model: str
     point: np.ndarray          # the contact's centre (pinion frame)
@@ -473,7 +477,6 @@ class _Line:
     A: float
     B: float
     floor: float               # the tooth's least separation (mm)
-    z_least: float             # where along the face it is
     pattern: tuple[float, float]   # the rigid pattern's ends along the face (pinion z)
     cut: dict                  # "low"/"high": extent (mm) cut off by that face end, or None
     ends: list                 # points (pinion frame) of the line's ends and its least
@@ -535,7 +538,7 @@ def _along(least: _Least, mine: np.ndarray, profile: _Profiles, heights: np.ndar
         values, vectors = np.linalg.eigh(np.array([[A_line + c * c / b_across, c], [c, b_across]]))
         along = vectors[0, 0] * e1 + vectors[1, 0] * e2
         return _Line("ellipse", centre, n, along, float(values[0]), float(values[1]), floor,
-                     z_least, pattern, cut, ends)
+                     pattern, cut, ends)
     middle = 0.5 * (pattern[0] + pattern[1])
     centre, n = _interpolate(zv, pv, middle), _interpolate(zv, nv, middle)
     n /= np.linalg.norm(n)
@@ -543,7 +546,7 @@ def _along(least: _Least, mine: np.ndarray, profile: _Profiles, heights: np.ndar
     e1 /= np.linalg.norm(e1)
     inside = known & (zv >= pattern[0] - 1e-9) & (zv <= pattern[1] + 1e-9)
     b_across = float(np.median(Bv[inside] if inside.any() else Bv[known]))
-    return _Line("line", centre, n, e1, A_line, b_across, floor, float(z[k]), pattern, cut, ends)
+    return _Line("line", centre, n, e1, A_line, b_across, floor, pattern, cut, ends)
 
 
 def _run(z: np.ndarray, g: np.ndarray, k: int, level: float) -> tuple[float, float]:
