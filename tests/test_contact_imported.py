@@ -124,8 +124,8 @@ def test_mesh_path_holds_the_ellipse_against_tips_and_form_circles(both):
     """The margins to both bodies' tip circles (the meshes' largest radii) and form circles
     (the case's form diameters), walked along the meshes' transverse profiles, equal the
     exact analysis's (lengths along the involutes) within 0.03 mm at every contact, the
-    pinion-tip corner contacts at the ends of the path included: both paths flag those as
-    edge contact at the pinion tip."""
+    pinion-tip corner contacts at the ends of the path included: both paths put their
+    least margin there, negative (a tip cuts the ellipse; edge_contact names face ends)."""
     exact, mesh, _ = both
     corners = 0
     for e in exact["positions"]:
@@ -136,7 +136,7 @@ def test_mesh_path_holds_the_ellipse_against_tips_and_form_circles(both):
             assert m[0]["edge_margins_mm"][edge] == pytest.approx(e["edge_margins_mm"][edge], abs=0.03)
         if e["edge_margins_mm"]["pinion_tip"] < 0:
             corners += 1
-            assert m[0]["edge_contact"] and e["edge_contact"]
+            assert m[0]["edge_margin_mm"] < 0 and not m[0]["edge_contact"]
             assert min(m[0]["edge_margins_mm"], key=m[0]["edge_margins_mm"].get) == "pinion_tip"
     assert corners == 2
 
@@ -257,12 +257,13 @@ def test_crowned_aligned_pair_is_an_ellipse_inside_the_face(peer):
         assert r["A_per_mm"] == pytest.approx(1.25e-4, rel=0.1)
         assert r["contact_length_mm"] == pytest.approx(2 * r["rigid_a_mm"], rel=0.05)
         assert r["edge_margins_mm"]["pinion_end_A"] > 0 and r["edge_margins_mm"]["pinion_end_B"] > 0
+        assert not r["edge_contact"] and r["edge_contact_at"] is None
 
 
 def test_no_contact_outside_the_bodies(peer):
     """Contacts lie on the pinion's flank: never beyond its tip circle (the largest radius
     of the file, to its facets' chordal error), never off its face; the contacts at the
-    ends of the path that reach the tip are named edge contact at the pinion tip. (The old
+    ends of the path that reach the tip have their least margin there, negative. (The old
     fit put its bowl's vertex off the flank, beyond the tip.)"""
     pinion = peer["pgw_pinion_z20_crowned_sector3.step"]
     tip = float(np.max(np.hypot(pinion.vertices[:, 0], pinion.vertices[:, 1])))
@@ -276,7 +277,7 @@ def test_no_contact_outside_the_bodies(peer):
         assert 0.0 <= r["face_position_mm"] <= 30.0
         if r["edge_margins_mm"]["pinion_tip"] < 0:
             corners += 1
-            assert r["edge_contact"] and r["contact_radius_pinion_mm"] > tip - 0.5
+            assert r["edge_margin_mm"] < 0 and r["contact_radius_pinion_mm"] > tip - 0.5
     assert corners >= 1
 
 
@@ -338,6 +339,24 @@ def test_full_gear_step_from_another_generator(peer):
         assert a["contact_length_mm"] == pytest.approx(b["contact_length_mm"], abs=0.2)
         assert a["transmission_error_urad"] == pytest.approx(b["transmission_error_urad"],
                                                              abs=facet_bound(full, full))
+
+
+def test_peer_pair_as_stl_reads_as_its_step(peer, tmp_path):
+    """The same facets written as binary STL (single precision) and read back give the
+    same contacts: the STL path is the STEP path without the tessellation."""
+    names = ("pgw_pinion_z20_sector3.step", "pgw_gear_z60_sector3.step")
+    stl = []
+    for name in names:
+        path = tmp_path / name.replace(".step", ".stl")
+        cad.write_mesh(peer[name].mesh, path)
+        stl.append(load_surface(path))
+    rows = peer_cycle(*stl, slope=0.0008, positions=2)
+    step = peer_cycle(*(peer[n] for n in names), slope=0.0008, positions=2)
+    assert [(r["roll_deg"], r["pair"]) for r in rows] == [(r["roll_deg"], r["pair"]) for r in step]
+    for a, b in zip(rows, step):
+        assert a["transmission_error_urad"] == pytest.approx(b["transmission_error_urad"], abs=0.5)
+        assert a["contact_length_mm"] == pytest.approx(b["contact_length_mm"], abs=0.05)
+        assert a["edge_contact_at"] == b["edge_contact_at"]
 
 
 def peer_case(folder: Path, **changes) -> Path:

@@ -678,7 +678,8 @@ class _Placed:
 def _add_profile_margins(rows: list[dict], placed: list[list[_Placed]], bodies: dict,
                          edges: dict) -> None:
     """Each row's margins to both bodies' tip circles (and form circles where known), then
-    its worst margin and edge flags: the length along the body's transverse profile from the
+    its least margin (`edge_margin_mm`, any edge) and whether a face end cuts its pattern
+    (`edge_contact`, `edge_contact_at`: the face end that cuts most): the length along the body's transverse profile from the
     contact (the least of a line's ends and least point) to the circle (walked on the mesh
     for all rows at once, to within each body's chordal error of the circle), less the
     ellipse's reach along it."""
@@ -704,10 +705,11 @@ def _add_profile_margins(rows: list[dict], placed: list[list[_Placed]], bodies: 
             for row, m in zip(rows, margin):
                 row["edge_margins_mm"][key] = float(m)
     for row in rows:
-        name = min(row["edge_margins_mm"], key=row["edge_margins_mm"].get)
-        worst = row["edge_margins_mm"][name]
-        row["edge_margin_mm"], row["edge_contact"] = worst, bool(worst < 0.0)
-        row["edge_contact_at"] = name if worst < 0.0 else None
+        margins = row["edge_margins_mm"]
+        row["edge_margin_mm"] = min(margins.values())
+        end = min((k for k in margins if "_end_" in k), key=margins.get)
+        row["edge_contact"] = bool(margins[end] < 0.0)
+        row["edge_contact_at"] = end if margins[end] < 0.0 else None
 
 
 #: step (mm) of the walk along a transverse profile on a mesh
