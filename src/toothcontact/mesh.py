@@ -214,7 +214,7 @@ class TriangleSurface:
     @cached_property
     def _slot_normals(self) -> np.ndarray:
         """Each slot's normal as far as known: the angle-weighted mean of its facets'
-        normals (refined on demand by _fitted_normals)."""
+        normals (refined on demand by corner_normals)."""
         slot, _, adjacency = self._slots
         weighted = (self.mesh.face_normals[:, None, :] * self.mesh.face_angles[:, :, None]).reshape(-1, 3)
         sums = np.stack([np.bincount(slot.ravel(), weighted[:, i], minlength=adjacency.shape[0])
