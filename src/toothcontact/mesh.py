@@ -242,8 +242,10 @@ class TriangleSurface:
         """Fit a cubic h(x, y) = d x + e y + (quadratic) + (cubic) over each slot's two-ring
         (x, y in the tangent plane of its angle-weighted normal, h along it; the cubic terms
         keep a curvature that changes across the ring, as where a flank meets its fillet,
-        from tilting the fit); the normal is then that one tilted by the gradient (d, e);
-        the least-norm fit where the neighbours leave terms open."""
+        from tilting the fit; each neighbour weighs 1 / (0.1 + its distance²), distances in
+        the ring's mean distance: the nearer rings tell the slope at the vertex best); the
+        normal is then that one tilted by the gradient (d, e); the least-norm fit where the
+        neighbours leave terms open."""
         _, vertex, adjacency = self._slots
         normals = self._slot_normals
         near = adjacency[which]
@@ -264,12 +266,13 @@ class TriangleSurface:
         h = (rel * n).sum(-1) / scale
         phi = np.stack([x, y, x * x, x * y, y * y, x ** 3, x * x * y, x * y * y, y ** 3], -1)
         terms = phi.shape[1]
+        weight = 1.0 / (x * x + y * y + 0.1)
         M = np.zeros((len(which), terms, terms))
         r = np.zeros((len(which), terms))
         for i in range(terms):
-            r[:, i] = np.bincount(owner, phi[:, i] * h, minlength=len(which))
+            r[:, i] = np.bincount(owner, weight * phi[:, i] * h, minlength=len(which))
             for j in range(i, terms):
-                M[:, i, j] = M[:, j, i] = np.bincount(owner, phi[:, i] * phi[:, j],
+                M[:, i, j] = M[:, j, i] = np.bincount(owner, weight * phi[:, i] * phi[:, j],
                                                       minlength=len(which))
         # equilibrated (the terms' sizes differ by the facets' aspect ratio)
         D = np.sqrt(np.maximum(np.einsum("ijj->ij", M), 1e-300))

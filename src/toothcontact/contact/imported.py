@@ -510,8 +510,10 @@ def _along(least: _Least, mine: np.ndarray, profile: _Profiles, heights: np.ndar
     cut = {"low": _cut_off(fit, common[0], floor + approach, -1.0, width) if lo_cut else None,
            "high": _cut_off(fit, common[1], floor + approach, 1.0, width) if hi_cut else None}
     A_line = float(fit[0])
-    interior = 0 < k < len(z) - 1
-    bowl = interior and A_line > 0 and 2.0 * math.sqrt(approach / A_line) < width
+    # a bowl: its least inside the face, for the stations and for the quadratic through them
+    # all (near an end the stations' small differences alone cannot tell)
+    interior = 0 < k < len(z) - 1 and A_line > 0 and z[0] < -fit[1] / (2.0 * A_line) < z[-1]
+    bowl = interior and 2.0 * math.sqrt(approach / A_line) < width
     zv, pv, nv, Bv = heights[valid], point[valid], normal[valid], B[valid]
     known = np.isfinite(Bv)
     if not known.any():
