@@ -10,6 +10,7 @@ from __future__ import annotations
 import math
 import warnings
 from dataclasses import dataclass, field
+from pathlib import Path
 
 import numpy as np
 
@@ -710,7 +711,7 @@ def imported_case(case: schema.ImportedCase) -> Result:
     """A pair from the user's STL/STEP bodies: contact over the mesh cycle on the meshes
     (contact.imported). Reads the two body files (named and checked by the case)."""
     from .assembly import Misalignment, ParallelMesh
-    from .contact.imported import chordal_error, imported_cycle
+    from .contact.imported import chordal_error, imported_cycle, teeth_per_turn
     from .mesh import load_surface
 
     bodies = {}
@@ -720,6 +721,14 @@ def imported_case(case: schema.ImportedCase) -> Result:
             bodies[name] = load_surface(spec.file, case.step_tolerance)
         except ValueError as exc:
             raise CaseError(f"{name}.file: {exc}") from None
+        found = teeth_per_turn(bodies[name])
+        if not abs(found - spec.teeth) < 0.25:
+            seen = (f"its tooth tips are {360.0 / found:.3f} deg apart ({found:.2f} teeth a "
+                    "turn)" if math.isfinite(found) else "it shows fewer than two tooth tips "
+                    "about its z axis")
+            raise CaseError(f"{name}.teeth: {spec.teeth}, but {Path(spec.file).name} is no "
+                            f"gear of {spec.teeth} teeth about its z axis: {seen}; give the "
+                            "body's tooth count, and a file whose z axis is the gear's axis")
     if case.pinion_phase:
         bodies["pinion"] = bodies["pinion"].turned(case.pinion_phase)
     z1, z2 = case.pinion.teeth, case.gear.teeth
@@ -740,16 +749,21 @@ def imported_case(case: schema.ImportedCase) -> Result:
                                                         for b in (case.pinion, case.gear)))
     except ValueError as exc:
         raise CaseError(f"pinion / gear: no contact could be found: {exc}") from None
+    chordal = {name: chordal_error(body) for name, body in bodies.items()}
     result = Result(sections={"bodies": {
         name: {"file": getattr(case, name).file, "teeth": getattr(case, name).teeth,
-               "triangles": len(body.faces), "chordal_error_um": 1e3 * chordal_error(body),
+               "triangles": len(body.faces), "chordal_error_um": 1e3 * chordal[name],
                "watertight": bool(body.mesh.is_watertight)}
         for name, body in bodies.items()}})
     unchecked = [name for name in ("pinion", "gear") if getattr(case, name).form_diameter is None]
-    result.notes.append("imported bodies: contact on the triangulations (closest-point "
-                        "separation); A and B carry the facets' chordal error; tips at each "
-                        "body's largest radius" + (f"; form edge not checked for the "
-                                                   f"{' and '.join(unchecked)} (give "
-                                                   "form_diameter)" if unchecked else ""))
+    result.notes.append("imported bodies: contact on the smooth surfaces the facets stand for "
+                        "(Phong tessellation through normals fitted to the facets), by transverse "
+                        "sections of the pinion's driving flanks; tips at each body's largest "
+                        "radius" + (f"; form edge not checked for the {' and '.join(unchecked)} "
+                                    "(give form_diameter)" if unchecked else ""))
     _contact_sections(rows, {"tangential_load_N": wt, "normal_load_N": normal_load}, result)
+    # what the facets allow: their chordal errors as a turn of the gear at its base radius
+    base_radius = case.center_distance * z2 / (z1 + z2) * math.cos(case.pressure_angle)
+    result.sections["summary"]["transmission_error_facet_bound_urad"] = \
+        1e6 * (chordal["pinion"] + chordal["gear"]) / base_radius
     return result
