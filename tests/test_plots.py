@@ -65,7 +65,8 @@ def _cycle(edge: bool, kind: str = "spur") -> dict:
                          "p_max_MPa": 1200.0 + 50 * i + 100 * pair,
                          "a_mm": 6.35 if line else 8.0 + 0.1 * i, "b_mm": None if line else 0.2,
                          "edge_margin_mm": "nan" if line else margin,
-                         "edge_contact": (not line) and margin < 0, "line_contact": line,
+                         "edge_contact": (not line) and margin < 0,
+                         "contact_model": "line" if line else "ellipse",
                          "edge_margins_mm": {} if line else {"pinion_tip": margin,
                                                              "gear_end_A": 3.0}})
     return {"case": "synthetic", "kind": kind, "title": "synthetic cycle", "positions": rows}
@@ -93,7 +94,8 @@ def test_mesh_cycle_of_a_spline_runs_over_the_tooth_index(tmp_path):
     rows = [{"roll_deg": roll, "pair": tooth, "transmission_error_urad": 3039.2 + 0.1 * (roll == 0),
              "p_max_MPa": 30.0 + 40.0 * (tooth % 9 == 0) + roll, "a_mm": 2.0 + 0.05 * roll,
              "b_mm": 0.8, "edge_margin_mm": -1.6 + 0.01 * roll if tooth % 9 == 0 else "nan",
-             "edge_contact": tooth % 9 == 0, "line_contact": tooth % 9 != 0}
+             "edge_contact": tooth % 9 == 0,
+             "contact_model": "line" if tooth % 9 else "ellipse"}
             for roll in (-10.0, 0.0, 10.0) for tooth in range(18)]
     result = {"case": "spline", "kind": "spline", "positions": rows}
     rgb = _rgb(plots.mesh_cycle(result, tmp_path / "spline.png"), (WIDTH, 888))
