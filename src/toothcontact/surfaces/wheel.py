@@ -291,7 +291,7 @@ class WormWheelFlank(Flank):
             raise ValueError("need d_a2 <= outside_diameter < 2 a")
 
         self.orientation = 1.0
-        self._rho_root = hob.root_diameter / 2  # hob root: generates nothing beyond it
+        self._rho_root = hob.domain[0][0]  # hob root or form radius: no flank below it
         self._rho_tip = hob.tip_diameter / 2  # hob tip edge: generates the wheel's root edge
         self._tip_poly = self._fit_tip()
         self.domain = ((0.0, 1.0), (-self.face_width / 2, self.face_width / 2))
