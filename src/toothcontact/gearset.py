@@ -18,7 +18,7 @@ from .case import Member, SplineCase, SpurCase, WormCase
 from .modify import Deflection, EndRelief, FlankModifications, LeadCrown, ProfileCrown, TipRelief
 from .surfaces.involute import CylindricalGear, inv
 from .surfaces.spline import InvoluteSpline
-from .surfaces.wheel import WormWheelFlank
+from .surfaces.wheel import BlankError, WormWheelFlank
 from .surfaces.worm import WormFlank
 
 
@@ -161,23 +161,27 @@ def worm_set(case: WormCase) -> WormSet:
     spec = case.worm
     common = dict(form=spec.form, starts=spec.starts, length=spec.length, hand=spec.hand,
                   pressure_angle=spec.pressure_angle, wheel_diameter=spec.grinding_wheel_diameter)
-    if spec.lead_angle is not None:
-        mx = spec.axial_module or spec.normal_module / math.cos(spec.lead_angle)
-        d1 = spec.starts * mx / math.tan(spec.lead_angle)
-    else:
-        d1 = spec.pitch_diameter
-        mx = spec.axial_module
-        if mx is None:  # normal module given with the pitch diameter: sin(gamma) = z1·mn/d1
-            mx = spec.normal_module / math.cos(math.asin(spec.starts * spec.normal_module / d1))
+    mx, d1 = spec.axial_module_and_pitch_diameter()
     worm = {side: WormFlank(axial_module=mx, pitch_diameter=d1, side=side, **common)
             for side in ("left", "right")}
     w = case.wheel
     hob_d1 = w.hob_pitch_diameter or d1
-    hob_common = {**common, "length": spec.length + 4.0 * math.pi * mx * spec.starts}
+    extra = 4.0 * math.pi * mx * spec.starts  # an oversized hob is this much longer
+    hob_common = {**common, "length": spec.length + extra}
     wheel = {}
     for side in ("left", "right"):
         hob = worm[side] if hob_d1 == d1 else WormFlank(
             axial_module=mx, pitch_diameter=hob_d1, side=side, **hob_common)
-        wheel[side] = WormWheelFlank(hob, w.teeth, worm=worm[side], profile_shift=w.profile_shift,
-                                     face_width=w.face_width, align_hob_thread=w.align_hob_thread)
+        try:
+            wheel[side] = WormWheelFlank(hob, w.teeth, worm=worm[side],
+                                         profile_shift=w.profile_shift, face_width=w.face_width,
+                                         align_hob_thread=w.align_hob_thread)
+        except BlankError as exc:
+            if exc.parameter == "hob_length":
+                needed = exc.needed - (0.0 if hob is worm[side] else extra)
+                raise ValueError(f"worm.length: {spec.length:.4g} mm is too short for the hob "
+                                 f"that cuts the wheel ({exc}): give at least "
+                                 f"{math.ceil(needed * 10) / 10:.4g} mm") from None
+            given = "" if w.face_width is not None else " (the default)"
+            raise ValueError(f"wheel.face_width{given}: {exc}") from None
     return WormSet(worm, wheel)

@@ -252,10 +252,17 @@ class WormFlank(Flank):
     # e_x) and eta (along t = (0, -sin g, cos g)) about Q = (0, 0, zq): eta = eta1 + (xi - r1)·tau
     def _init_zn(self):
         r1 = self.reference_radius
-        self._eta1 = brentq(lambda e: self._zn(r1, e) + self._half_s, 0.0, self.axial_pitch,
-                            xtol=1e-15, rtol=4 * np.finfo(float).eps)
-        sg, b = self._sg, self._eta1 - r1 * self._tau
-        return abs(sg * b) / math.sqrt(1 + sg * sg * self._tau ** 2)  # where the root vanishes
+        sg, tau = self._sg, self._tau
+        # the line has points of radius r1 while |sg·b| <= r1·sqrt(1 + sg²·tau²)
+        top = min(self.axial_pitch, r1 * tau + r1 * math.sqrt(1 + sg * sg * tau * tau) / abs(sg))
+        thickness = lambda e: self._zn(r1, e) + self._half_s  # noqa: E731
+        if not thickness(0.0) * thickness(top) < 0:
+            raise ValueError(f"ZN: no straight normal-section line at {math.degrees(self.pressure_angle):.4g} deg "
+                             f"gives the thread thickness pi·mx/2 at d1 with a lead angle of "
+                             f"{math.degrees(self.lead_angle):.4g} deg")
+        self._eta1 = brentq(thickness, 0.0, top, xtol=1e-15, rtol=4 * np.finfo(float).eps)
+        b = self._eta1 - r1 * tau
+        return abs(sg * b) / math.sqrt(1 + sg * sg * tau * tau)  # where the root vanishes
 
     def _zn(self, r, eta1):
         sg, cg, tau = self._sg, self._cg, self._tau
