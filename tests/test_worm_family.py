@@ -110,14 +110,18 @@ def test_wheel_normals_point_out_of_the_tooth(worm_set):
 
 
 def test_worm_flanks_start_on_their_form_circle(worm_set):
-    """The worm flank's domain starts at max(root, form radius), its axial profile is finite
-    over the whole domain and, for a ZI worm, the form radius is the base radius
-    r1·cos(atan(tan(alpha_n)/sin(gamma)))."""
+    """The worm flank's domain starts at the root, or 1e-4 of the depth outside the form
+    circle when that lies above the root; its points and their first and second derivatives
+    are finite over the whole domain (edges included) and, for a ZI worm, the form radius is
+    the base radius r1·cos(atan(tan(alpha_n)/sin(gamma)))."""
     raw, parts = worm_set
     for worm in parts.worm.values():
         (u0, u1), _ = worm.domain
-        assert u0 == max(worm.root_diameter / 2, worm.form_radius)
-        assert np.all(np.isfinite(worm.axial_profile(np.linspace(u0, u1, 201))))
+        root, form = worm.root_diameter / 2, worm.form_radius
+        assert u0 == (root if form <= root else form + 1e-4 * (u1 - form))
+        s = worm.evaluate(*worm.grid(101, 5))
+        for array in (s.points, s.r_u, s.r_v, s.r_uu, s.r_uv, s.r_vv):
+            assert np.all(np.isfinite(array))
         if worm.form == "ZI":
             alpha_t = math.atan(math.tan(worm.pressure_angle) / math.sin(worm.lead_angle))
             assert worm.form_radius == pytest.approx(

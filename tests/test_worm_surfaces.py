@@ -21,8 +21,8 @@ WORMS = {  # seed worm set: z1 = 1, mn = 1.1 mm, gamma = 4.1°; and a 2-start wo
 FORMS = ("ZA", "ZN", "ZI", "ZK")
 
 
-def make(form, worm="z2_mx1.75", hand="right", side="left"):
-    return WormFlank(form, hand=hand, side=side, pressure_angle=ALPHA, **WORMS[worm])
+def make(form, worm="z2_mx1.75", hand="right", side="left", **kwargs):
+    return WormFlank(form, hand=hand, side=side, pressure_angle=ALPHA, **WORMS[worm], **kwargs)
 
 
 def xyz(flank, u, v):
@@ -78,8 +78,9 @@ def test_parameterisation_and_worm_data(form, worm, hand):
     sign = 1 if hand == "right" else -1
     assert fl.screw_parameter == pytest.approx(sign * fl.lead / (2 * math.pi), rel=1e-14)
     (u0, u1), (v0, v1) = fl.domain
-    root = (d1 - 2.4 * mx) / 2
-    assert (u0, u1) == pytest.approx((max(root, fl.form_radius), (d1 + 2 * mx) / 2), rel=1e-14)
+    root, tip = (d1 - 2.4 * mx) / 2, (d1 + 2 * mx) / 2
+    start = root if fl.form_radius <= root else fl.form_radius + 1e-4 * (tip - fl.form_radius)
+    assert (u0, u1) == pytest.approx((start, tip), rel=1e-14)
     u, v = fl.grid(5, 7)
     p = xyz(fl, u, v)
     np.testing.assert_allclose(np.hypot(p[..., 0], p[..., 1]), u, rtol=1e-13)
@@ -277,15 +278,16 @@ def cone_distance_and_normal(wheel_centre, axis, rw, alpha0, zeta_ref, X):
 @pytest.mark.parametrize("worm", WORMS)
 @pytest.mark.parametrize("hand", ["right", "left"])
 @pytest.mark.parametrize("side", ["left", "right"])
-def test_zk_is_the_envelope_of_the_grinding_wheel(worm, hand, side):
+def test_zk_is_the_envelope_of_the_grinding_wheel(worm, hand, side, wheel_diameter=250.0):
     """The wheel: centre distance D/2 + d1/2, axis square to the common perpendicular (x) and
     to the reference helix at the space centre (crossing angle = lead angle), centre at the
     space centre (1e-12). For every worm point there is a screw position of the worm in which
     its normal line meets the wheel axis; there the point lies on the cone (|distance| < 1e-9
     mm), the normals coincide (1e-9) and the meshing equation n·v12 = 0 holds (< 1e-10 mm/rad,
     v12 = e_z × r + p e_z)."""
-    fl = make("ZK", worm, hand, side)
-    other = make("ZK", worm, hand, "right" if side == "left" else "left")
+    fl = make("ZK", worm, hand, side, wheel_diameter=wheel_diameter)
+    other = make("ZK", worm, hand, "right" if side == "left" else "left",
+                 wheel_diameter=wheel_diameter)
     wheel = fl.grinding_wheel
     r1, p, px = fl.reference_radius, fl.screw_parameter, fl.axial_pitch
     zl = axial_z(fl if side == "left" else other, r1, 0.0, 0.0)
@@ -328,6 +330,15 @@ def test_zk_is_the_envelope_of_the_grinding_wheel(worm, hand, side):
         assert np.linalg.norm(np.cross(m, nc)) < 1e-9
         v12 = np.array([-X[1], X[0], p])
         assert abs(nc @ v12) < 1e-10
+
+
+@pytest.mark.parametrize("wheel_diameter", [30.0, 3000.0])
+@pytest.mark.parametrize("hand", ["right", "left"])
+def test_zk_envelope_with_a_small_or_large_grinding_wheel(wheel_diameter, hand):
+    """The contact line's branch (psi near 0 of A cos psi + B sin psi = D, B < 0 for either
+    hand) holds for a grinding wheel of 1.5 worm diameters and of 150: the same envelope
+    checks as for the default 250 mm wheel."""
+    test_zk_is_the_envelope_of_the_grinding_wheel("z2_mx1.75", hand, "left", wheel_diameter)
 
 
 def ground_boundary(fl, r, phis=np.linspace(-1.6, 1.6, 6401)):
@@ -378,7 +389,8 @@ def test_zk_form_radius_is_where_the_ground_boundary_leaves_the_flank(starts, q,
     left = fl if hand == "right" else WormFlank("ZK", starts, mx, q * mx, length=40.0,
                                                 pressure_angle=ALPHA)
     form = fl.form_radius
-    assert form > fl.root_diameter / 2 and fl.domain[0][0] == form
+    assert form > fl.root_diameter / 2
+    assert fl.domain[0][0] == pytest.approx(form + 1e-4 * (fl.tip_diameter / 2 - form), rel=1e-15)
     assert form == pytest.approx(left.form_radius, rel=1e-12)  # the hand is a mirror image
     for r in (form + 0.001 * mx, form + 0.05 * mx, fl.reference_radius):
         assert abs(ground_boundary(left, r) - float(left.axial_profile(np.array(r)))) < 2e-6

@@ -23,7 +23,8 @@ the forms:
   axis, or at the apex where they meet, if that comes first).
 
 Form circle: the flank exists down to a form radius r_form, and the domain starts at
-max(r_f, r_form) (edge "form" when r_form > r_f, else "root"); below it the thread is
+max(r_f, r_form) (edge "form" when r_form > r_f, else "root"; a form edge lies FORM_OFFSET
+of the depth outside the form circle, where the profile is regular); below it the thread is
 undercut, bounded by a surface the flank's model does not hold. ZA: r_form = 0; ZN: the
 radius below which the normal-section line has no point of that radius; ZI: the base
 radius r_b (no involute inside it); ZK: along the contact line the worm radius R(rho) falls
@@ -61,6 +62,11 @@ from .base import Flank
 from .jet import cos_sin, value
 
 FORMS = ("ZA", "ZN", "ZI", "ZK")
+
+#: a flank that ends on its form circle starts this fraction of its depth outside it: the
+#: parameterisation by radius is singular on a ZI base circle, a ZN line's limit and a ZK
+#: edge of regression (infinite slope or curvature of the axial profile)
+FORM_OFFSET = 1e-4
 
 
 @dataclass(frozen=True)
@@ -137,8 +143,10 @@ class WormFlank(Flank):
                              f" mm, outside the tip radius {self.tip_diameter / 2:.4g} mm")
 
         half = self.length / (2 * abs(self._p))
-        root = self.root_diameter / 2
-        self.domain = ((max(root, self.form_radius), self.tip_diameter / 2), (-half, half))
+        root, tip = self.root_diameter / 2, self.tip_diameter / 2
+        start = root if self.form_radius <= root else \
+            self.form_radius + FORM_OFFSET * (tip - self.form_radius)
+        self.domain = ((start, tip), (-half, half))
         ends = ("end_A", "end_B") if self._p > 0 else ("end_B", "end_A")
         self.edges = {"u0": "form" if self.form_radius > root else "root", "u1": "tip",
                       "v0": ends[0], "v1": ends[1]}
