@@ -359,6 +359,11 @@ def spur_geometry_case(case: schema.SpurCase) -> Result:
         "rho1_lpstc_mm": mesh.lpstc()}
     result.checks.append(Check("transverse contact ratio above 1", mesh.contact_ratio > 1.0,
                                f"{mesh.contact_ratio:.3f}"))
+    clearance = gearset.tip_clearances(pair.pinion, pair.gear, pair.center_distance)
+    result.sections["mesh"].update({f"{name}_tip_clearance_mm": c for name, c in clearance.items()})
+    result.checks.append(Check("tips clear the mating root circles",
+                               min(clearance.values()) >= 0.0,
+                               ", ".join(f"{name} tip {c:.3f} mm" for name, c in clearance.items())))
     if case.load is not None:
         _spur_contact(case, pair, result)
     return result
