@@ -648,7 +648,7 @@ class WormWheelFlank(Flank):
         if not np.all(inside(tip, every)):
             raise BlankError(f"face width {self.face_width:.4g} mm: the wheel's root edge "
                              "leaves the blank at the faces", "face_width")
-        rho, _ = self._lowest(inside, v)
+        rho = self._lowest(inside, v)
         x = v / half
         coef = np.polynomial.polynomial.polyfit(x, rho, degree)
         fit = np.polynomial.polynomial.polyval(x, coef)
@@ -694,10 +694,10 @@ class WormWheelFlank(Flank):
         return np.minimum(floor, self._rho_tip)
 
     def _lowest(self, ok, v, levels=8):
-        """For each face position v: the lowest hob radius r* such that ok(rho, i) holds for
-        all rho in [r*, hob tip] (a scan down in `levels` steps, then bisection to 2^-36 of
-        the hob depth), and whether it held down to the hob root. ok(hob tip, i) must hold;
-        ok is evaluated only at the face positions i still undecided."""
+        """For each face position v: the lowest hob radius r* (at least the hob root) such that
+        ok(rho, i) holds for all rho in [r*, hob tip] (a scan down in `levels` steps, then
+        bisection to 2^-36 of the hob depth). ok(hob tip, i) must hold; ok is evaluated only
+        at the face positions i still undecided."""
         top, root = self._rho_tip, self._rho_root
         depth = top - root
         free = ok(np.full_like(v, root), np.arange(v.size))
@@ -715,4 +715,4 @@ class WormWheelFlank(Flank):
             mid = 0.5 * (lo[open_] + hi[open_])
             good = ok(mid, open_)
             hi[open_[good]], lo[open_[~good]] = mid[good], mid[~good]
-        return np.where(free, root, hi), free
+        return np.where(free, root, hi)
