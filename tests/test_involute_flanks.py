@@ -125,6 +125,84 @@ def test_undercut_limit(z, x, expected):
     assert generate_side(gear).undercut == expected
 
 
+def rack_margin(gear, P, phi):
+    """How deep (mm, > 0 inside) the transverse point P of the gear lies in the generating
+    rack tooth at the rolling position phi (array): the gear turned by phi, the rack moved by
+    r·phi along its pitch line. The rack is rebuilt here from ISO 53 in the transverse
+    section: flanks at alpha_t, tooth pi·m_t/2 thick on its reference line (r + x·m from the
+    gear axis, centred on the space after tooth 0), tip at the dedendum, and its tip rounding
+    an ellipse (rho deep, rho/cos(beta) along the pitch line) tangent to the tip line and
+    the flank."""
+    r, m, mt = gear.pitch_radius, gear.normal_module, gear.transverse_module
+    alpha, beta = gear.transverse_pressure_angle, gear.helix_angle
+    rho, ry = gear.root_radius * m, gear.root_radius * m / math.cos(beta)
+    x_ref = r + gear.profile_shift * m
+    x_tip = x_ref - gear.dedendum * m
+    c, s = np.cos(phi), np.sin(phi)
+    X = c * P[0] - s * P[1]
+    d = np.abs(s * P[0] + c * P[1] - r * phi - 0.5 * math.pi * mt)
+    w = 0.25 * math.pi * mt - (x_ref - X) * math.tan(alpha)  # half-thickness at X
+    x_c = x_tip + rho
+    d_c = 0.25 * math.pi * mt - (x_ref - x_c) * math.tan(alpha) - math.hypot(
+        rho * math.tan(alpha), ry)  # the ellipse's centre: tangent to the flank line
+    flank = (w - d) * math.cos(alpha)
+    tip = X - x_tip
+    q = np.hypot((X - x_c) / rho, (d - d_c) / ry)
+    corner = np.where((X < x_c) & (d > d_c), (1.0 - q) * rho, np.inf)
+    return np.minimum(np.minimum(flank, tip), corner)
+
+
+def form_radius_by_rolling(gear):
+    """The form radius found by rolling the rack past the involute: the largest radius at
+    which some rack position cuts into the involute's point (depth > 1e-10 mm; the best of
+    50001 positions in ±1.5 rad, refined by a bounded scalar search), by bisection
+    between the base and tip circles. The involute's polar angle at radius R is
+    s/(2r) + inv(alpha_t) - inv(acos(rb/R)) (ISO 21771)."""
+    from scipy.optimize import minimize_scalar
+
+    rb = gear.base_radius
+    half = gear.tooth_thickness / (2 * gear.pitch_radius)
+    inv = lambda a: math.tan(a) - a  # noqa: E731
+    phis = np.linspace(-1.5, 1.5, 50001)
+
+    def cut(R):
+        theta = half + inv(gear.transverse_pressure_angle) - inv(math.acos(rb / R))
+        P = R * np.array([math.cos(theta), math.sin(theta)])
+        depth = rack_margin(gear, P, phis)
+        k = int(np.argmax(depth))
+        best = minimize_scalar(lambda f: -float(rack_margin(gear, P, np.array([f]))[0]),
+                               bounds=(phis[max(k - 1, 0)], phis[min(k + 1, phis.size - 1)]),
+                               method="bounded", options={"xatol": 1e-14})
+        return max(depth[k], -best.fun) > 1e-10
+
+    lo, hi = rb * (1 + 1e-12), gear.tip_radius
+    assert cut(lo) and not cut(hi)
+    for _ in range(45):
+        mid = 0.5 * (lo + hi)
+        lo, hi = (mid, hi) if cut(mid) else (lo, mid)
+    return 0.5 * (lo + hi)
+
+
+@pytest.mark.parametrize("gear", [
+    CylindricalGear(14, 2.0, math.radians(20), 20.0),
+    CylindricalGear(10, 3.0, math.radians(20), 20.0, profile_shift=0.1),
+    CylindricalGear(12, 1.5, math.radians(20), 15.0, helix_angle=math.radians(25)),
+    CylindricalGear(13, 2.0, math.radians(14.5), 15.0, profile_shift=0.3),
+], ids=["z14", "z10 x0.1", "helical z12", "z13 14.5deg"])
+def test_undercut_form_radius_by_rolling_the_rack(gear):
+    """On an undercut gear the generated root cuts into the involute above the base circle;
+    the form radius (where the involute begins) is where rolling the rack past the involute
+    stops cutting into it (`form_radius_by_rolling`, 1e-6 mm). The fillet ends there on the
+    involute and starts on the root circle (1e-9 mm)."""
+    side = generate_side(gear)
+    assert side.undercut and side.form_radius > gear.base_radius
+    assert side.form_radius == pytest.approx(form_radius_by_rolling(gear), abs=1e-6)
+    flank = gear.flank(1, side.form_radius)
+    np.testing.assert_allclose(side.fillet[-1], flank.transverse_point(flank.domain[0][0]),
+                               atol=1e-9)
+    assert np.hypot(*side.fillet[0]) == pytest.approx(gear.root_radius_value, abs=1e-9)
+
+
 # --- modifications -----------------------------------------------------------------------
 
 SPUR = GEARS["spur"]

@@ -21,8 +21,8 @@ WORMS = {  # seed worm set: z1 = 1, mn = 1.1 mm, gamma = 4.1°; and a 2-start wo
 FORMS = ("ZA", "ZN", "ZI", "ZK")
 
 
-def make(form, worm="z2_mx1.75", hand="right", side="left"):
-    return WormFlank(form, hand=hand, side=side, pressure_angle=ALPHA, **WORMS[worm])
+def make(form, worm="z2_mx1.75", hand="right", side="left", **kwargs):
+    return WormFlank(form, hand=hand, side=side, pressure_angle=ALPHA, **WORMS[worm], **kwargs)
 
 
 def xyz(flank, u, v):
@@ -67,8 +67,8 @@ def flanks_all():
 # --- parameterisation contract ------------------------------------------------------------
 @pytest.mark.parametrize("form,worm,hand", flanks_all())
 def test_parameterisation_and_worm_data(form, worm, hand):
-    """u = radius, z = p·v, the domain ends are the planes z = ±L/2 and the root/tip
-    cylinders; lead, lead angle and p from the DIN 3975 definitions (1e-12)."""
+    """u = radius, z = p·v, the domain ends are the planes z = ±L/2 and the root (or form)
+    and tip cylinders; lead, lead angle and p from the DIN 3975 definitions (1e-12)."""
     w = WORMS[worm]
     fl = make(form, worm, hand)
     mx, d1, z1 = w["axial_module"], w["pitch_diameter"], w["starts"]
@@ -78,14 +78,17 @@ def test_parameterisation_and_worm_data(form, worm, hand):
     sign = 1 if hand == "right" else -1
     assert fl.screw_parameter == pytest.approx(sign * fl.lead / (2 * math.pi), rel=1e-14)
     (u0, u1), (v0, v1) = fl.domain
-    assert (u0, u1) == pytest.approx(((d1 - 2.4 * mx) / 2, (d1 + 2 * mx) / 2), rel=1e-14)
+    root, tip = (d1 - 2.4 * mx) / 2, (d1 + 2 * mx) / 2
+    start = root if fl.form_radius <= root else fl.form_radius + 1e-4 * (tip - fl.form_radius)
+    assert (u0, u1) == pytest.approx((start, tip), rel=1e-14)
     u, v = fl.grid(5, 7)
     p = xyz(fl, u, v)
     np.testing.assert_allclose(np.hypot(p[..., 0], p[..., 1]), u, rtol=1e-13)
     np.testing.assert_allclose(p[..., 2], fl.screw_parameter * v, rtol=1e-14)
     z_v0 = fl.screw_parameter * v0
     assert z_v0 == pytest.approx(-w["length"] / 2 if fl.edges["v0"] == "end_A" else w["length"] / 2)
-    assert fl.edges["u0"] == "root" and fl.edges["u1"] == "tip"
+    assert fl.edges["u0"] == ("form" if fl.form_radius > root else "root")
+    assert fl.edges["u1"] == "tip"
     assert {fl.edges["v0"], fl.edges["v1"]} == {"end_A", "end_B"}
 
 
@@ -275,15 +278,16 @@ def cone_distance_and_normal(wheel_centre, axis, rw, alpha0, zeta_ref, X):
 @pytest.mark.parametrize("worm", WORMS)
 @pytest.mark.parametrize("hand", ["right", "left"])
 @pytest.mark.parametrize("side", ["left", "right"])
-def test_zk_is_the_envelope_of_the_grinding_wheel(worm, hand, side):
+def test_zk_is_the_envelope_of_the_grinding_wheel(worm, hand, side, wheel_diameter=250.0):
     """The wheel: centre distance D/2 + d1/2, axis square to the common perpendicular (x) and
     to the reference helix at the space centre (crossing angle = lead angle), centre at the
     space centre (1e-12). For every worm point there is a screw position of the worm in which
     its normal line meets the wheel axis; there the point lies on the cone (|distance| < 1e-9
     mm), the normals coincide (1e-9) and the meshing equation n·v12 = 0 holds (< 1e-10 mm/rad,
     v12 = e_z × r + p e_z)."""
-    fl = make("ZK", worm, hand, side)
-    other = make("ZK", worm, hand, "right" if side == "left" else "left")
+    fl = make("ZK", worm, hand, side, wheel_diameter=wheel_diameter)
+    other = make("ZK", worm, hand, "right" if side == "left" else "left",
+                 wheel_diameter=wheel_diameter)
     wheel = fl.grinding_wheel
     r1, p, px = fl.reference_radius, fl.screw_parameter, fl.axial_pitch
     zl = axial_z(fl if side == "left" else other, r1, 0.0, 0.0)
@@ -326,6 +330,92 @@ def test_zk_is_the_envelope_of_the_grinding_wheel(worm, hand, side):
         assert np.linalg.norm(np.cross(m, nc)) < 1e-9
         v12 = np.array([-X[1], X[0], p])
         assert abs(nc @ v12) < 1e-10
+
+
+@pytest.mark.parametrize("wheel_diameter", [30.0, 3000.0])
+@pytest.mark.parametrize("hand", ["right", "left"])
+def test_zk_envelope_with_a_small_or_large_grinding_wheel(wheel_diameter, hand):
+    """The contact line's branch (psi near 0 of A cos psi + B sin psi = D, B < 0 for either
+    hand) holds for a grinding wheel of 1.5 worm diameters and of 150: the same envelope
+    checks as for the default 250 mm wheel."""
+    test_zk_is_the_envelope_of_the_grinding_wheel("z2_mx1.75", hand, "left", wheel_diameter)
+
+
+def ground_boundary(fl, r, phis=np.linspace(-1.6, 1.6, 6401)):
+    """z (mm) of the left flank at radius r in the axial half-plane y = 0, x > 0 as the
+    grinding wheel leaves it, found without the contact line: the wheel is the solid
+    |zeta| + tan(alpha0)·rho <= half_width + radius·tan(alpha0), rho <= a - r_f (its tip
+    grinds the root cylinder), built from `grinding_wheel` alone. For each screw position phi
+    of the worm the line (r cos phi, r sin phi, t) meets this convex solid in an interval
+    (golden-section search for a point inside, bisection for its upper end); the flank is
+    the highest upper end screwed back, max(t - p·phi)."""
+    W = fl.grinding_wheel
+    C, k, tau = W.centre, W.axis, math.tan(W.profile_angle)
+    c, rho_t, p = W.half_width + W.radius * tau, W.centre_distance - fl.root_diameter / 2, \
+        fl.screw_parameter
+
+    def g(t):  # <= 0 inside the wheel, convex along each line
+        w = np.stack([r * np.cos(phis), r * np.sin(phis), t], -1) - C
+        zeta = w @ k
+        rho = np.sqrt(np.maximum((w * w).sum(-1) - zeta ** 2, 0.0))
+        return np.maximum(np.abs(zeta) + tau * rho - c, rho - rho_t)
+
+    lo, hi = np.full_like(phis, C[2] - 20.0), np.full_like(phis, C[2] + 20.0)
+    golden = (math.sqrt(5) - 1) / 2
+    for _ in range(90):
+        a, b = hi - golden * (hi - lo), lo + golden * (hi - lo)
+        left = g(a) < g(b)
+        hi, lo = np.where(left, b, hi), np.where(left, lo, a)
+    inside = 0.5 * (lo + hi)
+    ok = g(inside) < 0
+    lo, hi = inside, inside + 40.0
+    for _ in range(70):
+        mid = 0.5 * (lo + hi)
+        out = g(mid) > 0
+        hi, lo = np.where(out, mid, hi), np.where(out, lo, mid)
+    return float(np.max(np.where(ok, lo - p * phis, -np.inf)))
+
+
+@pytest.mark.parametrize("starts,q,hand", [(4, 5.0, "right"), (1, 10.0, "left"), (2, 6.0, "right")])
+def test_zk_form_radius_is_where_the_ground_boundary_leaves_the_flank(starts, q, hand):
+    """Above the form radius the flank's axial profile is the boundary the wheel grinds
+    (`ground_boundary`, < 2e-6 mm); 0.01 mx below it the ground boundary leaves the
+    profile's continuation (> 2e-5 mm) or the continuation does not exist. Designs: a
+    4-start worm with q = 5 (26.6°; the wheel's tip edge cuts into the flank, 0.87 mx above
+    the root), a 1-start q = 10 worm (the wheel's tip corner rounds the root, 0.013 mx) and
+    a 2-start q = 6 worm (the contact line turns back, 0.27 mx)."""
+    mx = 2.0
+    fl = WormFlank("ZK", starts, mx, q * mx, length=40.0, hand=hand, pressure_angle=ALPHA)
+    left = fl if hand == "right" else WormFlank("ZK", starts, mx, q * mx, length=40.0,
+                                                pressure_angle=ALPHA)
+    form = fl.form_radius
+    assert form > fl.root_diameter / 2
+    assert fl.domain[0][0] == pytest.approx(form + 1e-4 * (fl.tip_diameter / 2 - form), rel=1e-15)
+    assert form == pytest.approx(left.form_radius, rel=1e-12)  # the hand is a mirror image
+    for r in (form + 0.001 * mx, form + 0.05 * mx, fl.reference_radius):
+        assert abs(ground_boundary(left, r) - float(left.axial_profile(np.array(r)))) < 2e-6
+    below = form - 0.01 * mx
+    profile = float(left.axial_profile(np.array(below)))
+    assert math.isnan(profile) or abs(ground_boundary(left, below) - profile) > 2e-5
+
+
+def test_zk_profile_is_nan_where_there_is_no_contact_line():
+    """Far outside the worm (radii a contact search may probe: -1e8 ... 5e9 mm, or 0.1 mm)
+    the ZK profile is NaN, as a point, a jet and a third-order Taylor number; inside the
+    domain it is finite everywhere."""
+    from toothcontact.surfaces.jet import Jet
+
+    fl = make("ZK", "z2_mx1.75")
+    wild = np.array([-1e8, 0.1, 1e6, 5e9])
+    assert np.all(np.isnan(fl.axial_profile(wild)))
+    u, v = Jet.variables(wild, np.zeros(4))
+    assert np.all(np.isnan(value_of(fl.point(u, v)[0])))
+    r = np.linspace(*fl.domain[0], 101)
+    assert np.all(np.isfinite(fl.axial_profile(r)))
+
+
+def value_of(x):
+    return np.asarray(getattr(x, "f", x), float)
 
 
 # --- 6. hand -------------------------------------------------------------------------------

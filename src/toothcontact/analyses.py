@@ -360,6 +360,11 @@ def spur_geometry_case(case: schema.SpurCase) -> Result:
         "rho1_lpstc_mm": mesh.lpstc()}
     result.checks.append(Check("transverse contact ratio above 1", mesh.contact_ratio > 1.0,
                                f"{mesh.contact_ratio:.3f}"))
+    clearance = gearset.tip_clearances(pair.pinion, pair.gear, pair.center_distance)
+    result.sections["mesh"].update({f"{name}_tip_clearance_mm": c for name, c in clearance.items()})
+    result.checks.append(Check("tips clear the mating root circles",
+                               min(clearance.values()) >= 0.0,
+                               ", ".join(f"{name} tip {c:.3f} mm" for name, c in clearance.items())))
     if case.load is not None:
         _spur_contact(case, pair, result)
     return result
@@ -640,7 +645,8 @@ def worm_geometry_case(case: schema.WormCase) -> Result:
                "axial_module_mm": worm.axial_module, "normal_module_mm": worm.normal_module,
                "lead_mm": worm.lead, "lead_angle_deg": math.degrees(worm.lead_angle),
                "pitch_diameter_mm": worm.pitch_diameter, "tip_diameter_mm": worm.tip_diameter,
-               "root_diameter_mm": worm.root_diameter, "length_mm": worm.length}
+               "root_diameter_mm": worm.root_diameter, "form_diameter_mm": 2 * worm.form_radius,
+               "length_mm": worm.length}
     if worm.form == "ZI":
         section["base_diameter_mm"] = 2 * worm.base_radius
     result = Result(sections={
@@ -658,6 +664,16 @@ def worm_geometry_case(case: schema.WormCase) -> Result:
                   "center_distance_mm": wheel.centre_distance},
     }, notes=["the wheel flank is the exact envelope of the hob thread (equation of meshing); "
               "the blank follows DIN 3975 guideline proportions"])
+    result.sections["hob"]["form_diameter_mm"] = 2 * hob.form_radius
+    # the wheel's tip torus reaches the worm radius a - d_a2/2 (r_k) in the mid-plane, the
+    # hob's radius a0 - d_a2/2 while it cuts: there the flanks must exist
+    for name, flank, reach in (("worm", worm, wheel.throat_radius),
+                               ("hob", hob, wheel.generating_centre_distance
+                                - wheel.tip_diameter / 2)):
+        result.checks.append(Check(
+            f"{name} flank reaches below the wheel's tip", flank.form_radius <= reach,
+            f"{name} form diameter {2 * flank.form_radius:.3f} mm (no flank inside it), the "
+            f"wheel's tip reaches diameter {2 * reach:.3f} mm"))
     if case.load is not None:
         _worm_contact(case, parts, result)
     return result

@@ -304,6 +304,10 @@ class SplineCase(CaseInfo, ModuleOrPitch):
         return self
 
 
+#: DIN 3975 worm root depth below the pitch diameter, in axial modules (d_f1 = d1 - 2.4·mx)
+ROOT_DEPTH = 2.4
+
+
 class WormSpec(Model):
     """The worm: flank form, starts, module and lead, hand, profile angle, length."""
 
@@ -328,6 +332,17 @@ class WormSpec(Model):
         if self.lead_angle is not None and not 0 < self.lead_angle < math.radians(45):
             raise ValueError("worm.lead_angle: must lie between 0 and 45 deg")
         return self
+
+    def axial_module_and_pitch_diameter(self) -> tuple[float, float]:
+        """(mx, d1) in mm from the given module and lead angle or pitch diameter (DIN 3975:
+        mx = mn/cos(gamma), tan(gamma) = z1·mx/d1, sin(gamma) = z1·mn/d1)."""
+        if self.lead_angle is not None:
+            mx = self.axial_module or self.normal_module / math.cos(self.lead_angle)
+            return mx, self.starts * mx / math.tan(self.lead_angle)
+        d1 = self.pitch_diameter
+        if self.axial_module is not None:
+            return self.axial_module, d1
+        return self.normal_module / math.cos(math.asin(self.starts * self.normal_module / d1)), d1
 
 
 class WheelSpec(Model):
@@ -381,6 +396,33 @@ class WormCase(CaseInfo):
     analysis: AnalysisSpec = Field(AnalysisSpec(positions=7, grid=(11, 121)),
                                    description="positions per worm turn/start, grid")
     export: ExportSpec = ExportSpec()
+
+    @model_validator(mode="after")
+    def _proportions(self):
+        """The worm's pitch diameter clears its thread depth; the hob is not smaller."""
+        w = self.worm
+        if w.pitch_diameter is not None and w.normal_module is not None and \
+                not w.starts * w.normal_module < w.pitch_diameter:
+            raise ValueError(f"worm.pitch_diameter: {w.pitch_diameter:.4g} mm must exceed "
+                             f"z1·m_n = {w.starts * w.normal_module:.4g} mm "
+                             "(sin(lead angle) = z1·m_n/d1)")
+        mx, d1 = w.axial_module_and_pitch_diameter()
+        if not d1 > ROOT_DEPTH * mx:  # the DIN 3975 root diameter d1 - 2.4·mx must be > 0
+            field = "lead_angle" if w.lead_angle is not None else "pitch_diameter"
+            given = (f"{math.degrees(w.lead_angle):.4g} deg" if w.lead_angle is not None
+                     else f"{d1:.4g} mm")
+            limit = (f"below {math.degrees(math.atan(w.starts / ROOT_DEPTH)):.4g} deg for "
+                     f"{w.starts} start(s)" if w.lead_angle is not None
+                     else f"above {ROOT_DEPTH * mx:.4g} mm")
+            raise ValueError(f"worm.{field}: {given} gives a pitch diameter d1 = {d1:.4g} mm "
+                             f"within the thread depth: the root diameter d1 - 2.4·mx must be "
+                             f"> 0, so the {field.replace('_', ' ')} must lie {limit}")
+        hob = self.wheel.hob_pitch_diameter
+        if hob is not None and not hob >= d1:
+            raise ValueError(f"wheel.hob_pitch_diameter: {hob:.4g} mm must be at least the "
+                             f"worm's pitch diameter {d1:.4g} mm (a hob smaller than the worm "
+                             "cuts a wheel the worm does not fit)")
+        return self
 
 
 class Condition(Model):

@@ -18,7 +18,7 @@ from .case import Member, SplineCase, SpurCase, WormCase
 from .modify import Deflection, EndRelief, FlankModifications, LeadCrown, ProfileCrown, TipRelief
 from .surfaces.involute import CylindricalGear, inv
 from .surfaces.spline import InvoluteSpline
-from .surfaces.wheel import WormWheelFlank
+from .surfaces.wheel import BlankError, WormWheelFlank
 from .surfaces.worm import WormFlank
 
 
@@ -72,12 +72,35 @@ def working_flank(gear: CylindricalGear, modifications: FlankModifications, side
     return flank if modifications.empty else ModifiedFlank(flank, modifications)
 
 
+def rack_root_radius(case: SpurCase) -> float:
+    """The rack's tip-rounding coefficient rho_fP/m_n: the case's, or by default ISO 53's
+    0.38, lowered to 95 % of the largest rounding the rack's tip land takes (at pressure
+    angles above about 23°, where ISO 53's 0.38 does not fit; as the shaper cutter of a ring,
+    `generation.generate_ring_side`). A rounding tangent to the flank (at alpha_n) and to the
+    tip line takes (1 - sin(alpha_n))/cos(alpha_n)·rho of the tip's half-width
+    pi/4 - h_fP·tan(alpha_n) (in modules, normal section)."""
+    rack, alpha = case.rack, case.pressure_angle
+    land = math.pi / 4 - rack.dedendum * math.tan(alpha)
+    if land <= 0:
+        raise ValueError(f"rack.dedendum: {rack.dedendum:g} makes the rack's teeth pointed at "
+                         f"{math.degrees(alpha):.4g} deg: it must be below "
+                         f"{math.pi / 4 / math.tan(alpha):.4g}")
+    largest = land * math.cos(alpha) / (1 - math.sin(alpha))
+    if "root_radius" not in rack.model_fields_set:
+        return min(rack.root_radius, 0.95 * largest)
+    if rack.root_radius > largest:
+        raise ValueError(f"rack.root_radius: {rack.root_radius:g} does not fit the rack's tip "
+                         f"at {math.degrees(alpha):.4g} deg with dedendum {rack.dedendum:g}: "
+                         f"at most {largest:.4g}")
+    return rack.root_radius
+
+
 def gear_pair(case: SpurCase) -> GearPair:
     z1, z2 = case.teeth
     internal = z2 < 0
     common = dict(normal_module=case.module_mm, pressure_angle=case.pressure_angle,
                   helix_angle=case.helix_angle, addendum=case.rack.addendum,
-                  dedendum=case.rack.dedendum, root_radius=case.rack.root_radius)
+                  dedendum=case.rack.dedendum, root_radius=rack_root_radius(case))
     other_hand = case.hand if internal else ("left" if case.hand == "right" else "right")
     pinion = CylindricalGear(z1, face_width=case.pinion.face_width or case.face_width,
                              hand=case.hand, profile_shift=case.pinion.profile_shift, **common)
@@ -88,18 +111,96 @@ def gear_pair(case: SpurCase) -> GearPair:
     sign = -1.0 if internal else 1.0
     x_sum = case.pinion.profile_shift + sign * case.gear.profile_shift
     involute_w = inv(alpha_t) + 2.0 * math.tan(case.pressure_angle) * x_sum / (z1 + sign * abs(z2))
-    alpha_w = brentq(lambda a: inv(a) - involute_w, 1e-6, math.radians(70))
     r_sum = gear.pitch_radius + sign * pinion.pitch_radius
-    zero_backlash = abs(r_sum) * math.cos(alpha_t) / math.cos(alpha_w)
     if case.center_distance is not None:
         center = case.center_distance
+        if not abs(r_sum) * math.cos(alpha_t) < center:
+            raise ValueError(f"center_distance: {center:.4g} mm must exceed the base-circle "
+                             f"{'difference' if internal else 'sum'} "
+                             f"{abs(r_sum) * math.cos(alpha_t):.4g} mm")
         alpha_w = math.acos(abs(r_sum) * math.cos(alpha_t) / center)
     else:
-        center = zero_backlash
+        if not 0 < involute_w < inv(math.radians(70)):
+            shifts = "x1 - x2" if internal else "x1 + x2"
+            raise ValueError(
+                f"pinion.profile_shift / gear.profile_shift: {shifts} = {x_sum:.4g} gives no "
+                f"working pressure angle in (0, 70) deg (inv(alpha_w) = {involute_w:.4g})")
+        alpha_w = brentq(lambda a: inv(a) - involute_w, 1e-9, math.radians(70))
+        center = abs(r_sum) * math.cos(alpha_t) / math.cos(alpha_w)
+    check_proportions(pinion, gear, center if case.center_distance is None else None)
     d = case.deflection
     deflection = None if d is None else Deflection(d.slope, d.bending, tuple(d.table))
     return GearPair(pinion, gear, modifications(case.pinion, pinion, "pinion"),
                     modifications(case.gear, gear, "gear"), center, alpha_w, deflection)
+
+
+def tip_thickness(gear: CylindricalGear) -> float:
+    """Transverse tooth thickness (arc, mm) on the tip circle: 2·r_a·(s/(2r) ± inv(alpha_t)
+    ∓ inv(alpha_a)), cos(alpha_a) = r_b/r_a (ISO 21771; lower signs for a ring, whose tooth
+    widens outward). NaN for a ring whose tip circle lies inside its base circle."""
+    ra, rb = gear.tip_radius, gear.base_radius
+    if ra < rb:
+        return math.nan
+    half = gear.tooth_thickness / (2 * gear.pitch_radius)
+    sign = -1.0 if gear.internal else 1.0
+    return 2 * ra * (half + sign * (inv(gear.transverse_pressure_angle)
+                                    - inv(math.acos(rb / ra))))
+
+
+def check_proportions(pinion: CylindricalGear, gear: CylindricalGear,
+                      center: float | None) -> None:
+    """Refuse a pair that cannot be made, naming the field: teeth pointed at the tip (no
+    thickness left), a ring's tip inside its base circle (no involute there), or a tip that
+    reaches past the mating member's root circle at the zero-backlash centre distance
+    `center` (None: a centre distance given by the case, where a tip past the root is
+    interference to report, not a design to refuse)."""
+    for name, member in (("pinion", pinion), ("gear", gear)):
+        s_a = tip_thickness(member)
+        kind = "ring" if member.internal else f"{member.teeth}-tooth {name}"
+        if math.isnan(s_a):
+            least = (member.base_radius - member.pitch_radius) / member.normal_module \
+                + member.addendum
+            raise ValueError(f"{name}.profile_shift: {member.profile_shift:g} puts the {kind}'s "
+                             f"tip circle (d_a = {2 * member.tip_radius:.4g} mm) inside its base "
+                             f"circle (d_b = {2 * member.base_radius:.4g} mm): allowed from "
+                             f"{least:.3g}")
+        if not s_a > 0:
+            raise ValueError(f"{name}.profile_shift: {member.profile_shift:g} makes the {kind}'s "
+                             f"teeth pointed (thickness {s_a:.3g} mm on the tip circle d_a = "
+                             f"{2 * member.tip_radius:.4g} mm): allowed up to "
+                             f"{_pointed_shift(member):.3g}")
+    if center is None:
+        return
+    members = {"pinion": pinion, "gear": gear}
+    for name, gap in tip_clearances(pinion, gear, center).items():
+        other = "gear" if name == "pinion" else "pinion"
+        if gap < 0:
+            raise ValueError(f"{name}.profile_shift: {members[name].profile_shift:g} "
+                             f"puts the {name}'s tip circle {-gap:.3g} mm past the {other}'s "
+                             f"root circle at the zero-backlash centre distance {center:.4g} mm: "
+                             f"lower the shift, or give a center_distance")
+
+
+def tip_clearances(pinion: CylindricalGear, gear: CylindricalGear,
+                   center: float) -> dict[str, float]:
+    """Radial clearance (mm) between each member's tip circle and the mating root circle at
+    the centre distance, keyed by the member whose tip it is; negative: the tip reaches past
+    the root."""
+    if gear.internal:
+        return {"pinion": gear.root_radius_value - center - pinion.tip_radius,
+                "gear": gear.tip_radius - center - pinion.root_radius_value}
+    return {"pinion": center - pinion.tip_radius - gear.root_radius_value,
+            "gear": center - gear.tip_radius - pinion.root_radius_value}
+
+
+def _pointed_shift(gear: CylindricalGear) -> float:
+    """The profile shift at which the gear's teeth become pointed (bisection on x)."""
+    lo, hi = -1.5, gear.profile_shift
+    for _ in range(60):
+        mid = 0.5 * (lo + hi)
+        s_a = tip_thickness(replace(gear, profile_shift=mid))
+        lo, hi = (mid, hi) if s_a > 0 else (lo, mid)
+    return lo
 
 
 def modifications(member: Member, gear: CylindricalGear, name: str) -> FlankModifications:
@@ -161,23 +262,27 @@ def worm_set(case: WormCase) -> WormSet:
     spec = case.worm
     common = dict(form=spec.form, starts=spec.starts, length=spec.length, hand=spec.hand,
                   pressure_angle=spec.pressure_angle, wheel_diameter=spec.grinding_wheel_diameter)
-    if spec.lead_angle is not None:
-        mx = spec.axial_module or spec.normal_module / math.cos(spec.lead_angle)
-        d1 = spec.starts * mx / math.tan(spec.lead_angle)
-    else:
-        d1 = spec.pitch_diameter
-        mx = spec.axial_module
-        if mx is None:  # normal module given with the pitch diameter: sin(gamma) = z1·mn/d1
-            mx = spec.normal_module / math.cos(math.asin(spec.starts * spec.normal_module / d1))
+    mx, d1 = spec.axial_module_and_pitch_diameter()
     worm = {side: WormFlank(axial_module=mx, pitch_diameter=d1, side=side, **common)
             for side in ("left", "right")}
     w = case.wheel
     hob_d1 = w.hob_pitch_diameter or d1
-    hob_common = {**common, "length": spec.length + 4.0 * math.pi * mx * spec.starts}
+    extra = 4.0 * math.pi * mx * spec.starts  # an oversized hob is this much longer
+    hob_common = {**common, "length": spec.length + extra}
     wheel = {}
     for side in ("left", "right"):
         hob = worm[side] if hob_d1 == d1 else WormFlank(
             axial_module=mx, pitch_diameter=hob_d1, side=side, **hob_common)
-        wheel[side] = WormWheelFlank(hob, w.teeth, worm=worm[side], profile_shift=w.profile_shift,
-                                     face_width=w.face_width, align_hob_thread=w.align_hob_thread)
+        try:
+            wheel[side] = WormWheelFlank(hob, w.teeth, worm=worm[side],
+                                         profile_shift=w.profile_shift, face_width=w.face_width,
+                                         align_hob_thread=w.align_hob_thread)
+        except BlankError as exc:
+            if exc.parameter == "hob_length":
+                needed = exc.needed - (0.0 if hob is worm[side] else extra)
+                raise ValueError(f"worm.length: {spec.length:.4g} mm is too short for the hob "
+                                 f"that cuts the wheel ({exc}): give at least "
+                                 f"{math.ceil(needed * 10) / 10:.4g} mm") from None
+            given = "" if w.face_width is not None else " (the default)"
+            raise ValueError(f"wheel.face_width{given}: {exc}") from None
     return WormSet(worm, wheel)

@@ -2,7 +2,8 @@
 
 A cylindrical gear is lofted through transverse sections (see `loft`): in each section the
 tooth outline is the exact (modified) flank, the generated root fillet (by the rack, or by a
-shaper cutter for a ring) and the tip and root arcs. `loft.flank_deviation` measures how far the flank faces stray from the exact
+shaper cutter for a ring; on an undercut gear the trochoid that cuts into the involute, up to
+the form circle where they meet) and the tip and root arcs. `loft.flank_deviation` measures how far the flank faces stray from the exact
 surface between the fitting points.
 """
 
@@ -46,8 +47,8 @@ def build_gear(gear: CylindricalGear, modifications: FlankModifications | None =
     else:
         generated = generate_side(gear)
         if generated.undercut:
-            raise ValueError(f"the {gear.teeth}-tooth gear is undercut by its rack at profile shift "
-                             f"{gear.profile_shift:g}: increase the profile shift")
+            notes.append(f"undercut by its rack: the generated root cuts into the involute, "
+                         f"which starts on the form circle d = {2 * generated.form_radius:.4f} mm")
     flanks = {side: _apply(gear.flank(side, generated.form_radius), mods) for side in (1, -1)}
     if sections is None:
         twist = abs(gear.twist_per_length) * gear.face_width

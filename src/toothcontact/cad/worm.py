@@ -2,7 +2,9 @@
 
 Every worm flank is a helicoid (see surfaces.worm): its axial profile, screwed about the
 axis. The solid is built the same way: the thread's axial section (both flank profiles
-interpolated through exact points, tip and root lines) is swept along a helix with the
+interpolated through exact points from the form or root circle, tip and root lines; below a
+form circle, radial lines down to the root, where the flank's model ends and the real thread
+is undercut) is swept along a helix with the
 Frenet trihedron, which for a helix is exactly the screw motion; the threads, whose root
 faces lie on the core cylinder, are glued to it (a fusion of shapes that share faces, far
 faster than a general boolean) and cut to length by the end planes. `worm_flank_deviation` measures the
@@ -44,7 +46,7 @@ def build_worm(left: WormFlank, right: WormFlank, profile_points: int = 17) -> W
     from OCP.BOPAlgo import BOPAlgo_GlueFull
     from OCP.TopTools import TopTools_ListOfShape
 
-    rf, ra = left.domain[0]
+    rf, ra = left.root_diameter / 2, left.domain[0][1]
     lead, length = left.lead, left.length
     turns_before = math.ceil(0.5 * length / lead + 1.0)
     base = gp_Ax2(gp_Pnt(0, 0, -0.5 * length), gp_Dir(0, 0, 1))
@@ -67,7 +69,8 @@ def build_worm(left: WormFlank, right: WormFlank, profile_points: int = 17) -> W
 
 
 def _swept_thread(left: WormFlank, right: WormFlank, n: int, z0: float, turns: int, angle: float):
-    """One thread: its axial section (flanks, tip line, root line on the core cylinder) at z0,
+    """One thread: its axial section (flanks, tip line, root line on the core cylinder; radial
+    lines from a form circle above the root down to it) at z0,
     a whole number of leads below the thread centred at z = 0, turned by `angle`, swept along
     `turns` turns of a helix."""
     from OCP.BRepBuilderAPI import (BRepBuilderAPI_MakeEdge, BRepBuilderAPI_MakeWire,
@@ -76,8 +79,8 @@ def _swept_thread(left: WormFlank, right: WormFlank, n: int, z0: float, turns: i
     from OCP.gp import gp_Ax1, gp_Dir, gp_Pnt, gp_Trsf, gp_Vec
     from OCP.TopoDS import TopoDS
 
-    rf, ra = left.domain[0]
-    r = np.linspace(rf, ra, n)
+    (r0, ra), root = left.domain[0], left.root_diameter / 2
+    r = np.linspace(r0, ra, n)
     z_left, z_right = left.axial_profile(r), right.axial_profile(r)
     pts_left = np.column_stack([r, 0 * r, z_left])
     pts_right = np.column_stack([r, 0 * r, z_right])
@@ -87,7 +90,13 @@ def _swept_thread(left: WormFlank, right: WormFlank, n: int, z0: float, turns: i
     wire.Add(interpolated(pts_left, params))
     wire.Add(line(pts_left[-1], pts_right[-1]))
     wire.Add(interpolated(pts_right[::-1], 1.0 - params[::-1]))
-    wire.Add(line(pts_right[0], pts_left[0]))  # the root line, on the core cylinder
+    if r0 > root:  # form circle above the root: radial lines down to the core cylinder
+        feet = [np.array([root, 0.0, p[0, 2]]) for p in (pts_left, pts_right)]
+        wire.Add(line(pts_right[0], feet[1]))
+        wire.Add(line(feet[1], feet[0]))  # the root line, on the core cylinder
+        wire.Add(line(feet[0], pts_left[0]))
+    else:
+        wire.Add(line(pts_right[0], pts_left[0]))  # the root line, on the core cylinder
     place = gp_Trsf()
     place.SetRotation(gp_Ax1(gp_Pnt(0, 0, 0), gp_Dir(0, 0, 1)), angle)
     shift = gp_Trsf()

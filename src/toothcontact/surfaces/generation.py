@@ -34,9 +34,11 @@ class GeneratedSide:
 
     fillet: (n, 2) points from the root circle up to where the involute begins;
     fillet_normals: (n, 2) unit normals there, out of the material.
-    form_radius: radius (mm) where the rack's straight flank begins to cut: the start of
-    the involute. undercut: the rack flank cuts below the base-circle tangency point, so the
-    fillet cuts into the involute (ISO 21771: the limit is r - x_lim·m = r·cos²(alpha_t))."""
+    form_radius: radius (mm) where the involute begins: where the rack's straight flank
+    begins to cut it, or, on an undercut gear, where the trochoid cut by the rack's tip
+    rounding meets it. undercut: the rack flank reaches below the base-circle tangency point
+    of the line of action (ISO 21771: the limit is r - x_lim·m = r·cos²(alpha_t)), so the
+    generated root cuts into the involute (or reaches the base circle)."""
 
     fillet: np.ndarray
     fillet_normals: np.ndarray
@@ -65,19 +67,66 @@ def generate_side(gear: CylindricalGear, samples: int = 40) -> GeneratedSide:
     x_t = x_c - rho * math.cos(tau_t)
     y_f = y_center - half_width(x_ref - x_t) + ry * math.sin(tau_t)
 
-    tau = np.linspace(0.0, tau_t, samples)
-    rack = np.stack([x_c - rho * np.cos(tau), y_f - ry * np.sin(tau)], axis=-1)
-    normal = np.stack([-np.cos(tau), -np.sin(tau) * math.cos(beta)], axis=-1)
-    gear_points, gear_normals = _generated(rack, normal, r)
+    x_T = r * math.cos(alpha) ** 2  # depth of the line of action's base-circle tangency point
+    undercut = x_t < x_T
 
-    flank_start = _generated(np.array([[x_t, y_center - half_width(x_ref - x_t)]]),
-                             np.array([[-math.sin(alpha), -math.cos(alpha)]]), r)[0][0]
-    form = float(np.hypot(*flank_start))
-    undercut = x_t < r * math.cos(alpha) ** 2
+    def lower_contour(s):
+        """The rack's contour that generates the root, by a parameter s: the tip rounding
+        (s in [0, 1], from the tip line) and, on an undercut gear, the straight flank down to
+        the depth x_T (s in [1, 2]); points and unit normals out of the rack."""
+        s = np.asarray(s, float)
+        tau = tau_t * np.minimum(s, 1.0)
+        X = np.where(s <= 1.0, x_c - rho * np.cos(tau),
+                     x_t + (s - 1.0) * (x_T - x_t))
+        Y = np.where(s <= 1.0, y_f - ry * np.sin(tau), y_center - half_width(x_ref - X))
+        nx = np.where(s <= 1.0, -np.cos(tau), -math.sin(alpha))
+        ny = np.where(s <= 1.0, -np.sin(tau) * math.cos(beta), -math.cos(alpha))
+        norm = np.hypot(nx, ny)
+        return np.stack([X, Y], axis=-1), np.stack([nx / norm, ny / norm], axis=-1)
+
+    end = 1.0
+    if undercut:
+        end = _undercut_end(gear, lambda s: _generated(*lower_contour(s), r)[0])
+    # samples evenly spaced along the generated curve (the trochoid runs fast where the
+    # rounding meets the flank, and near an undercut's crossing it bends sharply)
+    dense = np.linspace(0.0, end, 40 * samples)
+    length = np.concatenate([[0.0], np.cumsum(np.linalg.norm(np.diff(
+        _generated(*lower_contour(dense), r)[0], axis=0), axis=-1))])
+    s = np.interp(np.linspace(0.0, length[-1], samples), length, dense)
+    gear_points, gear_normals = _generated(*lower_contour(s), r)
+    form = float(np.hypot(*gear_points[-1]))
     root_angle = float(np.arctan2(gear_points[0, 1], gear_points[0, 0]))
     # the rack's normal points out of the rack, i.e. into the gear's tooth
     return GeneratedSide(gear_points, -gear_normals, max(form, gear.base_radius), bool(undercut),
                          root_angle)
+
+
+def _undercut_end(gear: CylindricalGear, generated, samples: int = 4001) -> float:
+    """The parameter s of the rack's lower contour (`generate_side`) where the curve it
+    generates meets the involute of side +1 at the largest radius above the base circle:
+    there the generated root, which cuts into the involute below it, hands over to the
+    involute (the form circle). The curve is compared with the involute's polar angle
+    psi_b - inv(alpha(r)) at its own radius; 2 (the contour's end, on the base circle) if
+    it never crosses."""
+    from scipy.optimize import brentq
+
+    rb, psi_b = gear.base_radius, gear.base_half_angle
+
+    def past_involute(s):  # polar angle beyond the involute's: < 0 where the curve cuts it
+        P = generated(np.atleast_1d(s))
+        radius = np.hypot(P[:, 0], P[:, 1])
+        with np.errstate(invalid="ignore"):
+            a = np.arccos(rb / radius)
+            return np.arctan2(P[:, 1], P[:, 0]) - (psi_b - (np.tan(a) - a)), radius
+
+    s = np.linspace(0.0, 2.0, samples)
+    g, radius = past_involute(s)
+    sign = np.sign(g)
+    crossing = np.flatnonzero((sign[:-1] * sign[1:] < 0) & np.isfinite(g[:-1] + g[1:]))
+    if crossing.size == 0:
+        return 2.0
+    i = crossing[np.argmax(radius[crossing])]
+    return float(brentq(lambda t: past_involute(t)[0][0], s[i], s[i + 1], xtol=1e-15))
 
 
 def shaper_cutter_teeth(ring_teeth: int) -> int:

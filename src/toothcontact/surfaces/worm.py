@@ -19,6 +19,20 @@ the forms:
   the worm axis at the lead angle gamma, centre distance a = D/2 + d1/2, wheel axial-section
   profile angle alpha_0 = pressure_angle; contact line from the equation of meshing
   n·v12 = 0 (Litvin ch. 6; v12 = the screw velocity field of the worm, e_z × r + p e_z).
+  The wheel's tip grinds the root cylinder (its cone sides end at rho_t = a - r_f from its
+  axis, or at the apex where they meet, if that comes first).
+
+Form circle: the flank exists down to a form radius r_form, and the domain starts at
+max(r_f, r_form) (edge "form" when r_form > r_f, else "root"; a form edge lies FORM_OFFSET
+of the depth outside the form circle, where the profile is regular); below it the thread is
+undercut, bounded by a surface the flank's model does not hold. ZA: r_form = 0; ZN: the
+radius below which the normal-section line has no point of that radius; ZI: the base
+radius r_b (no involute inside it); ZK: along the contact line the worm radius R(rho) falls
+as rho grows to a least value (an edge of regression of the envelope, where the profile
+turns back) or to the wheel's tip edge rho_t; beyond, the tip edge's circle cuts into the
+flank (the undercut, as a rack's tip rounding cuts into an involute): r_form is the radius
+where the screw-projected tip-edge circle, or the contact line's far branch, leaves the
+flank's axial profile.
 
 Frame and conventions (mm, rad): worm axis = z, worm centred at z = 0. One thread is centred
 on the +x axis at z = 0 with axial thickness s = pi·mx/2 at d1; its "left" flank faces -z
@@ -28,12 +42,12 @@ turned by pi about the x axis (f_right = -f_left). A left-hand worm is the mirro
 
 Parameterisation of every flank:  r(u, v) = (u cos(theta), u sin(theta), p·v),
 theta = v - f(u)/p, with
-  u = distance from the worm axis (mm), u in [root radius, tip radius],
+  u = distance from the worm axis (mm), u in [max(root, form) radius, tip radius],
   v = screw-motion angle (rad): the point is the transverse (z = 0) profile screwed by v, so
       z = p·v exactly and a screw motion by phi maps (u, v) to (u, v + phi).
-The domain u in [r_f, r_a], v in [-L/(2|p|), L/(2|p|)] is therefore exactly the flank between
-the root and tip cylinders and the end planes z = ±L/2 (edges "root", "tip", "end_A" at
-z = -L/2, "end_B" at z = +L/2).
+The domain u in [max(r_f, r_form), r_a], v in [-L/(2|p|), L/(2|p|)] is therefore exactly the
+flank between the root (or form) and tip cylinders and the end planes z = ±L/2 (edges "root"
+or "form", "tip", "end_A" at z = -L/2, "end_B" at z = +L/2).
 """
 
 from __future__ import annotations
@@ -48,6 +62,11 @@ from .base import Flank
 from .jet import cos_sin, value
 
 FORMS = ("ZA", "ZN", "ZI", "ZK")
+
+#: a flank that ends on its form circle starts this fraction of its depth outside it: the
+#: parameterisation by radius is singular on a ZI base circle, a ZN line's limit and a ZK
+#: edge of regression (infinite slope or curvature of the axial profile)
+FORM_OFFSET = 1e-4
 
 
 @dataclass(frozen=True)
@@ -116,13 +135,21 @@ class WormFlank(Flank):
         self._zq = -self.axial_pitch / 2  # centre of the space in front of the left flank
         self._tau = math.tan(self.pressure_angle)
         self._half_s = math.pi * mx / 4
-        getattr(self, f"_init_{form.lower()}")()
         self._left_profile = getattr(self, f"_left_{form.lower()}")
+        #: form radius r_form (mm): the flank exists from here outward (module docstring)
+        self.form_radius = float(getattr(self, f"_init_{form.lower()}")())
+        if self.form_radius >= self.tip_diameter / 2:
+            raise ValueError(f"the {form} flank exists only beyond radius {self.form_radius:.4g}"
+                             f" mm, outside the tip radius {self.tip_diameter / 2:.4g} mm")
 
         half = self.length / (2 * abs(self._p))
-        self.domain = ((self.root_diameter / 2, self.tip_diameter / 2), (-half, half))
+        root, tip = self.root_diameter / 2, self.tip_diameter / 2
+        start = root if self.form_radius <= root else \
+            self.form_radius + FORM_OFFSET * (tip - self.form_radius)
+        self.domain = ((start, tip), (-half, half))
         ends = ("end_A", "end_B") if self._p > 0 else ("end_B", "end_A")
-        self.edges = {"u0": "root", "u1": "tip", "v0": ends[0], "v1": ends[1]}
+        self.edges = {"u0": "form" if self.form_radius > root else "root", "u1": "tip",
+                      "v0": ends[0], "v1": ends[1]}
         # (r_u × r_v)_z = u > 0 everywhere, and the left flank faces -z
         self.orientation = -1.0 if side == "left" else 1.0
         self._side_sign = 1.0 if side == "left" else -1.0
@@ -212,7 +239,7 @@ class WormFlank(Flank):
 
     # ZA: straight axial profile
     def _init_za(self):
-        pass
+        return 0.0
 
     def _left_za(self, r):
         return -self._half_s + (r - self.reference_radius) * self._tau
@@ -221,10 +248,8 @@ class WormFlank(Flank):
     def _init_zi(self):
         alpha_t = math.atan(self._tau / math.sin(self.lead_angle))
         self._rb = self.reference_radius * math.cos(alpha_t)
-        if self.root_diameter / 2 <= self._rb:
-            raise ValueError(f"ZI root radius {self.root_diameter / 2:.4g} mm must exceed the "
-                             f"base radius {self._rb:.4g} mm")
         self._inv1 = math.tan(alpha_t) - alpha_t
+        return self._rb
 
     def _left_zi(self, r):
         rb = self._rb
@@ -235,8 +260,17 @@ class WormFlank(Flank):
     # e_x) and eta (along t = (0, -sin g, cos g)) about Q = (0, 0, zq): eta = eta1 + (xi - r1)·tau
     def _init_zn(self):
         r1 = self.reference_radius
-        self._eta1 = brentq(lambda e: self._zn(r1, e) + self._half_s, 0.0, self.axial_pitch,
-                            xtol=1e-15, rtol=4 * np.finfo(float).eps)
+        sg, tau = self._sg, self._tau
+        # the line has points of radius r1 while |sg·b| <= r1·sqrt(1 + sg²·tau²)
+        top = min(self.axial_pitch, r1 * tau + r1 * math.sqrt(1 + sg * sg * tau * tau) / abs(sg))
+        thickness = lambda e: self._zn(r1, e) + self._half_s  # noqa: E731
+        if not thickness(0.0) * thickness(top) < 0:
+            raise ValueError(f"ZN: no straight normal-section line at {math.degrees(self.pressure_angle):.4g} deg "
+                             f"gives the thread thickness pi·mx/2 at d1 with a lead angle of "
+                             f"{math.degrees(self.lead_angle):.4g} deg")
+        self._eta1 = brentq(thickness, 0.0, top, xtol=1e-15, rtol=4 * np.finfo(float).eps)
+        b = self._eta1 - r1 * tau
+        return abs(sg * b) / math.sqrt(1 + sg * sg * tau * tau)  # where the root vanishes
 
     def _zn(self, r, eta1):
         sg, cg, tau = self._sg, self._cg, self._tau
@@ -257,6 +291,57 @@ class WormFlank(Flank):
         r1 = self.reference_radius
         self._zeta_ref = brentq(lambda zr: self._zk(r1, zr) + self._half_s, 0.0,
                                 self.axial_pitch, xtol=1e-15, rtol=4 * np.finfo(float).eps)
+        return self._zk_form_radius()
+
+    def _zk_form_radius(self) -> float:
+        """r_form of the ZK flank (mm): where the near branch of the contact line ends (the
+        least worm radius R(rho), or the wheel's tip edge rho_t), raised to where the
+        screw-projected tip-edge circle or the contact line's far branch stop reaching past
+        the flank's axial profile into the thread (module docstring)."""
+        zr, tau, p, mx = self._zeta_ref, self._tau, self._p, self.axial_module
+        rho_t = min(self._a - self.root_diameter / 2, self._rw + zr / tau)
+        rho = np.linspace(self._a - self.tip_diameter / 2 - mx, rho_t, 2001)
+        with np.errstate(invalid="ignore"):
+            dR = self._zk_contact(rho, zr)[4]
+        rising = np.flatnonzero(~(dR < 0))
+        rho_end = rho_t
+        if rising.size:  # R(rho) has its least value (or the contact line ends) before rho_t
+            i = rising[0]
+            rho_end = brentq(lambda t: self._zk_contact(t, zr)[4], rho[i - 1], rho[i],
+                             xtol=1e-13 * self._a) if np.isfinite(dR[i]) else rho[i - 1]
+        form = float(self._zk_contact(rho_end, zr)[3])
+
+        def projected(x, y, z):  # (R, Z) in the axial half-plane y = 0, x > 0
+            return np.hypot(x, y), z - p * np.arctan2(y, x)
+
+        def reach(t, curve):  # > 0 where the curve's point lies past the flank's profile
+            R, Z = projected(*curve(t))
+            with np.errstate(invalid="ignore"):
+                return np.where(R > form, Z - self._zk(R, zr), -np.inf)
+
+        sg, cg, zeta_t = self._sg, self._cg, zr + (self._rw - rho_t) * tau
+        edge = lambda psi: (self._a - rho_t * np.cos(psi),  # noqa: E731  the tip-edge circle
+                            -rho_t * cg * np.sin(psi) - zeta_t * sg,
+                            self._zq - rho_t * sg * np.sin(psi) + zeta_t * cg)
+        curves = [(edge, np.linspace(-0.5 * np.pi, 0.5 * np.pi, 4001))]
+        if rho_end < rho_t:  # the far branch of the contact line
+            curves.append((lambda t: self._zk_contact(t, zr)[:3],
+                           np.linspace(rho_end, rho_t, 2001)[1:]))
+        for curve, t in curves:
+            g = reach(t, curve)
+            past = np.flatnonzero(g > 0)
+            if not past.size:
+                continue
+            R = projected(*curve(t))[0]
+            i = past[np.argmax(R[past])]  # the outermost point past the profile
+            j = i + 1 if i + 1 < t.size and R[i + 1] > R[i] else i - 1
+            if 0 <= j < t.size and g[j] <= 0:
+                t_cross = brentq(lambda s: float(reach(np.array(s), curve)), t[i], t[j],
+                                 xtol=1e-14)
+                form = max(form, float(projected(*curve(np.array(t_cross)))[0]))
+            else:
+                form = max(form, float(R[i]))
+        return form
 
     def _zk_contact(self, rho, zeta_ref):
         """Contact point (x, y, z) on the left-flank wheel side at distance rho (mm) from the
@@ -281,21 +366,29 @@ class WormFlank(Flank):
         return x, y, z, R, (x * dx + y * dy) / R
 
     def _zk(self, r, zeta_ref):
+        """Axial profile z(r) (mm) of the left flank through its contact line with the
+        wheel: the point of the near branch (R falls as rho grows) of worm radius r. NaN
+        where that branch has no point of radius r (Newton fails, ends on the far branch or
+        beyond the wheel axis): a contact search may probe far outside the worm, and NaN
+        tells it there is no surface there."""
         r_f = np.asarray(value(r), float)
-        rho = self._a - r_f  # float Newton for R(rho) = r
-        for _ in range(60):
-            *_, R, dR = self._zk_contact(rho, zeta_ref)
-            step = (R - r_f) / dR
-            rho = rho - step
-            if np.all(np.abs(step) < 1e-13 * self._a):
-                break
-        else:
-            raise RuntimeError("ZK contact line: Newton did not converge")
-        for _ in range(2):  # in jets: each step doubles the number of exact Taylor orders
-            *_, R, dR = self._zk_contact(rho, zeta_ref)
-            rho = rho - (R - r) / dR
-        x, y, z, _, _ = self._zk_contact(rho, zeta_ref)
-        return z - self._p * np.arctan2(y, x)
+        # float Newton for R(rho) = r from the wheel's outside (the worm's tip and beyond):
+        # R is convex there, so the steps approach the near branch's root from one side
+        rho = np.full_like(r_f, self._a - self.tip_diameter / 2 - self.axial_module)
+        tol = 1e-13 * self._a
+        with np.errstate(invalid="ignore", divide="ignore"):
+            for _ in range(60):
+                *_, R, dR = self._zk_contact(rho, zeta_ref)
+                step = (R - r_f) / dR
+                rho = rho - step
+                if not np.any(np.abs(step) >= tol):  # all converged, or NaN: no contact
+                    break
+            rho = np.where((np.abs(step) < tol) & (dR < 0) & (rho > 0), rho, np.nan)
+            for _ in range(2):  # in jets: each step doubles the number of exact Taylor orders
+                *_, R, dR = self._zk_contact(rho, zeta_ref)
+                rho = rho - (R - r) / dR
+            x, y, z, _, _ = self._zk_contact(rho, zeta_ref)
+            return z - self._p * np.arctan2(y, x)
 
     def _left_zk(self, r):
         return self._zk(r, self._zeta_ref)
