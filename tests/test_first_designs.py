@@ -63,3 +63,43 @@ def test_seed_000_worm_set_loaded():
     assert all(r["contact_model"] == "line" for r in doc["positions"])
     assert solved_everywhere(doc)
     assert doc["summary"]["transmission_error_peak_to_peak_urad"] < 1.0
+
+
+def test_loaded_zk_worm_with_an_oversized_hob():
+    """A ZK worm (2 starts, z2 = 45, mn = 2 mm, d1 = 24 mm, 5 % oversized hob, 40 N·m):
+    point contact, found and solved at every position, on either flank and hand."""
+    for hand, flank in (("right", "left"), ("left", "right")):
+        doc = run({"kind": "worm",
+                   "worm": {"form": "ZK", "starts": 2, "normal_module": "2 mm",
+                            "pitch_diameter": "24 mm", "pressure_angle": "20 deg",
+                            "hand": hand, "length": "40 mm"},
+                   "wheel": {"teeth": 45, "hob_pitch_diameter": "25.2 mm"},
+                   "load": {"output_torque": "40 N*m", "flank": flank}})
+        assert doc["positions"] and solved_everywhere(doc)
+        assert all(r["contact_model"] == "ellipse" for r in doc["positions"])
+
+
+def test_default_worm_wheel_blank_fits_a_one_start_worm():
+    """A one-start ZA worm, mn = 1 mm, lead angle 8.6°, wheel z2 = 28, all else default:
+    the default wheel face width fits the default blank (it was refused)."""
+    doc = run({"kind": "worm",
+               "worm": {"form": "ZA", "starts": 1, "normal_module": "1 mm",
+                        "lead_angle": "8.6 deg", "pressure_angle": "20 deg",
+                        "length": "30 mm"},
+               "wheel": {"teeth": 28}, "load": {"output_torque": "5 N*m"}})
+    wheel = doc["wheel"]
+    assert 0 < wheel["face_width_mm"] < 2 * wheel["throat_radius_mm"] + 2.0
+    assert doc["positions"] and solved_everywhere(doc)
+
+
+def test_undercut_pinion_is_analysed_and_flagged():
+    """A 14-tooth 20° pinion without profile shift is slightly undercut: it is analysed
+    (active profile from its form circle, above the base circle) and the undercut flagged."""
+    doc = run({"kind": "spur", "teeth": [14, 40], "module": "2 mm", "pressure_angle": "20 deg",
+               "face_width": "20 mm", "load": {"torque": "50 N*m"}})
+    pinion = doc["pinion"]
+    assert pinion["undercut"] and pinion["form_diameter_mm"] > pinion["base_diameter_mm"]
+    assert any(c["name"] == "pinion is not undercut" and not c["ok"] for c in doc["checks"])
+    assert doc["positions"] and solved_everywhere(doc)
+    radius = 0.5 * pinion["form_diameter_mm"]
+    assert min(r["contact_radius_pinion_mm"] for r in doc["positions"]) >= radius - 1e-6

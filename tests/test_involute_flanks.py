@@ -298,3 +298,31 @@ def test_shaper_cut_ring_fillet_joins_the_involute(name):
     # the space centred on 0: its + side is the ring tooth's side -1 flank at +pi/z
     expected = m.pi / gear.teeth - (gear.base_half_angle + (np.tan(alpha) - alpha))
     np.testing.assert_allclose(polar, expected, atol=1e-12)
+
+
+def test_a_ring_whose_default_cutter_would_be_pointed_is_cut_by_a_larger_one():
+    """A 38-tooth 25° ring (x = 0.168, helix 11.39°): the default 12-tooth shaper cutter's
+    tooth, as thick as the ring's space, ends in a point; the next cutter with a tip land
+    cuts it, its fillet ends on the ring's form circle between its tip and root; a cutter
+    tip too short for the rack's rounding gets a smaller one; a ring whose space no cutter
+    fills is refused naming gear.profile_shift."""
+    import math
+
+    from toothcontact.surfaces.generation import (_shaper_cutter, generate_ring_side,
+                                                  shaper_cutter_teeth)
+    from toothcontact.surfaces.involute import CylindricalGear
+
+    ring = CylindricalGear(38, 5.672, math.radians(25.0), 48.0, helix_angle=math.radians(11.39),
+                           profile_shift=0.168, internal=True)
+    default = shaper_cutter_teeth(38)
+    assert _shaper_cutter(ring, default) is None
+    side = generate_ring_side(ring)
+    assert side.cutter_teeth > default and _shaper_cutter(ring, side.cutter_teeth) is not None
+    assert ring.tip_radius < side.form_radius < ring.root_radius_value
+    deep = CylindricalGear(38, 5.672, math.radians(25.0), 48.0, profile_shift=-1.5,
+                           internal=True)   # a short cutter tip: the rounding shrinks to fit
+    assert deep.tip_radius < generate_ring_side(deep).form_radius < deep.root_radius_value
+    pointed = CylindricalGear(38, 5.672, math.radians(25.0), 48.0, profile_shift=1.0,
+                              internal=True)
+    with pytest.raises(ValueError, match="gear.profile_shift"):
+        generate_ring_side(pointed)

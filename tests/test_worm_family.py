@@ -1,4 +1,4 @@
-"""A seeded family of realistic worm sets (tests/worm_designs.py: three of each form, either
+"""A seeded family of realistic worm sets (toothcontact.families: three of each form, either
 hand, identical or oversized and tilted hobs) through the geometry of their cases, held to
 invariants checked independently of the generation formulas: the wheel flank is the
 envelope of the hob (every point a placed hob point, the equation of meshing holds there, with
@@ -12,15 +12,14 @@ import pytest
 from scipy.optimize import brentq
 
 from test_worm_wheel import dot, rot, setting, to_wheel
-from toothcontact import gearset
+from toothcontact import families, gearset
 from toothcontact.case import parse_case
-from worm_designs import worm_family
 
-FAMILY = worm_family(seed=2024, count=12)
+FAMILY = families.worm_designs(12, seed=2024)
 
 
 @pytest.fixture(scope="module", params=range(len(FAMILY)),
-                ids=[d["title"].removeprefix("generated ") for d in FAMILY])
+                ids=[d["title"] for d in FAMILY])
 def worm_set(request):
     raw = FAMILY[request.param]
     return raw, gearset.worm_set(parse_case(raw))

@@ -26,26 +26,33 @@ TOUCHING = 1e-4
 
 
 def spur_designs(count: int, seed: int, analysis: dict | None = None) -> list[dict]:
-    """`count` parallel-axis pairs: a third internal (ring gears), helix 0 to 35° (half of
-    them spur), a crown on half of the pinions, a slope of either sign on most."""
+    """`count` parallel-axis pairs as practice draws them: a quarter internal (ring gears),
+    pinion 12 to 40 teeth and gear up to 120, module 0.5 to 10 mm (log-uniform), helix 0 to
+    35° (half of them spur), shifts -0.5 to +0.8 on the pinion and -0.3 to +0.5 on the gear,
+    face width 6 to 14 modules, a crown on half of the pinions (drop 3 to 25 µm), a slope of
+    either sign on most (up to twice what the crown takes, or 1e-3 uncrowned) and a
+    tangential load of 50 to 400 N per mm of face. Designs no engineer would draw are drawn
+    again: pointed tips (top land under 0.25 m), a working pressure angle outside 12 to
+    32°, a ring's tip circle inside its base circle."""
     rng = np.random.default_rng(seed)
     out = []
     while len(out) < count:
-        internal = rng.random() < 1 / 3
+        internal = rng.random() < 0.25
         z1 = int(rng.integers(12, 41))
-        z2 = int(rng.integers(max(z1 + 12, 30), 121)) if internal else int(
+        z2 = int(rng.integers(z1 + 12, 121)) if internal else int(
             min(120, max(z1, round(z1 * rng.uniform(1.0, 5.0)))))
-        module = float(rng.choice([0.5, 0.8, 1.0, 1.5, 2.0, 2.5, 3.0, 4.0, 5.0, 6.0, 8.0, 10.0]))
+        module = round(float(np.exp(rng.uniform(math.log(0.5), math.log(10.0)))), 3)
         alpha = float(rng.choice([14.5, 17.5, 20.0, 20.0, 22.5, 25.0]))
         beta = 0.0 if rng.random() < 0.5 else float(rng.uniform(5.0, 35.0))
         x1 = float(rng.uniform(-0.5, 0.8))
         x2 = float(rng.uniform(-0.3, 0.5))
         if (_pointed(z1, module, alpha, beta, x1)
                 or (not internal and _pointed(z2, module, alpha, beta, x2))
+                or (internal and _ring_tip_inside_base(z2, module, alpha, beta, x2))
                 or not 12.0 <= _working_angle(z1, -z2 if internal else z2, alpha, beta,
                                               x1, x2) <= 32.0):
             continue
-        face = round(module * float(rng.uniform(6.0, 14.0)), 1)
+        face = round(module * float(rng.uniform(6.0, 14.0)), 2)
         case = {"kind": "spur", "title": f"family spur {len(out)}",
                 "teeth": [z1, -z2 if internal else z2], "module": f"{module} mm",
                 "pressure_angle": f"{alpha} deg", "helix_angle": f"{beta:.2f} deg",
@@ -53,11 +60,11 @@ def spur_designs(count: int, seed: int, analysis: dict | None = None) -> list[di
                 "pinion": {"profile_shift": round(x1, 3)},
                 "gear": {"profile_shift": round(x2, 3)},
                 "load": {"tangential_load": f"{round(face * float(rng.uniform(50, 400)))} N"},
-                "analysis": {**SMALL, "interference": False, **(analysis or {})}}
+                "analysis": {**SMALL, "interference": False, **(analysis or {})},
+                "export": {"teeth": 3}}
         crown_um = float(rng.uniform(3.0, 25.0)) if rng.random() < 0.5 else 0.0
         if crown_um:
             case["pinion"]["crown"] = {"height": f"{crown_um:.1f} um"}
-        # slopes up to twice what the crown takes (4·drop/face) or up to 1e-3 uncrowned
         limit = 8e-3 * crown_um / face if crown_um else 1e-3
         slope = 0.0 if rng.random() < 0.15 else float(rng.uniform(-1.0, 1.0)) * limit
         case["misalignment"] = {"slope": f"{slope:.6f}"}
@@ -79,6 +86,14 @@ def _pointed(z: int, module: float, alpha: float, beta: float, x: float) -> bool
     return land < 0.25 * module
 
 
+def _ring_tip_inside_base(z: int, module: float, alpha: float, beta: float, x: float) -> bool:
+    """Whether a ring gear's tip circle, r - (1 - x)·m, lies inside its base circle (the
+    involute does not reach it)."""
+    a_t = math.atan(math.tan(math.radians(alpha)) / math.cos(math.radians(beta)))
+    r = 0.5 * z * module / math.cos(math.radians(beta))
+    return r - (1.0 - x) * module < r * math.cos(a_t)
+
+
 def _working_angle(z1: int, z2: int, alpha: float, beta: float, x1: float, x2: float) -> float:
     """The working transverse pressure angle (deg) of a shifted pair (ISO 21771: inv(a_wt) =
     inv(a_t) + 2·tan(a_n)·(x1 ± x2)/(z1 ± z2), the lower sign for a ring, z2 < 0); 0 where
@@ -95,44 +110,62 @@ def _working_angle(z1: int, z2: int, alpha: float, beta: float, x1: float, x2: f
     return math.degrees(brentq(lambda a: inv(a) - target, 1e-6, math.radians(60.0)))
 
 
+#: worm and wheel materials: steel, and a tin bronze (CuSn12Ni2-C-GZ, ISO/TR 14521 Table 3
+#: order of magnitude)
+STEEL = {"E": "206 GPa", "nu": 0.3}
+BRONZE = {"E": "98 GPa", "nu": 0.35}
+
+
 def worm_designs(count: int, seed: int, analysis: dict | None = None) -> list[dict]:
-    """`count` worm sets: every form, 1 to 4 starts (lead angles 3 to 34°), both hands and
-    loaded flanks, hobs identical or up to 15 % oversized, misalignments on most."""
+    """`count` loaded worm sets, the forms ZA, ZN, ZI, ZK in turn: 1 to 4 starts, lead
+    angle 3 to 25° with the diameter quotient q = d1/mx in [5, 20], normal module 0.5 to
+    6 mm (log-uniform), 20 to 80 wheel teeth, pressure angle 15 to 25°, either hand and
+    loaded flank, a hob identical to the worm (40 %) or 2 to 15 % oversized (a quarter of
+    these tilted to the worm's thread), centre-distance, shaft-angle and worm-tilt errors,
+    a steel worm on a bronze (70 %) or steel wheel. The worm is long enough for the wheel:
+    1.25 times the chord of the wheel's tip circle at the worm's tip cylinder plus one lead.
+    The output torque loads the wheel's teeth with 10 to 40 N per mm of face width per mm
+    of module."""
     rng = np.random.default_rng(seed)
+    forms = ("ZA", "ZN", "ZI", "ZK")
     out = []
     for i in range(count):
-        form = ["ZA", "ZN", "ZI", "ZK"][i % 4]
-        starts = int(rng.integers(1, 5))
-        mn = float(rng.choice([0.5, 1.0, 1.5, 2.0, 2.5, 3.0, 4.0, 5.0, 6.0]))
-        # the diameter quotient q = d1/mx of practice (DIN 3976: about 6 to 17) fixes the lead
-        quotient = float(rng.uniform(6.0, 17.0))
-        gamma = math.degrees(math.atan(starts / quotient))
-        z2 = int(rng.integers(20, 81))
-        mx = mn / math.cos(math.radians(gamma))
-        d1 = quotient * mx
-        oversize = 0.0 if rng.random() < 0.35 else float(rng.uniform(0.02, 0.15))
-        torque = 0.02 * (mn * z2) ** 2 * float(rng.uniform(0.3, 1.5))   # N·m, ~wheel size²
-        case = {"kind": "worm", "title": f"family worm {i}",
-                "worm": {"form": form, "starts": starts, "normal_module": f"{mn} mm",
-                         "lead_angle": f"{gamma:.2f} deg",
-                         "pressure_angle": f"{float(rng.choice([15.0, 20.0, 20.0, 25.0]))} deg",
-                         "hand": str(rng.choice(["right", "left"])),
-                         "length": f"{round(2.2 * math.sqrt(z2 + 1) * mx + 4 * mx, 1)} mm"},
-                "wheel": {"teeth": z2},
-                "wheel_material": {"E": "98 GPa", "nu": 0.35},
-                "load": {"output_torque": f"{torque:.1f} N*m",
-                         "flank": str(rng.choice(["left", "right"]))},
-                "analysis": {**SMALL, "grid": [11, 41], **(analysis or {})}}
+        form = forms[i % 4]
+        while True:
+            starts = int(rng.integers(1, 5))
+            lead = float(rng.uniform(3.0, 25.0))
+            q = starts / math.tan(math.radians(lead))
+            if 5.0 <= q <= 20.0:
+                break
+        mn = float(np.exp(rng.uniform(math.log(0.5), math.log(6.0))))
+        teeth = int(rng.integers(20, 81))
+        mx = mn / math.cos(math.radians(lead))
+        r1, a = q * mx / 2, q * mx / 2 + teeth * mx / 2
+        chord = 2 * math.sqrt((teeth * mx / 2 + mx) ** 2 - (a - r1 - mx) ** 2)
+        worm = {"form": form, "starts": starts, "normal_module": f"{mn:.4f} mm",
+                "lead_angle": f"{lead:.3f} deg", "hand": str(rng.choice(["right", "left"])),
+                "pressure_angle": f"{rng.uniform(15.0, 25.0):.2f} deg",
+                "length": f"{1.25 * chord + starts * math.pi * mx:.2f} mm"}
         if form == "ZK":
-            case["worm"]["grinding_wheel_diameter"] = f"{round(float(rng.uniform(8, 25)) * d1)} mm"
-        if oversize:
-            case["wheel"]["hob_pitch_diameter"] = f"{d1 * (1 + oversize):.4f} mm"
-        if rng.random() < 0.7:
-            case["misalignment"] = {
-                "center_distance_error": f"{float(rng.uniform(-0.02, 0.05)) * mn:.4f} mm",
-                "shaft_angle_error": f"{float(rng.uniform(-1e-3, 1e-3)):.6f}",
-                "worm_tilt": f"{float(rng.uniform(-1e-3, 1e-3)):.6f}"}
-        out.append(case)
+            worm["grinding_wheel_diameter"] = f"{rng.uniform(100.0, 400.0):.0f} mm"
+        wheel = {"teeth": teeth}
+        if rng.random() > 0.4:
+            wheel["hob_pitch_diameter"] = f"{2 * r1 * rng.uniform(1.02, 1.15):.4f} mm"
+            wheel["align_hob_thread"] = bool(rng.random() < 0.25)
+        face = 2 * math.sqrt((r1 + mx) ** 2 - r1 ** 2)
+        torque = rng.uniform(10.0, 40.0) * face * mn * teeth * mx / 2 / 1000.0  # N·m
+        out.append({
+            "kind": "worm", "title": f"family worm {i} ({form} z1={starts} z2={teeth} "
+                                     f"mn={mn:.3g} lead={lead:.1f})",
+            "worm": worm, "wheel": wheel,
+            "material": STEEL, "wheel_material": BRONZE if rng.random() < 0.7 else STEEL,
+            "misalignment": {
+                "center_distance_error": f"{rng.uniform(-0.02, 0.02) * mn:.5f} mm",
+                "shaft_angle_error": f"{rng.uniform(-5e-4, 5e-4):.6f}",
+                "worm_tilt": f"{rng.uniform(-5e-4, 5e-4):.6f}"},
+            "load": {"output_torque": f"{torque:.4g} N*m",
+                     "flank": str(rng.choice(["left", "right"]))},
+            "analysis": {**SMALL, "grid": [11, 41], **(analysis or {})}})
     return out
 
 

@@ -16,7 +16,7 @@ import numpy as np
 
 from ..modify import FlankModifications
 from ..surfaces.base import Flank
-from ..surfaces.generation import generate_ring_side, generate_side, shaper_cutter_teeth
+from ..surfaces.generation import generate_ring_side, generate_side
 from ..surfaces.involute import CylindricalGear
 from ..surfaces.modified import ModifiedFlank
 from .loft import (LoftedBody, arc, chord_parameters, generated_face, half_root_arc,
@@ -42,7 +42,7 @@ def build_gear(gear: CylindricalGear, modifications: FlankModifications | None =
     notes = []
     if gear.internal:
         generated = generate_ring_side(gear)
-        notes.append(f"ring gear: root fillet cut by a {shaper_cutter_teeth(gear.teeth)}-tooth "
+        notes.append(f"ring gear: root fillet cut by a {generated.cutter_teeth}-tooth "
                      "shaper cutter")
     else:
         generated = generate_side(gear)

@@ -166,15 +166,18 @@ def _take(contacts: ContactPoints, index) -> ContactPoints:
 
 
 def _lag_slope(mesh, pinion, gear, phis, pairs, P, J, delta, contacts, step=1e-6) -> np.ndarray:
-    """d(separation)/d(lag) (mm/rad) at each position's contact point of least separation."""
+    """d(separation)/d(lag) (mm/rad) at each position's contact point of least separation:
+    a central difference, or a one-sided one where the gear turned one way takes the
+    contact off the gear flank's edge (a contact on that edge)."""
     s = np.where(np.isfinite(contacts.s), contacts.s, np.inf)
     least = np.array([np.flatnonzero(P == p)[np.argmin(s[P == p])] for p in range(len(phis))])
     u, v = contacts.pinion_u[least, None], contacts.pinion_v[least, None]
     pf = Frame.stack([mesh.pinion_frame(phis[p], pairs[J[k]]) for p, k in enumerate(least)])
-    s0, s1 = (separation(pinion, gear, pf, Frame.stack(
+    below, here, above = (separation(pinion, gear, pf, Frame.stack(
         [mesh.gear_frame(phis[p], pairs[J[k]], delta[p] + d) for p, k in enumerate(least)]),
-        u, v).s[:, 0] for d in (0.0, step))
-    return (s1 - s0) / step
+        u, v).s[:, 0] for d in (-step, 0.0, step))
+    return np.where(np.isfinite(below) & np.isfinite(above), (above - below) / (2.0 * step),
+                    np.where(np.isfinite(above), (above - here) / step, (here - below) / step))
 
 
 def _pair_results(pinion, gear, pf, gf, roll_deg, pairs, delta, cp: ContactPoints, gaps,
