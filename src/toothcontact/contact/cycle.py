@@ -165,6 +165,11 @@ def _take(contacts: ContactPoints, index) -> ContactPoints:
     return ContactPoints(*(getattr(contacts, f.name)[index] for f in fields(ContactPoints)))
 
 
+def _known(value) -> float | None:
+    """A float for the result, None where it is not known (NaN)."""
+    return float(value) if np.isfinite(value) else None
+
+
 def _lag_slope(mesh, pinion, gear, phis, pairs, P, J, delta, contacts, step=1e-6) -> np.ndarray:
     """d(separation)/d(lag) (mm/rad) at each position's contact point of least separation:
     a central difference, or a one-sided one where the gear turned one way takes the
@@ -248,9 +253,9 @@ def _pair_results(pinion, gear, pf, gf, roll_deg, pairs, delta, cp: ContactPoint
             "contact_radius_pinion_mm": float(np.hypot(*points[k, :2])),
             "face_position_mm": float(points[k, 2]),
             "separation_mm": float(gaps[k]),
-            "A_per_mm": float(fit.A[k]), "B_per_mm": float(fit.B[k]),
+            "A_per_mm": _known(fit.A[k]), "B_per_mm": _known(fit.B[k]),
             "A_analytic_per_mm": float(A[k]), "B_analytic_per_mm": float(B[k]),
-            "fit_rms_mm": float(fit.rms[k]), "transmission_error_urad": float(delta[k] * 1e6),
+            "fit_rms_mm": _known(fit.rms[k]), "transmission_error_urad": float(delta[k] * 1e6),
             "normal_load_N": float(loads[k]),
             "contact_model": "line" if line[k] else "ellipse",
             "contact_length_mm": float(length[k]),

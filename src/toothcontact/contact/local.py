@@ -104,15 +104,19 @@ def fit_gaps(pinion: Flank, gear: Flank, pinion_frames: Frame, gear_frames: Fram
              planes: TangentPlanes, pinion_uv, gear_uv, extent: np.ndarray, n: int = 21) -> GapFits:
     """Least-squares fit of each contact's gap on an n × n grid of half-extents `extent`
     ((K, 2), mm), each shrunk until the lines of its whole patch meet both surfaces
-    (continued beyond the flank edges, where the contact may sit). The fit carries the cubic
+    (continued beyond the flank edges, where the contact may sit); NaN for a contact where
+    a surface ends at the contact itself (a worm wheel's tip edge, beyond which the hob
+    generates nothing): no patch around it meets both. The fit carries the cubic
     and quartic terms too, so that the flank's changing curvature does not leak into A and
     B; A and B are the quadratic part, diagonalised."""
     extent = np.array(extent, float)
     unit = np.linspace(-1.0, 1.0, n)
     X, Y = (a.ravel() for a in np.meshgrid(unit, unit, indexing="ij"))
-    h = np.empty((len(extent), n * n))
-    todo = np.arange(len(extent))
+    h = np.full((len(extent), n * n), np.nan)
+    todo = np.flatnonzero(np.all(np.isfinite(extent), axis=-1))
     for _ in range(12):
+        if todo.size == 0:
+            break
         x, y = extent[todo, :1] * X, extent[todo, 1:] * Y
         hp = heights(pinion, pinion_frames[todo], planes_at(planes, todo), x, y,
                      pinion_uv[0][todo], pinion_uv[1][todo])
@@ -122,10 +126,6 @@ def fit_gaps(pinion: Flank, gear: Flank, pinion_frames: Frame, gear_frames: Fram
         h[todo[met]] = (hg.s - hp.s)[met]
         extent[todo[~met]] *= 0.7
         todo = todo[~met]
-        if todo.size == 0:
-            break
-    else:
-        raise ValueError("the gap cannot be fitted here: the surfaces end (base circle)")
     design = np.stack([X**i * Y**j for i, j in _POWERS], axis=-1)
     coef = h @ np.linalg.pinv(design).T                                  # (K, 15)
     rms = np.sqrt(np.mean((coef @ design.T - h) ** 2, axis=-1))
