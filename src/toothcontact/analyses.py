@@ -549,6 +549,7 @@ def _contact_sections(cycle, loads: dict, result: Result) -> None:
                "face_position_range_mm": [min(r["face_position_mm"] for r in rows),
                                           max(r["face_position_mm"] for r in rows)],
                "line_contacts": sum(r["contact_model"] == "line" for r in rows),
+               "area_contacts": sum(r["contact_model"] == "area" for r in rows),
                "edge_contacts": sum(r["edge_contact"] for r in rows),
                "load_sharing": LOAD_SHARING_RULE}
     for kind, label in (("face", "at the face ends (edge loading)"),

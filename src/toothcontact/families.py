@@ -46,11 +46,13 @@ def spur_designs(count: int, seed: int, analysis: dict | None = None) -> list[di
         beta = 0.0 if rng.random() < 0.5 else float(rng.uniform(5.0, 35.0))
         x1 = float(rng.uniform(-0.5, 0.8))
         x2 = float(rng.uniform(-0.3, 0.5))
+        working = _working_angle(z1, -z2 if internal else z2, alpha, beta, x1, x2)
         if (_pointed(z1, module, alpha, beta, x1)
                 or (not internal and _pointed(z2, module, alpha, beta, x2))
                 or (internal and _ring_tip_inside_base(z2, module, alpha, beta, x2))
-                or not 12.0 <= _working_angle(z1, -z2 if internal else z2, alpha, beta,
-                                              x1, x2) <= 32.0):
+                or not 12.0 <= working <= 32.0
+                or _tip_below_form(z1, -z2 if internal else z2, module, alpha, beta, x1, x2,
+                                   working)):
             continue
         face = round(module * float(rng.uniform(6.0, 14.0)), 2)
         case = {"kind": "spur", "title": f"family spur {len(out)}",
@@ -84,6 +86,35 @@ def _pointed(z: int, module: float, alpha: float, beta: float, x: float) -> bool
     inv = lambda a: math.tan(a) - a  # noqa: E731
     land = 2.0 * ra * (s / (2.0 * r) + inv(a_t) - inv(a_a))
     return land < 0.25 * module
+
+
+def _tip_below_form(z1: int, z2: int, module: float, alpha: float, beta: float, x1: float,
+                    x2: float, working: float) -> bool:
+    """Whether the mate's tip reaches below the pinion's form circle (or, external, the
+    pinion's tip below the gear's): the tip then works on the fillet, not the involute
+    (tip interference). Along the line of action from the pinion's base tangency point the
+    mate's tip lies at a·sin(a_w) ∓ sqrt(r_a2² - r_b2²) (the lower sign internal), and a
+    rack-cut flank's form point at r·sin(a_t) - (h - x·m)/sin(a_t), h the rack's straight
+    flank below its reference line, (1.25 - 0.38·(1 - sin a_n))·m (ISO 53 A)."""
+    a_n = math.radians(alpha)
+    a_t = math.atan(math.tan(a_n) / math.cos(math.radians(beta)))
+    a_w = math.radians(working)
+    h = (1.25 - 0.38 * (1.0 - math.sin(a_n))) * module
+    r1, r2 = (0.5 * abs(z) * module / math.cos(math.radians(beta)) for z in (z1, z2))
+    internal = z2 < 0
+    centre = (r2 - r1 if internal else r2 + r1) * math.cos(a_t) / math.cos(a_w)
+    line = centre * math.sin(a_w)
+
+    def form(r, x):
+        return r * math.sin(a_t) - (h - x * module) / math.sin(a_t)
+
+    def reach(r, x, ring=False):   # a tip's distance from its base tangency point
+        tip = r - (1.0 - x) * module if ring else r + (1.0 + x) * module
+        return math.sqrt(max(tip * tip - (r * math.cos(a_t)) ** 2, 0.0))
+
+    if internal:
+        return reach(r2, x2, ring=True) - line < form(r1, x1)
+    return (line - reach(r2, x2) < form(r1, x1)) or (line - reach(r1, x1) < form(r2, x2))
 
 
 def _ring_tip_inside_base(z: int, module: float, alpha: float, beta: float, x: float) -> bool:
@@ -247,8 +278,12 @@ def _slope_invariants(case: dict, rows: list[dict]) -> list[str]:
                             f"does not move toward end {end} (R·theta = {shift:.3f} mm)")
     if crown is None and abs(slope) > 1e-5:
         # the pairs that touch (a pair only within the approach may be a sliver at a corner)
-        ends = {r["edge_contact_at"] for r in rows
-                if r["edge_contact"] and r["separation_mm"] <= TOUCHING}
+        # along the face, not at a tip or form corner (tip interference is another story)
+        touching = [r for r in rows if r["separation_mm"] <= TOUCHING and not any(
+            m < 0.0 and "_end_" not in edge for edge, m in r["edge_margins_mm"].items())]
+        if not touching:
+            return problems
+        ends = {r["edge_contact_at"] for r in touching if r["edge_contact"]}
         if not any(e.endswith(f"end_{end}") for e in ends):
             problems.append(f"uncrowned, slope {slope:g}: no contact cut by end {end}")
         if any(e.endswith(f"end_{other}") for e in ends):

@@ -129,7 +129,7 @@ def mesh_cycle(result: dict, path: str | Path) -> Path:
     te, p_max = _column(rows, "transmission_error_urad"), _column(rows, "p_max_MPa")
     a, b, margin = _column(rows, "a_mm"), _column(rows, "b_mm"), _column(rows, "edge_margin_mm")
     edge = np.array([bool(r.get("edge_contact")) for r in rows])
-    line = np.array([r.get("contact_model") == "line" for r in rows])
+    line = np.array([r.get("contact_model") in ("line", "area") for r in rows])
 
     if by_tooth:
         x, group, x_label = pair, roll, "tooth index"

@@ -22,7 +22,7 @@ import numpy as np
 from ..analytic.hertz import hertz_line, hertz_point
 from ..assembly import Frame
 from ..surfaces.base import Flank
-from .ellipse import edge_margins
+from .ellipse import arc_to_edge, edge_margins
 from .field import EaseOff, ease_off, rigid_patterns
 from .line import contact_lines
 from .local import TangentPlanes, analytic_gaps, face_length, fit_gaps, planes_at, tangent_planes
@@ -165,6 +165,13 @@ def _take(contacts: ContactPoints, index) -> ContactPoints:
     return ContactPoints(*(getattr(contacts, f.name)[index] for f in fields(ContactPoints)))
 
 
+def _profile_height(flank: Flank, uv) -> np.ndarray:
+    """Length (mm) of the flank's profile (its u parameter line, exact arc) through the
+    points uv ((K,) arrays)."""
+    (u0, u1), _ = flank.domain
+    return np.abs(arc_to_edge(flank, "u", np.full(len(uv[0]), u0), u1, np.asarray(uv[1])))
+
+
 def _known(value) -> float | None:
     """A float for the result, None where it is not known (NaN)."""
     return float(value) if np.isfinite(value) else None
@@ -205,10 +212,14 @@ def _pair_results(pinion, gear, pf, gf, roll_deg, pairs, delta, cp: ContactPoint
                        np.sqrt(FIT_GAP / B)], axis=-1)
     fit = fit_gaps(pinion, gear, pf, gf, planes, p_uv, g_uv, extent, settings.fit_points)
     points = pinion.evaluate(p_uv[0], p_uv[1], order=1).points
-    # an ellipse where the gap is a bowl and the loaded ellipse fits the face; else a line
+    # an ellipse where the gap is a bowl and the loaded ellipse fits the face; else a line;
+    # an area where even across the profile the rigid pattern outgrows the flank (conformal
+    # flanks: a spline's hub and sleeve share their base circle), measured along the face
     ellipses = [hertz_point(A[k], B[k], loads[k], C_E) if A[k] > 0 else None
                 for k in range(len(A))]
     line = np.array([e is None or e.a > 0.5 * f for e, f in zip(ellipses, face)], bool)
+    height = np.minimum(_profile_height(pinion, p_uv), _profile_height(gear, g_uv))
+    area = line & (B <= settings.approach / (0.5 * height) ** 2)
     point, along = np.flatnonzero(~line), np.flatnonzero(line)
     margins = [dict() for _ in range(len(A))]
     found = {}
@@ -223,19 +234,27 @@ def _pair_results(pinion, gear, pf, gf, roll_deg, pairs, delta, cp: ContactPoint
                       if np.isfinite(value[i])}
     centre = np.zeros((len(A), 2))
     length = np.array([2.0 * e.a if e is not None else 0.0 for e in ellipses])
+    width = np.zeros(len(A))
     if along.size:
+        # an area runs along the face (e1) over the whole profile height
+        direction = np.where(area, 0.0, angle)
+        across = np.where(area, np.maximum(B, settings.approach / (0.75 * height) ** 2), B)
         lines = contact_lines(pinion, gear, pf[along], gf[along], planes_at(planes, along),
                               (p_uv[0][along], p_uv[1][along]), (g_uv[0][along], g_uv[1][along]),
-                              angle[along], gaps[along], B[along], face[along],
+                              direction[along], gaps[along], across[along], face[along],
                               settings.approach, 2 * max(settings.field_grid, 100) + 1)
-        length[along], centre[along] = lines.length, lines.centre
+        length[along], width[along], centre[along] = lines.length, lines.width, lines.centre
+        angle = np.where(area, 0.0, angle)
         for i, k in enumerate(along):
             margins[k] = lines.margins[i]
     rows = []
     for k in range(len(A)):
         own = margins[k]
         ends = {edge: m for edge, m in own.items() if "_end_" in edge and m < 0.0}
-        if line[k]:
+        if area[k]:   # conformal: no Hertz; the rigid pattern at its mean pressure
+            a, b, approach = 0.5 * length[k], 0.5 * width[k], None
+            p0, rigid_a = loads[k] / max(length[k] * width[k], 1e-12), 0.5 * length[k]
+        elif line[k]:
             contact = hertz_line(loads[k] / length[k], 1.0 / (2.0 * B[k]), C_E)
             a, b, p0, approach = 0.5 * length[k], contact.b, contact.p0, None
             rigid_a = 0.5 * length[k]
@@ -257,7 +276,7 @@ def _pair_results(pinion, gear, pf, gf, roll_deg, pairs, delta, cp: ContactPoint
             "A_analytic_per_mm": float(A[k]), "B_analytic_per_mm": float(B[k]),
             "fit_rms_mm": _known(fit.rms[k]), "transmission_error_urad": float(delta[k] * 1e6),
             "normal_load_N": float(loads[k]),
-            "contact_model": "line" if line[k] else "ellipse",
+            "contact_model": "area" if area[k] else "line" if line[k] else "ellipse",
             "contact_length_mm": float(length[k]),
             "a_mm": float(a), "b_mm": float(b), "p_max_MPa": float(p0),
             "approach_mm": None if approach is None else float(approach),

@@ -266,10 +266,8 @@ def contact_fields(cycle, rows, shape, margin=1.3, semi_axes: np.ndarray | None 
     every field, or an int n: n² points each, on cells as square as `square_cells` makes
     them (no longer than `largest_cell`, mm, where it can)."""
     rows = np.atleast_1d(np.asarray(rows, int))
-    if semi_axes is None:   # a contact line's pattern may lie to one side of its contact
-        reach = np.hypot(*np.asarray(cycle.pattern_centre, float)[rows].T)
-        semi_axes = np.array([[cycle.rows[k]["a_mm"] + r, cycle.rows[k]["b_mm"]]
-                              for k, r in zip(rows, reach)])
+    if semi_axes is None:
+        semi_axes = pattern_semi_axes(cycle, rows)
     a, b = np.asarray(semi_axes, float).reshape(-1, 2).T
     angle = np.asarray(cycle.axis_angle, float)[rows]
     half = np.broadcast_to(np.asarray(margin, float), rows.shape)[:, None] * np.stack(
@@ -307,6 +305,16 @@ def square_cells(half: np.ndarray, n: int, largest: float | None = None) -> np.n
                     axis=-1).astype(int)
 
 
+def pattern_semi_axes(cycle, rows) -> np.ndarray:
+    """Semi-axes ((K, 2), mm, along the A axis and across) of the given rows' patterns
+    about their contacts: the Hertz ellipse, or a contact line's half-length reaching to
+    the far end of its part in contact (which may lie to one side of the contact)."""
+    rows = np.atleast_1d(np.asarray(rows, int))
+    reach = np.hypot(*np.asarray(cycle.pattern_centre, float)[rows].T)
+    return np.array([[cycle.rows[k]["a_mm"] + r, cycle.rows[k]["b_mm"]]
+                     for k, r in zip(rows, reach)])
+
+
 def contact_field(cycle, k: int, shape, margin: float = 1.3,
                   largest_cell: float | None = None) -> GapField:
     """The gap field of row k of a contact cycle (see contact_fields)."""
@@ -337,7 +345,7 @@ def rigid_patterns(cycle, points: int, margin: float = 1.25, growths: int = 3) -
     rows, approach = cycle.rows, cycle.settings.approach
     face = face_length(cycle.pinion, (np.asarray(cycle.contacts.pinion_u), np.asarray(cycle.contacts.pinion_v)))
     # a contact line's box spans the face both ways: its part in contact may lie to one side
-    semi_axes = np.array([[f if r["contact_model"] == "line" else min(r["rigid_a_mm"], f),
+    semi_axes = np.array([[f if r["contact_model"] != "ellipse" else min(r["rigid_a_mm"], f),
                            r["rigid_b_mm"]] for r, f in zip(rows, face)])
     margins = np.full(len(rows), float(margin))
     out: list[RigidPattern | None] = [None] * len(rows)

@@ -50,12 +50,14 @@ ACROSS_POINTS = 61
 
 @dataclass(frozen=True)
 class ContactLines:
-    """The contact lines of K contacts: `length` (K,) in contact (mm); `centre` (K, 2): the
-    middle of the part in contact, in the plane coordinates (e1, e2) of each contact's
-    tangent plane (mm from the contact point); `margins`: per contact, edge name -> margin
-    (mm, see the module docstring)."""
+    """The contact lines of K contacts: `length` (K,) in contact (mm); `width` (K,): the
+    extent in contact across the line (mm, cells: a conformal contact's area is length ×
+    width); `centre` (K, 2): the middle of the part in contact, in the plane coordinates
+    (e1, e2) of each contact's tangent plane (mm from the contact point); `margins`: per
+    contact, edge name -> margin (mm, see the module docstring)."""
 
     length: np.ndarray
+    width: np.ndarray
     centre: np.ndarray
     margins: list[dict[str, float]]
 
@@ -76,7 +78,7 @@ def contact_lines(pinion: Flank, gear: Flank, pinion_frames: Frame, gear_frames:
     cos, sin = np.cos(angle), np.sin(angle)
     domains = {f"{member}_{name}": limits for member, flank in (("pinion", pinion), ("gear", gear))
                for name, limits in zip(("u", "v"), flank.domain)}
-    lengths, centres, margins = [], [], []
+    lengths, widths, centres, margins = [], [], [], []
     for k, field in enumerate(fields):
         rel = field.gap - separation[k]
         cells, inside = _line_cells(field, rel, approach)
@@ -94,12 +96,14 @@ def contact_lines(pinion: Flank, gear: Flank, pinion_frames: Frame, gear_frames:
             cells, inside = _line_cells(field, rel, approach)
         length, (x, y) = _length(field, rel, inside, approach, domains)
         lengths.append(length)
+        across = field.y[np.nonzero(inside)[1]]
+        widths.append(float(np.ptp(across)) + field.spacing[1] if across.size else 0.0)
         centres.append((x * cos[k] - y * sin[k], x * sin[k] + y * cos[k]))
         own = {}
         for member, flank in (("pinion", pinion), ("gear", gear)):
             own.update(_edge_margins(field, member, flank, cells, inside, rel, float(face[k])))
         margins.append(own)
-    return ContactLines(np.array(lengths), np.array(centres), margins)
+    return ContactLines(np.array(lengths), np.array(widths), np.array(centres), margins)
 
 
 def _exact_gaps(pinion: Flank, gear: Flank, pinion_frame: Frame, gear_frame: Frame,

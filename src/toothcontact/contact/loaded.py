@@ -26,7 +26,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from .field import GapField, contact_field, contact_fields
+from .field import GapField, contact_fields, pattern_semi_axes
 from .pressure import ContactSolution, solve_contact
 
 #: width (mm) of the strip at an edge over which the edge pressure is averaged
@@ -155,15 +155,18 @@ def loaded_cycle(cycle, C_E: float, points: int = 128,
 
 class _Pair:
     """One contact to solve: its gap field, widened when the loaded contact reaches the
-    field's edge (a cut ellipse spreads away from the cut)."""
+    field's edge (a cut ellipse spreads away from the cut; a line mostly along itself)."""
 
-    #: the Hertz ellipse's box enlarged by this much at first
+    #: the pattern's box enlarged by this much at first
     MARGIN = 1.5
 
     def __init__(self, cycle, k: int, points: int, E_star: float, field: GapField):
         self.cycle, self.k, self.points, self.E_star = cycle, k, points, E_star
         self.separation = cycle.rows[k]["separation_mm"]
-        self.margin, self.field = self.MARGIN, field
+        self.semi_axes = self.MARGIN * pattern_semi_axes(cycle, [k])[0]
+        self.growth = (np.array([1.6, 1.6]) if cycle.rows[k]["contact_model"] == "ellipse"
+                       else np.array([2.5, 1.3]))
+        self.field = field
         self.last: ContactSolution | None = None
 
     @property
@@ -183,8 +186,9 @@ class _Pair:
             except ValueError as exc:
                 if "reaches the grid's edge" not in str(exc):
                     raise
-            self.margin *= 1.6
-            self.field = contact_field(self.cycle, self.k, self.points, self.margin, CELL)
+            self.semi_axes = self.semi_axes * self.growth
+            self.field = contact_fields(self.cycle, [self.k], self.points, 1.0,
+                                        self.semi_axes[None], CELL)[0]
             self.last = None
         raise ValueError(f"the loaded contact at roll {self.cycle.rows[self.k]['roll_deg']:.3f} "
                          "deg outgrows its gap field (the surfaces end around it)")
