@@ -208,12 +208,14 @@ def _share(pairs: list[_Pair], load: float, stiffness: float | None) -> list[Con
     solutions = [p.solve(w) for p, w in zip(pairs, loads)]
     exponent = np.full(len(pairs), 2.0 / 3.0)
     carried = np.ones(len(pairs), bool)
+    split = loads
     for _ in range(20):
         rise = np.array([max(sol.approach_mm - p.separation, 1e-12)
                          for sol, p in zip(solutions, pairs)])
         c = rise / loads ** exponent
         new = _split(c, exponent, s, compliance, load)
-        settled = np.max(np.abs(new - loads)) <= SHARE_TOLERANCE * load
+        settled = np.max(np.abs(new - split)) <= SHARE_TOLERANCE * load
+        split = new
         # a pair the split leaves (nearly) unloaded keeps its last calibration
         carried = new > 1e-6 * load
         again = [p.solve(w) if on else sol

@@ -372,23 +372,51 @@ class WormFlank(Flank):
         beyond the wheel axis): a contact search may probe far outside the worm, and NaN
         tells it there is no surface there."""
         r_f = np.asarray(value(r), float)
-        # float Newton for R(rho) = r from the wheel's outside (the worm's tip and beyond):
-        # R is convex there, so the steps approach the near branch's root from one side
-        rho = np.full_like(r_f, self._a - self.tip_diameter / 2 - self.axial_module)
+        rho = self._zk_start(r_f, zeta_ref).ravel()
+        target = np.broadcast_to(r_f, np.shape(r_f)).ravel()
         tol = 1e-13 * self._a
+        converged = np.zeros(rho.shape, bool)
+        running = np.flatnonzero(np.isfinite(target))
         with np.errstate(invalid="ignore", divide="ignore"):
-            for _ in range(60):
-                *_, R, dR = self._zk_contact(rho, zeta_ref)
-                step = (R - r_f) / dR
-                rho = rho - step
-                if not np.any(np.abs(step) >= tol):  # all converged, or NaN: no contact
+            for _ in range(40):      # Newton on the points still running only
+                if running.size == 0:
                     break
-            rho = np.where((np.abs(step) < tol) & (dR < 0) & (rho > 0), rho, np.nan)
+                *_, R, dR = self._zk_contact(rho[running], zeta_ref)
+                step = (R - target[running]) / dR
+                rho[running] -= step
+                done = np.abs(step) < tol
+                converged[running[done & (dR < 0)]] = True
+                running = running[~done & np.isfinite(step)]  # NaN: no contact there
+            rho = np.where(converged & (rho > 0), rho, np.nan).reshape(np.shape(r_f))
             for _ in range(2):  # in jets: each step doubles the number of exact Taylor orders
                 *_, R, dR = self._zk_contact(rho, zeta_ref)
                 rho = rho - (R - r) / dR
             x, y, z, _, _ = self._zk_contact(rho, zeta_ref)
             return z - self._p * np.arctan2(y, x)
+
+    def _zk_start(self, r, zeta_ref):
+        """Where the Newton for R(rho) = r (mm) starts: from the wheel's outside (the worm's
+        tip and beyond), where R is convex, so the steps approach the near branch's root
+        from one side; inside the flank's radii, from a table of that branch's roots
+        (interpolated: a step or two from the root, where each Newton solve from outside
+        took about ten)."""
+        outside = np.full(np.shape(r), self._a - self.tip_diameter / 2 - self.axial_module)
+        if zeta_ref != getattr(self, "_zeta_ref", None):
+            return outside            # the flank still being placed
+        if "_zk_table" not in self.__dict__:
+            radii = np.linspace(0.5 * self.root_diameter, 0.5 * self.tip_diameter, 65)
+            rho = outside.flat[0] + np.zeros_like(radii)
+            with np.errstate(invalid="ignore", divide="ignore"):
+                for _ in range(40):
+                    *_, R, dR = self._zk_contact(rho, zeta_ref)
+                    rho = rho - (R - radii) / dR
+            good = np.isfinite(rho) & (rho > 0)
+            self._zk_table = (radii[good], rho[good])
+        radii, roots = self._zk_table
+        if radii.size < 2:
+            return outside
+        within = (r >= radii[0]) & (r <= radii[-1])
+        return np.where(within, np.interp(r, radii, roots), outside)
 
     def _left_zk(self, r):
         return self._zk(r, self._zeta_ref)
