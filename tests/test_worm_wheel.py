@@ -114,6 +114,25 @@ def dot(a, b):
 
 
 # --- 0. data, parameterisation, blank ---------------------------------------------------------
+def envelope_residuals(wheel, u, v):
+    """The wheel points P(u, v), the same points rebuilt as hob points r_h turned by the
+    generating angle phi1 and placed by the rigid motions rebuilt here (mm), and the
+    equation of meshing's residual |n·v12|/|v12| there, with v12 = e_z × X - (z1/z2)·k2 ×
+    (X - C); also the hob's surface sample and phi1."""
+    hob = wheel.hob
+    P = np.stack(wheel.point(u, v), axis=-1)
+    hu, hv, phi1 = wheel.generating_parameters(u, v)
+    hs = hob.evaluate(hu, hv)
+    R1 = rot([0, 0, 1], phi1)
+    X = np.einsum("...ij,...j->...i", R1, hs.points)
+    n = np.einsum("...ij,...j->...i", R1, hs.normals)
+    a0, sigma = wheel.generating_centre_distance, wheel.crossing_angle
+    C, k2, _ = setting(wheel, a0, sigma)
+    v12 = np.cross([0.0, 0.0, 1.0], X) - hob.starts / wheel.teeth * np.cross(k2, X - C)
+    residual = np.abs(dot(n, v12)) / np.linalg.norm(v12, axis=-1)
+    return P, to_wheel(wheel, X, phi1, a0, sigma), residual, (hs, phi1)
+
+
 def test_data_and_din3975_blank():
     """r2 = z2 mx/2, a = r1 + r2, a0 = r_hob + r2, d_a2 = d2 + 2 mx, d_f2 = d2 - 2.4 mx,
     r_k = a - d_a2/2, d_e2 = d_a2 + mx, b2 = 2 mx sqrt(q + 1) (1e-12); v is the wheel-axial
@@ -192,17 +211,8 @@ def test_equation_of_meshing(form, data, hand, side, kw):
     (z1/z2) k2 × (X - C); |n·v12| / |v12| < 1e-9."""
     worm, hob, w = wheel_for(form, data, hand, side, **dict(kw))
     u, v = w.grid(15, 13)
-    P = np.stack(w.point(u, v), axis=-1)
-    hu, hv, phi1 = w.generating_parameters(u, v)
-    hs = hob.evaluate(hu, hv)
-    R1 = rot([0, 0, 1], phi1)
-    X = np.einsum("...ij,...j->...i", R1, hs.points)
-    n = np.einsum("...ij,...j->...i", R1, hs.normals)
-    a0, sigma = w.generating_centre_distance, w.crossing_angle
-    np.testing.assert_allclose(to_wheel(w, X, phi1, a0, sigma), P, atol=1e-9)
-    C, k2, _ = setting(w, a0, sigma)
-    v12 = np.cross([0.0, 0.0, 1.0], X) - hob.starts / w.teeth * np.cross(k2, X - C)
-    res = np.abs(dot(n, v12)) / np.linalg.norm(v12, axis=-1)
+    P, rebuilt, res, (hs, phi1) = envelope_residuals(w, u, v)
+    np.testing.assert_allclose(rebuilt, P, atol=1e-9)
     print(f"\n{form} {data} {hand} {side} {kw}: max |n·v12|/|v12| = {res.max():.2e}")
     assert res.max() < 1e-9
     # the module's own transform agrees with the rebuilt one
