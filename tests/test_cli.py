@@ -12,13 +12,25 @@ from toothcontact.runner import bundled_cases
 runner = CliRunner()
 
 
+def strict_json(text: str):
+    """Parse RFC 8259 JSON: NaN, Infinity and -Infinity are refused."""
+    def refuse(constant):
+        raise ValueError(f"{constant} is not JSON")
+    return json.loads(text, parse_constant=refuse)
+
+
 @pytest.mark.parametrize("case", bundled_cases(), ids=lambda p: p.stem)
 def test_every_bundled_case_runs(case, tmp_path):
-    result = runner.invoke(app, ["run", str(case), "--out", str(tmp_path)])
-    assert result.exit_code == 0, result.output
-    document = json.loads((tmp_path / "result.json").read_text())
+    """Exit 0, or 1 exactly when a design check failed; result.json is strict JSON."""
+    out = tmp_path / "out"
+    result = runner.invoke(app, ["run", str(case), "--out", str(out)])
+    assert result.exit_code in (0, 1), result.output
+    document = strict_json((out / "result.json").read_text())
+    failed = [c for c in document["checks"] if not c["ok"]]
+    assert result.exit_code == (1 if failed else 0)
     assert document["kind"] and document["source"]
-    assert (tmp_path / "report.md").read_text().startswith("# ")
+    assert (out / "report.md").read_text().startswith("# ")
+    assert [p.name for p in tmp_path.iterdir()] == ["out"]
 
 
 def test_demo_writes_every_case(tmp_path):

@@ -377,7 +377,10 @@ def peer_case(folder: Path, **changes) -> Path:
 @pytest.mark.parametrize("changes, message", [
     ({"gear": {"teeth": 59}}, (r"gear\.teeth: 59, but pgw_gear_z60_sector3\.step is no gear of "
                                r"59 teeth .* 6\.000 deg apart \(60\.00 teeth a turn\)")),
-    ({"center_distance": "140 mm"}, r"no driving flank of the pinion reaches the gear"),
+    ({"center_distance": "140 mm"}, r"center_distance: 140 mm: the bodies' tip radii are 33 "
+                                    r"and 93 mm, so their teeth can only mesh between 93 and "
+                                    r"126 mm"),
+    ({"center_distance": "125.9 mm"}, r"the gear never closes on the pinion over two pitches"),
     ({"center_distance": "112 mm"}, r"the bodies overlap at every gear angle over two pitches"),
     ({"misalignment": {"axial_shift": "40 mm"}}, r"the bodies' faces do not overlap along the axis"),
 ])

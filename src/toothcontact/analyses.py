@@ -142,14 +142,26 @@ def crown_design_case(case: schema.CrownDesignCase) -> Result:
         try:
             design = crown.design_crown(case.face_width, case.slope_A, slope_B,
                                         profile_curvature, load, C_E, case.edge_clearance)
-        except ValueError as exc:
-            raise CaseError(f"face_width: {exc}") from None
+        except crown.CrownDesignError as exc:
+            raise CaseError(f"{exc.fields}: {exc}") from None
+        fields = "slope_A / slope_B"
     else:
         center = case.center_from_B if case.center_from_B is not None else 0.5 * case.face_width
         if case.crown == "bias" and case.center_from_B is None:
             raise CaseError("center_from_B: missing; checking a bias crown needs its centre")
+        if not 0 <= center <= case.face_width:
+            raise CaseError(f"center_from_B: {center:.4g} mm must lie on the face, 0 to "
+                            f"{case.face_width:.4g} mm")
         design = crown.check_crown(case.radius, center, case.face_width, case.slope_A, slope_B,
                                    profile_curvature, load, C_E)
+        fields = "radius / center_from_B"
+    reach = max(design.center_from_B, case.face_width - design.center_from_B)
+    if not (0 <= design.center_from_B <= case.face_width and design.radius > reach):
+        raise CaseError(f"{fields}: the crown (radius {design.radius:.4g} mm, centre "
+                        f"{design.center_from_B:.4g} mm from end B) must be centred on the "
+                        f"{case.face_width:.4g} mm face with a radius above {reach:.4g} mm, the "
+                        "farthest face end from its centre; slopes this large (or a radius this "
+                        "small) are beyond what a lead crown can take")
     ellipse = design.contact.ellipse
     d = mesh.operating_pitch_diameter
     I = agma.geometry_factor(rho1, rho2, case.pressure_angle, d, mesh.internal)
@@ -278,8 +290,10 @@ def _anti_rattle_rows(case: schema.WormEfficiencyCase, gamma: float) -> list[dic
             law = kim.friction
             for suffix, F in (("_aligned", Fn), ("", total)):
                 p = worm_efficiency.kim_contact_pressure(F, radii, C_E) if F > 0 else 0.0
+                # no load, no pressure: the power law gives no friction (null) and the
+                # set transmits nothing (efficiency 0)
                 mu = worm_efficiency.friction_power_law(p, law.mu_ref, law.pressure_ref,
-                                                        law.exponent) if p > 0 else math.nan
+                                                        law.exponent) if p > 0 else None
                 row[f"pressure{suffix}_MPa"], row[f"mu{suffix}"] = p, mu
                 row[f"eta_kim{suffix}"] = (worm_efficiency.efficiency_kim_preloaded(
                     gamma, alpha, mu, Fn, F) if p > 0 else 0.0)
@@ -360,6 +374,16 @@ def spur_geometry_case(case: schema.SpurCase) -> Result:
         "rho1_lpstc_mm": mesh.lpstc()}
     result.checks.append(Check("transverse contact ratio above 1", mesh.contact_ratio > 1.0,
                                f"{mesh.contact_ratio:.3f}"))
+    edge = pair.path_limits()
+    start, end = pair.active_path()
+    result.sections["mesh"]["usable_contact_ratio"] = (end - start) / mesh.base_pitch
+    reach = {"gear tip below the pinion's form circle": edge["pinion_form"] - edge["gear_tip"],
+             "pinion tip below the gear's form circle": edge["pinion_tip"] - edge["gear_form"]}
+    result.checks.append(Check(
+        "tips work on the mating involutes (no tip interference)",
+        max(reach.values()) <= 1e-9,
+        "; ".join(f"{what} by {d:.3f} mm along the line of action" for what, d in reach.items()
+                  if d > 1e-9) or "both tips meet the mates' involutes above their form circles"))
     clearance = gearset.tip_clearances(pair.pinion, pair.gear, pair.center_distance)
     result.sections["mesh"].update({f"{name}_tip_clearance_mm": c for name, c in clearance.items()})
     result.checks.append(Check("tips clear the mating root circles",
@@ -746,6 +770,13 @@ def imported_case(case: schema.ImportedCase) -> Result:
             raise CaseError(f"{name}.teeth: {spec.teeth}, but {Path(spec.file).name} is no "
                             f"gear of {spec.teeth} teeth about its z axis: {seen}; give the "
                             "body's tooth count, and a file whose z axis is the gear's axis")
+    tips = {name: float(np.hypot(body.vertices[:, 0], body.vertices[:, 1]).max())
+            for name, body in bodies.items()}
+    if not max(tips.values()) < case.center_distance < sum(tips.values()):
+        raise CaseError(f"center_distance: {case.center_distance:.4g} mm: the bodies' tip radii "
+                        f"are {tips['pinion']:.4g} and {tips['gear']:.4g} mm, so their teeth "
+                        f"can only mesh between {max(tips.values()):.4g} and "
+                        f"{sum(tips.values()):.4g} mm")
     if case.pinion_phase:
         bodies["pinion"] = bodies["pinion"].turned(case.pinion_phase)
     z1, z2 = case.pinion.teeth, case.gear.teeth

@@ -22,22 +22,45 @@ class CaseError(Exception):
     """Bad input: the message names the field, the value and what is allowed."""
 
 
-def quantity(kind: str, *, positive: bool = False, allow_inf: bool = False):
-    """A float field given as text with a unit of `kind` (see units.KINDS)."""
+#: absolute zero, °C
+ABSOLUTE_ZERO = -273.15
+
+
+def quantity(kind: str, *, positive: bool = False, nonzero: bool = False,
+             allow_inf: bool = False, low: float | None = None, high: float | None = None):
+    """A float field given as text with a unit of `kind` (see units.KINDS), within the
+    kind's physical range: finite (unless `allow_inf`), at most `largest` in magnitude (or
+    `high`, core units), at least `smallest` in magnitude if `positive` or `nonzero`, and
+    at least `low` (core units)."""
+    spec = units.KINDS[kind]
 
     def convert(value: Any) -> float:
         number = units.parse(value, kind)
-        if math.isinf(number) and not allow_inf:
+        if math.isinf(number):
+            if allow_inf:
+                return number
             raise ValueError(f"{value!r} must be finite")
         if positive and not number > 0:
             raise ValueError(f"{value!r} must be greater than zero")
+        if (positive or nonzero) and abs(number) < spec.smallest:
+            raise ValueError(f"{value!r} is {units.show(number, kind)}: its size must be at "
+                             f"least {units.show(spec.smallest, kind)}")
+        if high is None and abs(number) > spec.largest:
+            raise ValueError(f"{value!r} is {units.show(number, kind)}: its size must be at "
+                             f"most {units.show(spec.largest, kind)}")
+        if high is not None and number > high:
+            raise ValueError(f"{value!r} must be at most {units.show(high, kind)}")
+        if low is not None and number < low:
+            raise ValueError(f"{value!r} must be at least {units.show(low, kind)}")
         return number
 
     return Annotated[float, BeforeValidator(convert)]
 
 
 Length = quantity("length", positive=True)
-Radius = quantity("length", allow_inf=True)
+Radius = quantity("length", nonzero=True, allow_inf=True)
+#: a lead crown's radius: up to 1e9 mm (1 µm over a 100 mm face is 1.25e6 mm)
+CrownRadius = quantity("length", positive=True, high=1e9)
 Force = quantity("force", positive=True)
 Modulus = quantity("stress", positive=True)
 Torque = quantity("torque", positive=True)
@@ -45,10 +68,12 @@ Angle = quantity("angle")
 Slope = quantity("slope")
 InverseLength = quantity("inverse_length", positive=True)
 Viscosity = quantity("viscosity", positive=True)
-Temperature = quantity("temperature")
+Temperature = quantity("temperature", low=ABSOLUTE_ZERO + 1e-9)
 Stiffness = quantity("stiffness", positive=True)
 Poisson = Annotated[float, Field(gt=-1.0, lt=0.5, description="Poisson's ratio in (-1, 0.5)")]
-Factor = Annotated[float, Field(gt=0.0, description="a positive number")]
+Factor = Annotated[float, Field(gt=0.0, le=1e6, description="a positive number")]
+Friction = Annotated[float, Field(gt=0.0, lt=1.0, description="a friction coefficient in (0, 1)")]
+Efficiency = Annotated[float, Field(gt=0.0, le=1.0, description="an efficiency in (0, 1]")]
 
 
 class Model(BaseModel):
@@ -129,7 +154,7 @@ class CrownDesignCase(GearPairGeometry):
     tangential_load: Force = Field(description="e.g. '8000 N'")
     slope_A: Slope = Field(description="total slope at end A in rad, e.g. '0.0015'")
     slope_B: Slope | None = Field(None, description="total slope at end B (bias crown only)")
-    radius: Length | None = Field(None, description="check this crown radius instead of designing")
+    radius: CrownRadius | None = Field(None, description="check this crown radius instead of designing")
     center_from_B: Length | None = Field(None, description="crown centre of a checked crown")
     edge_clearance: quantity("length") = Field(0.0, description="margin kept to each end")
     allowable_stress: Modulus | None = None
@@ -159,7 +184,7 @@ class Rack(Model):
 class CrownSpec(Model):
     """Lead crown: radius or height (drop at the face ends when centred), shape, centre."""
 
-    radius: Length | None = None
+    radius: CrownRadius | None = None
     height: Length | None = None
     shape: Literal["circular", "parabolic"] = "circular"
     center: quantity("length") = Field(0.0, description="from mid-face toward end B")
@@ -231,9 +256,24 @@ class LoadSpec(Model):
         return self
 
 
+#: the search grid's bounds: points per side, and points in all
+SEARCH_GRID_SIDE, SEARCH_GRID_POINTS = (3, 1001), 100_000
+
+
 class AnalysisSpec(Model):
     positions: int = Field(21, ge=1, le=401, description="mesh positions over one pitch")
     grid: tuple[int, int] = Field((25, 41), description="[profile, face] search grid")
+
+    @field_validator("grid")
+    @classmethod
+    def _grid(cls, value: tuple[int, int]) -> tuple[int, int]:
+        low, high = SEARCH_GRID_SIDE
+        if not all(low <= n <= high for n in value):
+            raise ValueError(f"{list(value)}: each side must have {low} to {high} points")
+        if value[0] * value[1] > SEARCH_GRID_POINTS:
+            raise ValueError(f"{list(value)}: at most {SEARCH_GRID_POINTS} points in all")
+        return value
+
     approach: Length = Field(0.00632, description="rigid approach for the pattern")
     field_grid: int = Field(201, ge=0, le=1001,
                             description="points per side of each contact's separation field in "
@@ -428,14 +468,14 @@ class WormCase(CaseInfo):
 class Condition(Model):
     temperature: Temperature = Field(description="e.g. '-50 degC'")
     viscosity: Viscosity = Field(description="kinematic viscosity, e.g. '30000 mm^2/s'")
-    eta_spindle: Factor | None = Field(None, description="efficiency of what follows the worm set")
-    published_eta_total: Factor | None = None
-    published_eta_z: Factor | None = None
-    published_mu_zm: Factor | None = None
+    eta_spindle: Efficiency | None = Field(None, description="efficiency of what follows the worm set")
+    published_eta_total: Efficiency | None = None
+    published_eta_z: Efficiency | None = None
+    published_mu_zm: Friction | None = None
 
 
 class Din3996(Model):
-    mu_0T: Factor = Field(description="base friction of DIN 3996, e.g. 0.047")
+    mu_0T: Friction = Field(description="base friction of DIN 3996, e.g. 0.047")
     Y_S: Factor = 1.0
     Y_G: Factor = 1.0
     Y_W: Factor = 1.0
@@ -457,9 +497,10 @@ class AntiRattleSpring(Model):
 class FrictionLaw(Model):
     """Seed 001 §2.4.1: mu = c·p^n through a measured point (steel on polymer)."""
 
-    mu_ref: Factor = Field(description="measured friction, e.g. 0.029")
+    mu_ref: Friction = Field(description="measured friction, e.g. 0.029")
     pressure_ref: Modulus = Field(description="at this contact pressure, e.g. '130 MPa'")
-    exponent: float = Field(-0.9, le=0.0, description="n: -0.9 sliding, -0.6 rolling")
+    exponent: float = Field(-0.9, ge=-5.0, le=0.0,
+                            description="n in [-5, 0]: -0.9 sliding, -0.6 rolling")
 
 
 class KimContact(Model):
@@ -480,7 +521,7 @@ class WormEfficiencyCase(CaseInfo):
     lead_angle: Angle | None = None
     worm_pitch_diameter: Length | None = None
     normal_pressure_angle: Angle = Field(description="e.g. '20 deg'")
-    mu_zm: Factor | None = Field(None, description="mean tooth friction, e.g. 0.061")
+    mu_zm: Friction | None = Field(None, description="mean tooth friction, e.g. 0.061")
     din3996: Din3996 | None = None
     conditions: list[Condition] = []
     anti_rattle_spring: AntiRattleSpring | None = None
@@ -569,7 +610,8 @@ class ImportedCase(CaseInfo):
     pressure_angle: Angle = Field(math.radians(20.0),
                                   description="working transverse pressure angle (the plane "
                                               "of action the slopes refer to), default 20 deg")
-    base_helix_angle: Angle = Field(0.0, description="for the normal load; 0 for spur")
+    base_helix_angle: quantity("angle", low=0.0, high=math.radians(60.0)) = Field(
+        0.0, description="for the normal load, 0 to 60 deg; 0 for spur")
     pinion_phase: Angle = Field(0.0, description="the pinion's turn from its file's position "
                                                  "at the start (default 0: a tooth on the "
                                                  "file's +x axis faces the gear)")
@@ -583,6 +625,13 @@ class ImportedCase(CaseInfo):
     misalignment: MisalignmentSpec = MisalignmentSpec()
     load: LoadSpec
     analysis: AnalysisSpec = AnalysisSpec(positions=11)
+
+    @model_validator(mode="after")
+    def _angles(self):
+        if not 0 < self.pressure_angle < math.radians(45):
+            raise ValueError(f"pressure_angle: {math.degrees(self.pressure_angle):.4g} deg "
+                             "must lie between 0 and 45 deg")
+        return self
 
 
 KINDS: dict[str, type[CaseInfo]] = {

@@ -12,6 +12,11 @@ app = typer.Typer(add_completion=False, no_args_is_help=True,
                   help="Tooth-contact analysis of gears under misalignment and deflection.")
 
 
+#: exit codes: 0 done, every design check passed; 1 done, a design check failed (the results
+#: are complete); 2 input refused (one line names the field); 3 a bug in toothcontact
+EXIT_CHECK_FAILED, EXIT_BAD_INPUT, EXIT_BUG = 1, 2, 3
+
+
 def _fail(message: str, code: int) -> None:
     typer.echo(f"error: {message}", err=True)
     raise typer.Exit(code)
@@ -24,12 +29,13 @@ def _guarded(action):
     try:
         return action()
     except CaseError as exc:
-        _fail(str(exc), 2)
+        _fail(str(exc), EXIT_BAD_INPUT)
     except Exception as exc:  # noqa: BLE001 - the promise is: no traceback for users
         if os.environ.get("TOOTHCONTACT_DEBUG"):
             raise
-        _fail(f"internal error: {type(exc).__name__}: {exc} "
-              "(set TOOTHCONTACT_DEBUG=1 to see the traceback)", 3)
+        _fail(f"internal error: {type(exc).__name__}: {exc} (a bug in toothcontact: please "
+              "report it with the case file; TOOTHCONTACT_DEBUG=1 shows the traceback)",
+              EXIT_BUG)
 
 
 class _Progress:
@@ -73,7 +79,9 @@ def run(case: Path = typer.Argument(..., help="case file (TOML)"),
         out: Optional[Path] = typer.Option(None, "--out", help="output folder [out/<case>]"),
         pictures: bool = typer.Option(True, "--pictures/--no-pictures",
                                       help="render the 3D pictures (spur, spline, worm)")):
-    """Analyse CASE: writes result.json, report.md, report.html, plots and pictures."""
+    """Analyse CASE: writes result.json, report.md, report.html, plots and pictures.
+
+    Exit 0: done; 1: done, but a design check failed; 2: the input was refused; 3: a bug."""
     from . import runner
 
     with _Progress(None, case.stem) as progress:
@@ -81,11 +89,13 @@ def run(case: Path = typer.Argument(..., help="case file (TOML)"),
     failed = [c for c in document["checks"] if not c["ok"]]
     folder = written[0].parent if written else out
     typer.echo(f"{case.stem}: wrote {_wrote(written)} -> {folder}")
+    for name, stage in document.get("stages", {}).items():
+        if stage["status"] == "failed":
+            typer.echo(f"  warning: the {name} could not be made here: {stage['reason']}")
     for check in failed:
         typer.echo(f"  check failed: {check['name']}: {check['detail']}")
-    for note in document["notes"]:
-        if note.startswith("the 3D pictures could not be rendered"):
-            typer.echo(f"  warning: {note}")
+    if failed:
+        raise typer.Exit(EXIT_CHECK_FAILED)
 
 
 @app.command()
@@ -127,7 +137,7 @@ def export(cases: list[Path] = typer.Argument(..., help="case files (TOML)"),
 
     formats = {"step": ("step",), "stl": ("stl",), "both": ("step", "stl")}.get(fmt)
     if formats is None:
-        _fail(f"--format: {fmt!r} is not one of step, stl, both", 2)
+        _fail(f"--format: {fmt!r} is not one of step, stl, both", EXIT_BAD_INPUT)
     for case in cases:
         target = (out or Path("geometry")) / case.stem
         record = _guarded(lambda: runner.export_case(case, target, formats))

@@ -14,7 +14,7 @@ from dataclasses import dataclass, replace
 from scipy.optimize import brentq
 
 from .analytic.spur_mesh import SpurMesh
-from .case import Member, SplineCase, SpurCase, WormCase
+from .case import CrownSpec, Member, SplineCase, SpurCase, WormCase
 from .modify import Deflection, EndRelief, FlankModifications, LeadCrown, ProfileCrown, TipRelief
 from .surfaces.involute import CylindricalGear, inv
 from .surfaces.spline import InvoluteSpline
@@ -59,6 +59,39 @@ class GearPair:
     def overlap_ratio(self) -> float:
         face = min(self.pinion.face_width, self.gear.face_width)
         return face * math.sin(self.pinion.helix_angle) / (math.pi * self.pinion.normal_module)
+
+    def path_limits(self) -> dict[str, float]:
+        """Where each edge of the flanks lies on the transverse line of action, in mm from
+        the pinion's base tangency point T1: the pinion's form and tip circles, the gear's
+        tip and form circles (the forms those the generating cutters leave; a circle inside
+        its base circle lies at its base tangency point)."""
+        from .surfaces.generation import generate_ring_side, generate_side
+
+        p, g = self.pinion, self.gear
+        T1T2 = self.center_distance * math.sin(self.working_pressure_angle)
+
+        def along(gear, radius):       # from the member's own tangency point
+            return math.sqrt(max(radius * radius - gear.base_radius ** 2, 0.0))
+
+        pinion_form = along(p, generate_side(p).form_radius)
+        if g.internal:                 # T2 beyond T1: the gear point lies at s + T1T2 from T2
+            to_s = lambda d: d - T1T2  # noqa: E731
+            gear_form = along(g, generate_ring_side(g).form_radius)
+        else:                          # T2 ahead of T1: at T1T2 - s from T2
+            to_s = lambda d: T1T2 - d  # noqa: E731
+            gear_form = along(g, generate_side(g).form_radius)
+        return {"pinion_form": pinion_form, "pinion_tip": along(p, p.tip_radius),
+                "gear_tip": to_s(along(g, g.tip_radius)), "gear_form": to_s(gear_form),
+                "gear_base": T1T2 if not g.internal else math.inf}
+
+    def active_path(self, forms: bool = True) -> tuple[float, float]:
+        """(start, end) of the contact path (mm from T1) where both flanks are involutes
+        between their form (with `forms`; else base) and tip circles; start >= end: the
+        flanks never meet there."""
+        edge = self.path_limits()
+        lower = ("pinion_form", "gear_tip") if forms else ("gear_tip",)
+        upper = ("pinion_tip", "gear_form", "gear_base") if forms else ("pinion_tip", "gear_base")
+        return (max(0.0, *(edge[k] for k in lower)), min(edge[k] for k in upper))
 
 
 def working_flank(gear: CylindricalGear, modifications: FlankModifications, side: int):
@@ -130,8 +163,37 @@ def gear_pair(case: SpurCase) -> GearPair:
     check_proportions(pinion, gear, center if case.center_distance is None else None)
     d = case.deflection
     deflection = None if d is None else Deflection(d.slope, d.bending, tuple(d.table))
-    return GearPair(pinion, gear, modifications(case.pinion, pinion, "pinion"),
+    pair = GearPair(pinion, gear, modifications(case.pinion, pinion, "pinion"),
                     modifications(case.gear, gear, "gear"), center, alpha_w, deflection)
+    check_mesh(pair, "center_distance" if case.center_distance is not None else
+               "teeth / pinion.profile_shift / gear.profile_shift / rack.addendum")
+    return pair
+
+
+def check_mesh(pair: GearPair, fields: str) -> None:
+    """Refuse a pair that does not mesh: the involutes between form and tip circles never
+    meet on the line of action, or the tips leave less than one base pitch of it with the
+    overlap (total contact ratio ISO 21771 ε_γ = ε_α + ε_β below 1). A tip reaching below
+    the mate's form circle is analysed and flagged, not refused. `fields`: what sets it."""
+    at = f"at the centre distance {pair.center_distance:.4g} mm"
+    start, end = pair.active_path()
+    if not end > start:
+        raise ValueError(f"{fields}: the flanks never meet on their involutes {at}: between "
+                         f"form and tip circles they share no part of the line of action "
+                         f"(from {start:.4g} to {end:.4g} mm from the pinion's base point)")
+    start, end = pair.active_path(forms=False)
+    ratio, overlap = (end - start) / pair.transverse_mesh().base_pitch, pair.overlap_ratio
+    if ratio + overlap < 1.0:
+        raise ValueError(f"{fields}: the mesh is interrupted {at}: the tips leave "
+                         f"{max(end - start, 0.0):.4g} mm of the line of action, a contact "
+                         f"ratio of {ratio:.3f} + overlap {overlap:.3f} = "
+                         f"{ratio + overlap:.3f}, below 1 (a pair leaves before the next "
+                         "engages)")
+
+
+#: the thinnest top land a pair is analysed with, × m_n: a thinner tip is a knife edge
+#: (design practice asks 0.2 to 0.4·m_n, the upper end for case-hardened gears)
+MIN_TOP_LAND = 0.1
 
 
 def tip_thickness(gear: CylindricalGear) -> float:
@@ -164,10 +226,11 @@ def check_proportions(pinion: CylindricalGear, gear: CylindricalGear,
                              f"tip circle (d_a = {2 * member.tip_radius:.4g} mm) inside its base "
                              f"circle (d_b = {2 * member.base_radius:.4g} mm): allowed from "
                              f"{least:.3g}")
-        if not s_a > 0:
+        if not s_a >= MIN_TOP_LAND * member.normal_module:
             raise ValueError(f"{name}.profile_shift: {member.profile_shift:g} makes the {kind}'s "
-                             f"teeth pointed (thickness {s_a:.3g} mm on the tip circle d_a = "
-                             f"{2 * member.tip_radius:.4g} mm): allowed up to "
+                             f"teeth pointed (top land {s_a:.3g} mm on the tip circle d_a = "
+                             f"{2 * member.tip_radius:.4g} mm, below {MIN_TOP_LAND:g}·m_n = "
+                             f"{MIN_TOP_LAND * member.normal_module:.3g} mm): allowed up to "
                              f"{_pointed_shift(member):.3g}")
     if center is None:
         return
@@ -194,18 +257,34 @@ def tip_clearances(pinion: CylindricalGear, gear: CylindricalGear,
 
 
 def _pointed_shift(gear: CylindricalGear) -> float:
-    """The profile shift at which the gear's teeth become pointed (bisection on x)."""
+    """The profile shift at which the gear's top land falls to MIN_TOP_LAND·m_n (bisection
+    on x)."""
     lo, hi = -1.5, gear.profile_shift
     for _ in range(60):
         mid = 0.5 * (lo + hi)
         s_a = tip_thickness(replace(gear, profile_shift=mid))
-        lo, hi = (mid, hi) if s_a > 0 else (lo, mid)
+        lo, hi = (mid, hi) if s_a >= MIN_TOP_LAND * gear.normal_module else (lo, mid)
     return lo
+
+
+def check_crown_span(crown: CrownSpec, face_width: float, field: str) -> None:
+    """Refuse a crown whose arc does not reach the farther face end from its centre, or
+    whose centre lies off the face."""
+    if not abs(crown.center) < 0.5 * face_width:
+        raise ValueError(f"{field}.center: {crown.center:.4g} mm must lie on the face, within "
+                         f"±{0.5 * face_width:.4g} mm of mid-face")
+    reach = 0.5 * face_width + abs(crown.center)
+    if crown.radius is not None and not crown.radius > reach:
+        raise ValueError(f"{field}.radius: {crown.radius:.4g} mm must exceed {reach:.4g} mm, "
+                         "the distance from the crown's centre to the farther face end (a "
+                         "smaller arc does not span the face)")
 
 
 def modifications(member: Member, gear: CylindricalGear, name: str) -> FlankModifications:
     """The member's modifications, with diameters turned into roll lengths rb·t."""
     crown = member.crown
+    if crown is not None:
+        check_crown_span(crown, gear.face_width, f"{name}.crown")
     tip = member.tip_relief
     if tip is not None:
         lo, hi = sorted((2 * gear.base_radius, 2 * gear.tip_radius))
@@ -241,6 +320,7 @@ def spline_pair(case: SplineCase) -> SplinePair:
                             case.clearance, case.engaged_length, case.root)
     mods = FlankModifications()
     if case.crown is not None:
+        check_crown_span(case.crown, case.engaged_length, "crown")
         c, scale = case.crown, 1.0 / math.cos(case.pressure_angle)
         mods = FlankModifications(lead_crown=LeadCrown(
             None if c.radius is None else c.radius * scale,

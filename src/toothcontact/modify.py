@@ -21,9 +21,10 @@ SHAPES = ("circular", "parabolic")
 
 def _arc_drop(offset, radius: float, shape: str):
     """Drop of a crown of `radius` at `offset` from its centre: circular R - sqrt(R² - d²),
-    parabolic d²/(2R); both have curvature 1/R at the centre."""
+    evaluated as d²/(R + sqrt((R - d)(R + d))) (no cancellation for a large R), parabolic
+    d²/(2R); both have curvature 1/R at the centre."""
     if shape == "circular":
-        return radius - np.sqrt(radius * radius - offset * offset)
+        return offset * offset / (radius + np.sqrt((radius - offset) * (radius + offset)))
     return offset * offset / (2.0 * radius)
 
 

@@ -4,10 +4,12 @@ embedded as base64), each written whole or not at all."""
 from __future__ import annotations
 
 import base64
+import contextlib
 import html as _html
 import json
 import math
 import os
+import shutil
 import tempfile
 from pathlib import Path
 
@@ -28,7 +30,7 @@ def write_run(out_dir: Path, document: dict, images=()) -> list[Path]:
     report.md and embedded in report.html."""
     out_dir = Path(out_dir)
     images = [Path(p) for p in images]
-    texts = {"result.json": json.dumps(_finite(document), indent=2) + "\n",
+    texts = {"result.json": json.dumps(_finite(document), indent=2, allow_nan=False) + "\n",
              "report.md": markdown(document, [_relative(p, out_dir) for p in images]),
              "report.html": html(document, images)}
     out_dir.mkdir(parents=True, exist_ok=True)
@@ -79,15 +81,64 @@ def write_atomic(target: str | Path, write, binary: bool = False) -> Path:
     return target
 
 
+_STAGING = ".staging"
+
+
+@contextlib.contextmanager
+def staging_folder(target: str | Path):
+    """Yield an empty folder beside `target` to write a run into; on success it replaces
+    `target` (the old folder is renamed away first, then removed), on any failure it is
+    removed and `target` stays as it was. Staging folders that a killed run left behind
+    (their process gone) are removed on the way in."""
+    target = Path(target).absolute()
+    target.parent.mkdir(parents=True, exist_ok=True)
+    _remove_abandoned(target)
+    staging = Path(tempfile.mkdtemp(dir=target.parent,
+                                    prefix=f".{target.name}.{os.getpid()}.", suffix=_STAGING))
+    try:
+        yield staging
+        os.chmod(staging, 0o755)
+        retired = None
+        if target.exists():
+            retired = staging.with_name(staging.name[:-len(_STAGING)] + ".retired")
+            os.replace(target, retired)
+        os.replace(staging, target)
+        if retired is not None:
+            shutil.rmtree(retired, ignore_errors=True)
+    except BaseException:
+        shutil.rmtree(staging, ignore_errors=True)
+        raise
+
+
+def _remove_abandoned(target: Path) -> None:
+    for folder in target.parent.glob(f".{target.name}.*.*"):
+        if folder.suffix not in (_STAGING, ".retired"):
+            continue
+        pid = folder.name[len(target.name) + 2:].split(".")[0]
+        if pid.isdigit() and not _alive(int(pid)):
+            shutil.rmtree(folder, ignore_errors=True)
+
+
+def _alive(pid: int) -> bool:
+    try:
+        os.kill(pid, 0)
+    except ProcessLookupError:
+        return False
+    except PermissionError:
+        return True
+    return True
+
+
 def write_text(target: Path, text: str) -> Path:
     """Write a text file whole or not at all (write_atomic)."""
     return write_atomic(target, lambda handle: handle.write(text))
 
 
 def _finite(value):
-    """JSON has no infinity: write it as the string "inf"."""
+    """Strict JSON (RFC 8259) has no NaN or infinity: a number that does not apply is null
+    (its entry says why, e.g. by the contact model)."""
     if isinstance(value, float) and not math.isfinite(value):
-        return str(value)
+        return None
     if isinstance(value, dict):
         return {k: _finite(v) for k, v in value.items()}
     if isinstance(value, (list, tuple)):

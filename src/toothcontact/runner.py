@@ -62,30 +62,53 @@ def run_case(path: str | Path, out_dir: str | Path | None = None, pictures: bool
              progress: Callable[[str], None] | None = None) -> tuple[dict, list[Path]]:
     """Analyse a case file and write into `out_dir` (default out/<case name>/): result.json,
     report.md, report.html, the plots (plots.figures_for) and, with `pictures`, the 3D
-    pictures (render.pictures_for). Nothing is written when the case is bad. A picture
-    that cannot be rendered (no OpenGL here, say) leaves the rest of the run standing: the
-    report says so. `progress(stage)` is called before each stage."""
+    pictures (render.pictures_for). Nothing is written when the case is bad.
+
+    The folder is all or nothing: everything is written into a staging folder beside it,
+    which then replaces it (report.publish_folder), so a reader sees the previous complete
+    run or the new one. A stage that cannot answer (plots, pictures) says so in the
+    document's `stages` and leaves the rest standing. `progress(stage)` is called before
+    each stage."""
     path = Path(path)
     _step(progress, "analysing")
     run = analyse_path(path)
     document = run.document
     target = Path(out_dir) if out_dir is not None else Path("out") / path.stem
-    target.mkdir(parents=True, exist_ok=True)
+    stages = document.setdefault("stages", {})
+    with report.staging_folder(target) as staging:
+        _step(progress, "plotting")
+        images = _stage(stages, "plots", lambda: _plots(document, staging))
+        if not pictures:
+            stages["pictures"] = {"status": "skipped", "reason": "--no-pictures"}
+        elif not has_pictures(run.case):
+            stages["pictures"] = {"status": "skipped", "reason": f"no 3D picture for a "
+                                                                f"{run.case.kind} case"}
+        else:
+            _step(progress, "rendering")
+            images += _stage(stages, "pictures", lambda: picture_files(run, staging))
+        _step(progress, "writing the reports")
+        written = report.write_run(staging, document, images) + images
+    return document, [target / p.name for p in written]
+
+
+def _plots(document: dict, folder: Path) -> list[Path]:
     from . import plots
 
-    _step(progress, "plotting")
-    images = plots.figures_for(document, target)
-    if pictures and has_pictures(run.case):
-        _step(progress, "rendering")
-        try:
-            images += picture_files(run, target)
-        except Exception as exc:  # noqa: BLE001 - the numbers stand without the pictures
-            if os.environ.get("TOOTHCONTACT_DEBUG"):
-                raise
-            document["notes"].append(f"the 3D pictures could not be rendered here: "
-                                     f"{type(exc).__name__}: {exc}")
-    _step(progress, "writing the reports")
-    return document, report.write_run(target, document, images) + images
+    return plots.figures_for(document, folder)
+
+
+def _stage(stages: dict, name: str, action: Callable[[], list[Path]]) -> list[Path]:
+    """Run an output stage; its failure (no OpenGL here, say) is recorded in
+    stages[name] and the run goes on without its files."""
+    try:
+        files = action()
+    except Exception as exc:  # noqa: BLE001 - the numbers stand without the pictures
+        if os.environ.get("TOOTHCONTACT_DEBUG"):
+            raise
+        stages[name] = {"status": "failed", "reason": f"{type(exc).__name__}: {exc}"}
+        return []
+    stages[name] = {"status": "done", "files": [p.name for p in files]}
+    return files
 
 
 def has_pictures(case) -> bool:

@@ -28,21 +28,30 @@ class Kind:
     dimensionality: str
     example: str
     bare_number_allowed: bool = False
+    #: the largest magnitude, in the core unit, that a gear case can mean (beyond it a
+    #: number is a typo or an overflow waiting to happen)
+    largest: float = math.inf
+    #: the smallest magnitude of a quantity that must be positive (a size, a load)
+    smallest: float = 0.0
 
 
 KINDS: dict[str, Kind] = {
     k.name: k
     for k in (
-        Kind("length", "mm", "[length]", "'3 mm' or '0.125 in'"),
-        Kind("force", "N", "[force]", "'8000 N' or '3600 lbf'"),
-        Kind("stress", "MPa", "[pressure]", "'206 GPa' or '30000 ksi'"),
-        Kind("torque", "N*mm", "[force]*[length]", "'40 N*m' or '478 lbf*in'"),
-        Kind("stiffness", "N/mm", "[force]/[length]", "'30 N/mm'"),
-        Kind("angle", "rad", "", "'20 deg' or '0.35 rad'"),
-        Kind("slope", "rad", "", "'0.0015' (rad), '0.0015 in/in' or '0.1 deg'", True),
-        Kind("inverse_length", "1/mm", "1/[length]", "'10 1/in'"),
-        Kind("viscosity", "mm**2/s", "[length]**2/[time]", "'220 mm^2/s' or '220 cSt'"),
-        Kind("temperature", "degC", "[temperature]", "'-50 degC' or '176 degF'"),
+        Kind("length", "mm", "[length]", "'3 mm' or '0.125 in'", largest=1e5, smallest=1e-6),
+        Kind("force", "N", "[force]", "'8000 N' or '3600 lbf'", largest=1e8, smallest=1e-6),
+        Kind("stress", "MPa", "[pressure]", "'206 GPa' or '30000 ksi'", largest=1e10,
+             smallest=1e-3),
+        Kind("torque", "N*mm", "[force]*[length]", "'40 N*m' or '478 lbf*in'", largest=1e10,
+             smallest=1e-6),
+        Kind("stiffness", "N/mm", "[force]/[length]", "'30 N/mm'", largest=1e9, smallest=1e-6),
+        Kind("angle", "rad", "", "'20 deg' or '0.35 rad'", largest=2 * math.pi),
+        Kind("slope", "rad", "", "'0.0015' (rad), '0.0015 in/in' or '0.1 deg'", True,
+             largest=0.1),
+        Kind("inverse_length", "1/mm", "1/[length]", "'10 1/in'", largest=100.0, smallest=1e-5),
+        Kind("viscosity", "mm**2/s", "[length]**2/[time]", "'220 mm^2/s' or '220 cSt'",
+             largest=1e7, smallest=1e-3),
+        Kind("temperature", "degC", "[temperature]", "'-50 degC' or '176 degF'", largest=1000.0),
     )
 }
 
@@ -72,6 +81,8 @@ def parse(text: str | float | int, kind: str) -> float:
     if isinstance(text, (int, float)):
         if not spec.bare_number_allowed:
             raise UnitError(f"{text!r} has no unit; expected {_expected(spec)}")
+        if math.isnan(text):
+            raise UnitError(f"{text!r} is not a number; expected {_expected(spec)}")
         return float(text)
     match = _NUMBER.match(text)
     if not match:
@@ -91,6 +102,12 @@ def parse(text: str | float | int, kind: str) -> float:
     if not _has_dimension(unit, spec):
         raise UnitError(f"{text!r} is not {_expected(spec)}")
     return float(ureg.Quantity(magnitude, unit).to(spec.core_unit).magnitude)
+
+
+def show(value: float, kind: str) -> str:
+    """A core-unit value as text with its unit, e.g. '1e+08 N'."""
+    unit = KINDS[kind].core_unit.replace("**", "^")
+    return f"{value:.6g} {unit}" if unit != "rad" or kind == "angle" else f"{value:.6g} rad"
 
 
 def _has_dimension(unit, spec: Kind) -> bool:

@@ -31,7 +31,11 @@ def drop_from_radius(radius: float, length: float) -> float:
     crown centre (mm)."""
     if abs(length) > radius:
         raise ValueError(f"a crown of radius {radius:.4g} mm cannot span {length:.4g} mm")
-    return radius - math.sqrt(radius**2 - length**2)
+    if math.isinf(radius):
+        return 0.0
+    # L²/(R + sqrt(R² - L²)), written without R² (no cancellation, no overflow)
+    ratio = length / radius
+    return length * ratio / (1.0 + math.sqrt((1.0 - ratio) * (1.0 + ratio)))
 
 
 def normal_load(tangential_load: float, pressure_angle: float) -> float:
@@ -91,6 +95,14 @@ class Crown:
         return self.center_from_B - (self.radius * self.slope_B + self.contact.semi_axis_face)
 
 
+class CrownDesignError(ValueError):
+    """A crown that cannot be designed, and the input fields that cause it."""
+
+    def __init__(self, fields: str, message: str):
+        super().__init__(message)
+        self.fields = fields
+
+
 def design_crown(face_width: float, slope_A: float, slope_B: float, profile_curvature: float,
                  load: float, C_E: float, edge_clearance: float = 0.0) -> Crown:
     """The largest crown radius that keeps the ellipse `edge_clearance` inside both face ends.
@@ -99,8 +111,9 @@ def design_crown(face_width: float, slope_A: float, slope_B: float, profile_curv
     c = R·theta_B + a + clearance. A full crown is the case theta_B = theta_A (c = F/2)."""
     usable = face_width - 2.0 * edge_clearance
     if usable <= 0:
-        raise ValueError(f"edge clearance {edge_clearance:.4g} mm leaves no face of "
-                         f"{face_width:.4g} mm")
+        raise CrownDesignError("edge_clearance / face_width",
+                               f"an edge clearance of {edge_clearance:.4g} mm leaves nothing "
+                               f"of the {face_width:.4g} mm face")
 
     def spread(log_R: float) -> float:
         R = math.exp(log_R)
@@ -109,12 +122,17 @@ def design_crown(face_width: float, slope_A: float, slope_B: float, profile_curv
 
     lo, hi = math.log(1e-3 * face_width), math.log(10.0 * face_width)
     if spread(lo) >= 0:
-        raise ValueError(f"the load spreads the contact over the whole {face_width:.4g} mm face "
-                         "even with a very small crown radius: the face is too narrow for it")
+        raise CrownDesignError("tangential_load / face_width / material",
+                               f"the load spreads the contact over the whole {face_width:.4g} "
+                               "mm face even with a very small crown radius: the face is too "
+                               "narrow for the load (or the material too soft)")
     while spread(hi) < 0:
         hi += math.log(10.0)
         if hi > math.log(1e12):
-            raise ValueError("no finite crown radius reaches the face ends")
+            raise CrownDesignError("slope_A / slope_B",
+                                   "the slopes are too small for any crown radius below "
+                                   "1e12 mm to bring the contact to the face ends: no crown "
+                                   "is needed")
     R = math.exp(brentq(spread, lo, hi, xtol=1e-12, rtol=1e-13))
     contact = crowned_contact(R, profile_curvature, load, C_E)
     center = R * slope_B + contact.semi_axis_face + edge_clearance

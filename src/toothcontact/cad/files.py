@@ -60,7 +60,18 @@ def read_step(path: Path):
     if reader.ReadFile(str(path)) != IFSelect_RetDone:
         raise ValueError(f"{path}: not a readable STEP file")
     reader.TransferRoots()
-    return reader.OneShape()
+    shape = reader.OneShape()
+    if shape is None or shape.IsNull() or not _has_faces(shape):
+        raise ValueError(f"{path.name} holds no solid or surface (a STEP file with no "
+                         "geometry in its DATA section)")
+    return shape
+
+
+def _has_faces(shape) -> bool:
+    from OCP.TopAbs import TopAbs_FACE
+    from OCP.TopExp import TopExp_Explorer
+
+    return TopExp_Explorer(shape, TopAbs_FACE).More()
 
 
 def tessellate(shape, tolerance: float = 0.005, angular: float = 0.2):

@@ -1,0 +1,88 @@
+"""Input fuzz (issue 12): mutated bundled cases through `toothcontact run`, each outcome held
+to the promise (exit 2 with one line naming a field and nothing written, or a complete
+folder with a strict-JSON result; never another exit code, never a traceback).
+
+    .venv/bin/python benchmarks/fuzz.py [--count 1200] [--seed 12] [--timeout 60]
+
+Prints a table of outcomes and writes benchmarks/fuzz.json with every broken promise."""
+
+from __future__ import annotations
+
+import argparse
+import collections
+import json
+import platform
+import random
+import signal
+import sys
+import tempfile
+import time
+from pathlib import Path
+
+sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "tests"))
+import mutations  # noqa: E402
+
+
+class _Timeout(BaseException):
+    pass
+
+
+def _alarm(signum, frame):
+    raise _Timeout()
+
+
+def main() -> None:
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("--count", type=int, default=1200)
+    parser.add_argument("--seed", type=int, default=12)
+    parser.add_argument("--timeout", type=int, default=60, help="seconds per run")
+    parser.add_argument("--out", type=Path, default=Path(__file__).with_name("fuzz.json"))
+    args = parser.parse_args()
+    rng = random.Random(args.seed)
+    cases = mutations.bundled()
+    signal.signal(signal.SIGALRM, _alarm)
+    counts = collections.Counter()
+    broken, slowest = [], []
+    started = time.perf_counter()
+    with tempfile.TemporaryDirectory(prefix="fuzz_") as scratch:
+        folder = Path(scratch)
+        for i in range(args.count):
+            name = rng.choice(sorted(cases))
+            what, path, raw = mutations.mutate(mutations.small(cases[name]), rng)
+            case_path = mutations.write_case(raw, folder, f"m{i}", name)
+            out_dir = folder / f"out{i}"
+            t0 = time.perf_counter()
+            signal.alarm(args.timeout)
+            try:
+                code, output = mutations.run_cli(case_path, out_dir)
+                problem = mutations.verdict(code, output, out_dir)
+            except _Timeout:
+                code, output, problem = -1, "", f"still running after {args.timeout} s"
+            finally:
+                signal.alarm(0)
+            seconds = time.perf_counter() - t0
+            slowest.append((seconds, name, ".".join(map(str, path)), what))
+            outcome = "broken" if problem else {2: "refused", 0: "answered",
+                                                 1: "answered, check failed"}.get(code, "broken")
+            counts[outcome] += 1
+            if problem:
+                broken.append({"case": name, "field": ".".join(map(str, path)), "mutation": what,
+                               "exit": code, "problem": problem,
+                               "message": output.strip()[-300:]})
+                print(f"[{i}] {name} {'.'.join(map(str, path))} ({what}): {problem}", flush=True)
+    wall = time.perf_counter() - started
+    slowest.sort(reverse=True)
+    print(f"\n{args.count} mutated cases, seed {args.seed}, {wall:.0f} s")
+    for outcome in ("refused", "answered", "answered, check failed", "broken"):
+        print(f"  {outcome:24s} {counts[outcome]:5d}")
+    record = {"python": platform.python_version(), "machine": platform.machine(),
+              "count": args.count, "seed": args.seed, "timeout_s": args.timeout,
+              "wall_s": wall, "outcomes": dict(counts),
+              "slowest": [{"seconds": s, "case": c, "field": f, "mutation": w}
+                          for s, c, f, w in slowest[:10]],
+              "broken": broken}
+    args.out.write_text(json.dumps(record, indent=2) + "\n")
+
+
+if __name__ == "__main__":
+    main()
