@@ -114,12 +114,13 @@ def mutate(raw: dict, rng: random.Random) -> tuple[str, tuple, dict]:
     return what, path, changed(raw, path, new)
 
 
-def small(raw: dict) -> dict:
-    """The case with small analysis settings (kept where the case sets its own)."""
+def small(raw: dict, interference: bool = True) -> dict:
+    """The case with small analysis settings (kept where the case sets its own), with or
+    without the bodies' collision check."""
     out = copy.deepcopy(raw)
     if out.get("kind") in ("spur", "spline", "worm", "imported"):
         analysis = out.setdefault("analysis", {})
-        for key, value in SMALL.items():
+        for key, value in {**SMALL, "interference": interference}.items():
             analysis.setdefault(key, value)
     return out
 

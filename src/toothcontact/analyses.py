@@ -65,7 +65,9 @@ def analyse(case: schema.CaseInfo) -> Result:
     with warnings.catch_warnings(record=True) as caught:
         warnings.simplefilter("always")
         result = runner(case)
-    result.notes.extend(str(w.message) for w in caught)
+    # the analyses' own warnings are notes for the reader; a numerical library's runtime
+    # warnings (an overflow inside a guarded step) are not
+    result.notes.extend(str(w.message) for w in caught if issubclass(w.category, UserWarning))
     return result
 
 

@@ -264,6 +264,14 @@ class AnalysisSpec(Model):
     positions: int = Field(21, ge=1, le=401, description="mesh positions over one pitch")
     grid: tuple[int, int] = Field((25, 41), description="[profile, face] search grid")
 
+    @field_validator("field_grid", "pressure_grid")
+    @classmethod
+    def _off_or_enough(cls, value: int, info) -> int:
+        least = {"field_grid": 11, "pressure_grid": 8}[info.field_name]
+        if 0 < value < least:
+            raise ValueError(f"{value}: 0 (none) or at least {least} points a side")
+        return value
+
     @field_validator("grid")
     @classmethod
     def _grid(cls, value: tuple[int, int]) -> tuple[int, int]:

@@ -104,7 +104,8 @@ class GapField:
     `beyond`: for each flank edge the field crosses (named as in the results, e.g.
     "gear_tip"; "beyond_surface" where a surface does not exist), the cells beyond it;
     `parameters`: each flank's parameters on the lines ("pinion_u", "pinion_v", "gear_u",
-    "gear_v"; continued smoothly beyond the flanks)."""
+    "gear_v"; continued smoothly beyond the flanks); `inside`: for each crossed edge, a
+    field positive inside it (the parameter's distance from its bound)."""
 
     x: np.ndarray
     y: np.ndarray
@@ -112,10 +113,33 @@ class GapField:
     material: np.ndarray
     beyond: dict[str, np.ndarray]
     parameters: dict[str, np.ndarray]
+    inside: dict[str, np.ndarray]
 
     @property
     def spacing(self) -> tuple[float, float]:
         return float(self.x[1] - self.x[0]), float(self.y[1] - self.y[0])
+
+    def share(self, positive: np.ndarray) -> np.ndarray:
+        """Each cell's share (0 to 1) where the field `positive` is above zero, taking it
+        linear across the cell: 1/2 + f/(|f_x|·dx + |f_y|·dy), clipped (exact for an edge
+        along a grid line). Unlike a yes/no per cell it moves continuously with the field,
+        so a measure made of it does not jump when an edge crosses a cell centre."""
+        dx, dy = self.spacing
+        f = np.nan_to_num(positive, nan=-np.inf)
+        fx, fy = np.gradient(np.nan_to_num(positive), dx, dy)
+        spread = np.abs(fx) * dx + np.abs(fy) * dy
+        with np.errstate(invalid="ignore", divide="ignore"):
+            share = np.where(spread > 0, 0.5 + f / np.where(spread > 0, spread, 1.0),
+                             np.where(f > 0, 1.0, 0.0))
+        return np.clip(np.nan_to_num(share, nan=0.0, neginf=0.0), 0.0, 1.0)
+
+    def material_share(self) -> np.ndarray:
+        """Each cell's share (0 to 1) on both flanks' material: inside every crossed edge
+        (see share), none where a surface does not exist."""
+        out = np.where(self.beyond["beyond_surface"], 0.0, 1.0)
+        for inside in self.inside.values():
+            out = np.minimum(out, self.share(inside))
+        return out
 
 
 def gap_fields(pinion: Flank, gear: Flank, pinion_frames: Frame, gear_frames: Frame,
@@ -155,17 +179,19 @@ def gap_fields(pinion: Flank, gear: Flank, pinion_frames: Frame, gear_frames: Fr
                                            met) @ to_fine[1].T
         exists = met[np.ix_(ix, iy)]
         parameters = dict(zip(names, carried[1:]))
-        beyond = {"beyond_surface": ~exists}
+        beyond, inside = {"beyond_surface": ~exists}, {}
         for member, flank in (("pinion", pinion), ("gear", gear)):
             for name, (low, high) in zip(("u", "v"), flank.domain):
                 value = parameters[f"{member}_{name}"]
-                for edge, cells in ((flank.edges[name + "0"], value < low),
-                                    (flank.edges[name + "1"], value > high)):
-                    if cells.any():
-                        beyond[f"{member}_{edge}"] = cells
+                for edge, within in ((flank.edges[name + "0"], value - low),
+                                     (flank.edges[name + "1"], high - value)):
+                    if (within < 0).any():
+                        beyond[f"{member}_{edge}"] = within < 0
+                        inside[f"{member}_{edge}"] = within
         material = exists & ~np.logical_or.reduce(list(beyond.values()))
         out.append(GapField(half[k, 0] * fine[0], half[k, 1] * fine[1],
-                            np.where(exists, carried[0], np.nan), material, beyond, parameters))
+                            np.where(exists, carried[0], np.nan), material, beyond, parameters,
+                            inside))
     return out
 
 
@@ -353,12 +379,15 @@ def rigid_patterns(cycle, points: int, margin: float = 1.25, growths: int = 3) -
     for attempt in range(growths + 1):
         solved = contact_fields(cycle, todo, (points, points), margins[todo], semi_axes[todo])
         for k, field in zip(todo, solved):
-            pattern = field.material & (field.gap - rows[k]["separation_mm"] <= approach)
+            below = rows[k]["separation_mm"] + approach - field.gap
+            pattern = field.material & (below >= 0)
             rim = np.zeros(pattern.shape, bool)
             rim[[0, -1], :] = rim[:, [0, -1]] = True
             if (pattern & rim).any() and attempt < growths:
                 continue
-            out[k] = _measure(field, pattern, bool((pattern & binary_dilation(~field.material)).any()))
+            share = np.minimum(field.material_share(), field.share(below))
+            out[k] = _measure(field, share,
+                              bool((pattern & binary_dilation(~field.material)).any()))
         todo = np.array([k for k in todo if out[k] is None], int)
         margins[todo] *= 1.6
         if todo.size == 0:
@@ -366,11 +395,10 @@ def rigid_patterns(cycle, points: int, margin: float = 1.25, growths: int = 3) -
     return out
 
 
-def _measure(field: GapField, pattern: np.ndarray, cut: bool) -> RigidPattern:
-    """Area and extents of the cells of `pattern` on the field."""
-    if not pattern.any():
-        return RigidPattern(0.0, 0.0, 0.0, cut)
+def _measure(field: GapField, share: np.ndarray, cut: bool) -> RigidPattern:
+    """Area and extents of a pattern given as each cell's share in it (0 to 1): the area
+    the sum of the shares, an extent the sum over the grid lines across it of each line's
+    largest share (for a pattern of whole cells: its cells, and its rows and columns)."""
     dx, dy = field.spacing
-    rows, cols = np.nonzero(pattern)
-    return RigidPattern(float(rows.size * dx * dy), float((np.ptp(rows) + 1) * dx),
-                        float((np.ptp(cols) + 1) * dy), cut)
+    return RigidPattern(float(share.sum() * dx * dy), float(share.max(axis=1).sum() * dx),
+                        float(share.max(axis=0).sum() * dy), cut)

@@ -220,7 +220,8 @@ def _share(pairs: list[_Pair], load: float, stiffness: float | None) -> list[Con
         carried = new > 1e-6 * load
         again = [p.solve(w) if on else sol
                  for p, w, on, sol in zip(pairs, new, carried, solutions)]
-        for k in np.flatnonzero(carried & (np.abs(np.log(new / loads)) > 0.01)):
+        change = np.where(carried, new / loads, 1.0)
+        for k in np.flatnonzero(np.abs(np.log(change)) > 0.01):
             fitted = (math.log(max(again[k].approach_mm - s[k], 1e-12) / rise[k])
                       / math.log(new[k] / loads[k]))
             exponent[k] = min(max(fitted, 0.5), 1.0)

@@ -1,0 +1,157 @@
+"""The same case written in other units gives the same result to round-off, direction labels
+included (issue 12): every bundled case rewritten in inch/pound/degree-Fahrenheit units and
+in radians, analysed beside the original."""
+
+import copy
+import math
+import re
+
+import numpy as np
+import pytest
+
+from toothcontact import units
+from toothcontact.analyses import analyse
+from toothcontact.case import parse_case
+from toothcontact.report import result_document
+from toothcontact.runner import bundled_cases_dir
+
+from mutations import bundled, small
+
+#: the other unit of each dimension
+OTHER = {"[length]": "inch", "[force]": "lbf", "[mass] / [length] / [time] ** 2": "psi",
+         "[length] ** 2 * [mass] / [time] ** 2": "lbf * inch",
+         "[mass] / [time] ** 2": "lbf / inch", "1 / [length]": "1 / inch",
+         "[length] ** 2 / [time]": "stokes", "[temperature]": "degF"}
+_QUANTITY = re.compile(r"^\s*([+-]?(?:\d+\.?\d*|\.\d+)(?:[eE][+-]?\d+)?)\s*(\S.*)$")
+
+#: relative agreement asked of every number (the solvers stop at 1e-8 relative)
+RTOL = 1e-6
+#: where a contact sits on a nearly flat gap (a spline's conformal flanks, A ~ 1e-4/mm) is
+#: fixed only to sqrt(round-off/A), about 1e-6 mm: lengths agree to 1e-5 mm
+LENGTH_ATOL = 1e-5
+#: the loaded contact's pressure grid takes a cell at a flank edge as all or nothing, so
+#: a cell centre within round-off of an edge moves its loads by about 1e-4
+LOADED_RTOL = 1e-3
+LOADED = ("bem_", "edge_pressure", "edge_load", "loaded_", "max_pressure", "max_edge_pressure")
+
+
+#: the inputs as typed, and the solver's own account of its iterations (not a result)
+UNCOMPARED = ("inputs", "bem_iterations", "bem_relative_error")
+
+
+def tolerance(where: str) -> tuple[float, float]:
+    """(relative, absolute) agreement asked of the number at `where`."""
+    key = where.rsplit(".", 1)[-1].split("[")[0]
+    if key.startswith(LOADED) or ".bem_" in where:
+        return LOADED_RTOL, 1e-9
+    if key.endswith("_mm") or ".edge_margins_mm" in where:
+        return RTOL, LENGTH_ATOL
+    return RTOL, 1e-9
+
+
+def rewritten(text: str) -> str:
+    """A quantity's text in the other unit system, to 17 significant digits."""
+    match = _QUANTITY.match(text)
+    if match is None:
+        return text
+    ureg = units.registry()
+    try:
+        unit = ureg.Unit(match.group(2).replace("^", "**"))
+    except Exception:
+        return text
+    quantity = ureg.Quantity(float(match.group(1)), unit)
+    if unit.dimensionless:
+        if str(unit) in ("degree", "radian"):
+            target = "radian" if str(unit) == "degree" else "degree"
+            return f"{quantity.to(target).magnitude!r} {'rad' if target == 'radian' else 'deg'}"
+        return text
+    target = OTHER.get(str(unit.dimensionality))
+    if target is None:
+        return text
+    return f"{quantity.to(target).magnitude!r} {target}"
+
+
+def in_other_units(value):
+    if isinstance(value, dict):
+        return {k: (v if k in ("title", "source", "assumptions", "kind", "file")
+                    else in_other_units(v)) for k, v in value.items()}
+    if isinstance(value, list):
+        return [in_other_units(v) for v in value]
+    if isinstance(value, str):
+        return rewritten(value)
+    return value
+
+
+def differences(a, b, where="result"):
+    """Places where two result documents differ beyond round-off."""
+    if isinstance(a, dict):
+        if set(a) != set(b):
+            yield f"{where}: keys {sorted(set(a) ^ set(b))}"
+            return
+        for key in a:
+            if key not in UNCOMPARED:
+                yield from differences(a[key], b[key], f"{where}.{key}")
+    elif isinstance(a, (list, tuple)):
+        if len(a) != len(b):
+            yield f"{where}: length {len(a)} != {len(b)}"
+            return
+        if a and all(isinstance(x, (int, float)) and not isinstance(x, bool) for x in a):
+            x, y = np.asarray(a, float), np.asarray(b, float)
+            scale = np.nanmax(np.abs(x)) if np.isfinite(x).any() else 0.0
+            rtol, atol = tolerance(where)
+            if not np.allclose(x, y, rtol=rtol, atol=max(atol, rtol * scale), equal_nan=True):
+                worst = int(np.nanargmax(np.abs(x - y)))
+                yield f"{where}[{worst}]: {x[worst]!r} != {y[worst]!r}"
+            return
+        for i, (x, y) in enumerate(zip(a, b)):
+            yield from differences(x, y, f"{where}[{i}]")
+    elif isinstance(a, float) and isinstance(b, (int, float)):
+        rtol, atol = tolerance(where)
+        if not (math.isclose(a, b, rel_tol=rtol, abs_tol=atol) or (a != a and b != b)):
+            yield f"{where}: {a!r} != {b!r}"
+    elif isinstance(a, str) and isinstance(b, str):
+        if not same_text(a, b):
+            yield f"{where}: {a!r} != {b!r}"
+    elif a != b:
+        yield f"{where}: {a!r} != {b!r}"
+
+
+_NUMBER = re.compile(r"[-+]?(?:\d+\.?\d*|\.\d+)(?:[eE][-+]?\d+)?")
+
+
+def same_text(a: str, b: str) -> bool:
+    """Texts equal but for the numbers printed in them, which agree to their printed
+    precision (1e-3) or are both round-off (below 1e-12)."""
+    if _NUMBER.sub("#", a) != _NUMBER.sub("#", b):
+        return False
+    return all(math.isclose(float(x), float(y), rel_tol=1e-3, abs_tol=1e-12)
+               for x, y in zip(_NUMBER.findall(a), _NUMBER.findall(b)))
+
+
+def document(raw: dict) -> dict:
+    case = parse_case(raw, base=bundled_cases_dir())
+    return result_document("case", case, raw, analyse(case))
+
+
+CASES = bundled()
+
+
+@pytest.mark.parametrize("name", sorted(CASES))
+def test_a_case_in_other_units_gives_the_same_result(name):
+    raw = small(CASES[name])
+    if raw.get("kind") in ("spur", "spline", "worm", "imported"):
+        raw["analysis"]["interference"] = False
+    other = in_other_units(raw)
+    assert other != raw or name.startswith("hertz_sphere"), "nothing was rewritten"
+    found = list(differences(document(raw), document(other)))
+    assert not found, "\n".join(found[:12])
+
+
+def test_the_rewrite_is_a_change_of_units_only():
+    """The rewritten quantities parse to the same core values to round-off."""
+    assert rewritten("1.44 in").endswith("inch")
+    assert units.parse(rewritten("30 mm"), "length") == pytest.approx(30.0, rel=1e-15)
+    assert units.parse(rewritten("-50 degC"), "temperature") == pytest.approx(-50.0, rel=1e-13)
+    assert units.parse(rewritten("20 deg"), "angle") == pytest.approx(math.radians(20), rel=1e-15)
+    assert units.parse(rewritten("8000 N"), "force") == pytest.approx(8000.0, rel=1e-15)
+    assert units.parse(rewritten("206 GPa"), "stress") == pytest.approx(206e3, rel=1e-15)
