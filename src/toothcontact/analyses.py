@@ -530,7 +530,11 @@ def _loaded_sections(cycle, C_E: float, grid: int, stiffness: float | None, bend
     if not answered:
         return
     edged = [r for r in answered if r["edge_loaded"]]
-    worst = max(edged or answered, key=lambda r: r["edge_pressure_MPa"])
+    candidates = edged or answered
+    highest = max(r["edge_pressure_MPa"] for r in candidates)
+    # the first of those within 0.1 % (a spline's teeth all press alike, to the pressure
+    # grid's resolution of their edges)
+    worst = next(r for r in candidates if r["edge_pressure_MPa"] >= (1 - 1e-3) * highest)
     summary.update(
         bem_max_p_max_MPa=max(r["bem_p_max_MPa"] for r in answered),
         max_edge_pressure_MPa=max(r["edge_pressure_MPa"] for r in answered),

@@ -153,17 +153,24 @@ def _length(field: GapField, rel: np.ndarray, inside: np.ndarray, approach: floa
     dx, _ = field.spacing
     if columns.size == 0:   # the contact on an edge, no cell of the line on material
         return float(dx), (0.0, 0.0)
-    with np.errstate(invalid="ignore"):
+    # per column the least gap on material; in the line's end columns a cell on a flank
+    # edge counts by its share of material (raised by approach·(1/share - 1)), so that the
+    # end moves continuously when an edge runs along a row of cells, as it does beside a
+    # conformal contact
+    share = field.material_share()
+    with np.errstate(invalid="ignore", divide="ignore"):
         on = np.where(inside, rel, np.inf)
-        least = np.min(np.where(field.material, rel, np.inf), axis=1)   # per column
+        least = np.min(np.where(field.material, rel, np.inf), axis=1)
+        smooth = np.min(np.where(share > 0, rel + approach * (1.0 / share - 1.0), np.inf),
+                        axis=1)
     ends = []
     for end, outward in ((columns[0], -1), (columns[-1], 1)):
         beyond, row = end + outward, int(np.argmin(on[end]))
         if not 0 <= beyond < len(least):
             ends.append(0.5 * dx)
-        elif np.isfinite(least[beyond]) and least[beyond] > least[end]:
-            ends.append(dx * float(np.clip((approach - least[end]) / (least[beyond] - least[end]),
-                                           0.0, 1.0)))
+        elif np.isfinite(least[beyond]) and least[beyond] > smooth[end]:
+            ends.append(dx * float(np.clip((approach - smooth[end])
+                                           / (least[beyond] - smooth[end]), 0.0, 1.0)))
         else:                   # the material ends: where the first parameter crosses its edge
             fractions = [1.0]
             for name, (low, high) in domains.items():
