@@ -42,7 +42,7 @@ def main() -> None:
     cases = mutations.bundled()
     signal.signal(signal.SIGALRM, _alarm)
     counts = collections.Counter()
-    broken, slowest = [], []
+    broken, slowest, unnamed = [], [], []
     started = time.perf_counter()
     with tempfile.TemporaryDirectory(prefix="fuzz_") as scratch:
         folder = Path(scratch)
@@ -65,6 +65,13 @@ def main() -> None:
             outcome = "broken" if problem else {2: "refused", 0: "answered",
                                                  1: "answered, check failed"}.get(code, "broken")
             counts[outcome] += 1
+            if code == 2 and not problem:
+                key = next((str(k) for k in reversed(path) if isinstance(k, str)), "")
+                named = key in output or "missing" in output and key.split(".")[0] in output
+                counts["refused, naming the mutated field"] += bool(named)
+                if not named:
+                    unnamed.append({"case": name, "field": ".".join(map(str, path)),
+                                    "mutation": what, "message": output.strip()[-300:]})
             if problem:
                 broken.append({"case": name, "field": ".".join(map(str, path)), "mutation": what,
                                "exit": code, "problem": problem,
@@ -73,14 +80,15 @@ def main() -> None:
     wall = time.perf_counter() - started
     slowest.sort(reverse=True)
     print(f"\n{args.count} mutated cases, seed {args.seed}, {wall:.0f} s")
-    for outcome in ("refused", "answered", "answered, check failed", "broken"):
+    for outcome in ("refused", "refused, naming the mutated field", "answered",
+                    "answered, check failed", "broken"):
         print(f"  {outcome:24s} {counts[outcome]:5d}")
     record = {"python": platform.python_version(), "machine": platform.machine(),
               "count": args.count, "seed": args.seed, "timeout_s": args.timeout,
               "wall_s": wall, "outcomes": dict(counts),
               "slowest": [{"seconds": s, "case": c, "field": f, "mutation": w}
                           for s, c, f, w in slowest[:10]],
-              "broken": broken}
+              "broken": broken, "refused_naming_another_field": unnamed}
     args.out.write_text(json.dumps(record, indent=2) + "\n")
 
 

@@ -11,7 +11,7 @@ import mutations
 CASES = mutations.bundled()
 
 
-@settings(max_examples=100, deadline=None, derandomize=True,
+@settings(max_examples=60, deadline=None, derandomize=True,
           suppress_health_check=[HealthCheck.too_slow])
 @given(name=st.sampled_from(sorted(CASES)), rng=st.randoms(use_true_random=False))
 def test_a_mutated_case_is_refused_cleanly_or_answered_completely(tmp_path_factory, name, rng):

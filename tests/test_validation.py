@@ -68,6 +68,7 @@ REFUSED = [
     ("crown_spur_metric_bias", {"edge_clearance": "20 mm"}, "edge_clearance / face_width"),
     ("spur_crowned_20_60", {"pinion.crown.radius": "4 mm"}, "pinion.crown.radius: 4 mm"),
     ("spline_crowned_18t", {"crown.radius": "5 mm"}, "crown.radius: 5 mm"),
+    ("spline_crowned_18t", {"tooth_thickness": "0.049 mm"}, "tooth_thickness: 0.049 mm"),
     ("spur_crowned_20_60", {"analysis.grid": [0, 0]}, "analysis.grid"),
     ("spur_crowned_20_60", {"analysis.grid": [1, 1]}, "analysis.grid"),
     ("spur_crowned_20_60", {"analysis.grid": [3, 1000000]}, "analysis.grid"),

@@ -325,7 +325,12 @@ def spline_pair(case: SplineCase) -> SplinePair:
         mods = FlankModifications(lead_crown=LeadCrown(
             None if c.radius is None else c.radius * scale,
             None if c.height is None else c.height / scale, c.shape, c.center))
-    return SplinePair(spline, spline.hub(), spline.sleeve(), mods)
+    try:
+        hub, sleeve = spline.hub(), spline.sleeve()
+    except ValueError as exc:
+        raise ValueError(f"teeth / module / pressure_angle / tooth_thickness / clearance: the "
+                         f"spline's teeth cannot be built from these proportions ({exc})") from None
+    return SplinePair(spline, hub, sleeve, mods)
 
 
 @dataclass(frozen=True)

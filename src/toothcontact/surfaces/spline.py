@@ -26,6 +26,11 @@ PROPORTIONS = {
 FLAT_ROOT_RADIUS = 0.2
 
 
+#: the hub tooth's share of the circular pitch a spline is built with (ISO 4156's basic
+#: tooth is half; a thickness far from it is a unit slip, not a spline)
+THICKNESS_SHARE = (0.3, 0.7)
+
+
 @dataclass(frozen=True)
 class InvoluteSpline:
     """teeth, module (mm), pressure_angle (rad), root "flat" or "fillet", hub tooth thickness
@@ -44,10 +49,17 @@ class InvoluteSpline:
         if key not in PROPORTIONS:
             raise ValueError(f"no ISO 4156 proportions for {key[0]} deg with a {self.root} root; "
                              f"known: {sorted(PROPORTIONS)}")
-        if not 0 < self.tooth_thickness < math.pi * self.module:
-            raise ValueError("tooth thickness must lie between 0 and the circular pitch")
-        if self.clearance < 0 or self.tooth_thickness + self.clearance >= math.pi * self.module:
-            raise ValueError("clearance must be >= 0 and leave the sleeve a tooth")
+        pitch = math.pi * self.module
+        low, high = (f * pitch for f in THICKNESS_SHARE)
+        if not low <= self.tooth_thickness <= high:
+            raise ValueError(f"tooth_thickness: {self.tooth_thickness:.4g} mm must lie between "
+                             f"{low:.4g} and {high:.4g} mm, {THICKNESS_SHARE[0]:g} to "
+                             f"{THICKNESS_SHARE[1]:g} of the circular pitch π·m = {pitch:.4g} mm "
+                             "(the basic tooth is half of it)")
+        if self.clearance < 0 or self.tooth_thickness + self.clearance >= high:
+            raise ValueError(f"clearance: {self.clearance:.4g} mm must be >= 0 and leave the "
+                             f"sleeve's tooth at least {1 - THICKNESS_SHARE[1]:g} of the "
+                             f"circular pitch: below {high - self.tooth_thickness:.4g} mm")
 
     @property
     def pitch_diameter(self) -> float:
