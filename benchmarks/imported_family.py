@@ -3,7 +3,7 @@ own exports, uncrowned and crowned, aligned and under slope of either sign.
 
     PYTHONPATH=src .venv/bin/python benchmarks/imported_family.py [--positions 11]
 
-Peer pairs: the STEP sectors in tests/data/imported (py-gearworks, bd_warehouse, cq_gears;
+Peer pairs: the STEP sectors in data/peers (py-gearworks, bd_warehouse, cq_gears;
 provenance and measured flank deviations in its README), z = 20/60, m = 3 mm, 20 deg,
 b = 30 mm. Own pairs: the same pair built by toothcontact.cad (three-tooth sectors, lead
 crown R = 4000 mm on the pinion where crowned), written to STEP and read back. Every pair is
@@ -31,7 +31,7 @@ import time
 from pathlib import Path
 
 HERE = Path(__file__).resolve().parent
-DATA = HERE.parent / "tests" / "data" / "imported"
+DATA = HERE.parent / "data" / "peers"
 #: largest flank deviation (µm) of each peer file from the exact involute (DATA/README.md)
 PEER_DEVIATION_UM = {"pgw_pinion_z20_sector3": 2.34, "pgw_gear_z60_sector3": 0.11,
                      "pgw_pinion_z20_crowned_sector3": 2.34, "bdw_pinion_z20_sector3": 1.89,

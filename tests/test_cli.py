@@ -33,12 +33,6 @@ def test_every_bundled_case_runs(case, tmp_path):
     assert [p.name for p in tmp_path.iterdir()] == ["out"]
 
 
-def test_demo_writes_every_case(tmp_path):
-    result = runner.invoke(app, ["demo", "--out", str(tmp_path)])
-    assert result.exit_code == 0, result.output
-    assert sorted(p.name for p in tmp_path.iterdir()) == sorted(c.stem for c in bundled_cases())
-
-
 def test_cases_lists_the_bundled_cases():
     result = runner.invoke(app, ["cases"])
     assert result.exit_code == 0

@@ -149,10 +149,10 @@ def test_missing_body_file_is_named(both):
         load_case(folder / "bad.toml")
 
 
-# --- pairs from other gear generators (tests/data/imported, see its README) -----------------
+# --- pairs from other gear generators (data/peers, see its README) -----------------
 
-DATA = Path(__file__).parent / "data" / "imported"
-#: the files' largest flank deviation from the exact involute (µm, tests/data/imported/README)
+DATA = Path(__file__).parents[1] / "data" / "peers"
+#: the files' largest flank deviation from the exact involute (µm, data/peers/README)
 DEVIATION_UM = {"pgw_pinion_z20_sector3.step": 2.34, "pgw_gear_z60_sector3.step": 0.11,
                 "pgw_pinion_z20_crowned_sector3.step": 2.34, "pgw_gear_z60_full.step.gz": 0.11}
 #: the gear's base radius (mm) of every pair here: z = 60, m = 3 mm, 20 deg
@@ -161,7 +161,7 @@ C_E = compliance(206e3, 0.3, 206e3, 0.3)
 
 
 def body(name: str, folder: Path, tolerance: float) -> TriangleSurface:
-    """A body of tests/data/imported tessellated to `tolerance` (mm); .gz unpacked first."""
+    """A body of data/peers tessellated to `tolerance` (mm); .gz unpacked first."""
     path = DATA / name
     if name.endswith(".gz"):
         path = folder / name[:-3]
@@ -170,7 +170,7 @@ def body(name: str, folder: Path, tolerance: float) -> TriangleSurface:
 
 
 def peer_cycle(pinion, gear, slope=0.0, positions=3, turn=0.0):
-    """The mesh path on a pair of tests/data/imported (tooth 0 of both on +x, faces 0..30)."""
+    """The mesh path on a pair of data/peers (tooth 0 of both on +x, faces 0..30)."""
     mesh = ParallelMesh.of_layout(20, 60, 120.0, math.radians(20.0), Misalignment(slope=slope),
                                   gear_start=math.pi)
     return imported_cycle(mesh, pinion.turned(turn) if turn else pinion, gear, 8513.4, C_E,

@@ -74,8 +74,23 @@ def _wrote(written) -> str:
     return ", ".join(p.name for p in written)
 
 
+def _version(value: bool) -> None:
+    if value:
+        from . import __version__
+
+        typer.echo(f"toothcontact {__version__}")
+        raise typer.Exit(0)
+
+
+@app.callback()
+def main(version: bool = typer.Option(False, "--version", callback=_version, is_eager=True,
+                                      help="print the version and exit")):
+    """Tooth-contact analysis of gears under misalignment and deflection."""
+
+
 @app.command()
-def run(case: Path = typer.Argument(..., help="case file (TOML)"),
+def run(case: Path = typer.Argument(..., help="case file (TOML), or the name of a bundled "
+                                               "case (see `toothcontact cases`)"),
         out: Optional[Path] = typer.Option(None, "--out", help="output folder [out/<case>]"),
         pictures: bool = typer.Option(True, "--pictures/--no-pictures",
                                       help="render the 3D pictures (spur, spline, worm)")):
@@ -151,9 +166,15 @@ def cases():
     """List the bundled cases."""
     from . import case as schema, runner
 
+    from rich.console import Console
+    from rich.table import Table
+
+    table = Table("name", "kind", "title", "path", title="bundled cases (run one with "
+                  "`toothcontact run NAME`)")
     for path in _guarded(runner.bundled_cases):
         info, _ = _guarded(lambda: schema.load_case(path))
-        typer.echo(f"{path.stem:32s} {info.kind:16s} {info.title}")
+        table.add_row(path.stem, info.kind, info.title, str(path))
+    Console(width=200).print(table)
 
 
 @app.command()

@@ -14,8 +14,9 @@ _HERE = Path(__file__).resolve().parent
 
 
 def bundled_cases_dir() -> Path:
-    """The bundled case files: inside the installed package, or `cases/` of a source tree."""
-    for candidate in (_HERE / "bundled_cases", _HERE.parents[1] / "cases"):
+    """The bundled case files: inside the installed package (bundled/cases, beside the
+    bodies its imported cases read), or `cases/` of a source tree."""
+    for candidate in (_HERE / "bundled" / "cases", _HERE.parents[1] / "cases"):
         if candidate.is_dir():
             return candidate
     raise FileNotFoundError("no bundled cases found next to the package")
@@ -23,6 +24,19 @@ def bundled_cases_dir() -> Path:
 
 def bundled_cases() -> list[Path]:
     return sorted(bundled_cases_dir().glob("*.toml"))
+
+
+def case_path(name: str | Path) -> Path:
+    """A case file: `name` as a path if it is one, else the bundled case of that name (with
+    or without .toml). Raises CaseError naming both places when neither exists."""
+    path = Path(name)
+    if path.is_file():
+        return path
+    bundled = bundled_cases_dir() / (path.name if path.suffix == ".toml" else f"{path.name}.toml")
+    if path.parent == Path(".") and bundled.is_file():
+        return bundled
+    raise schema.CaseError(f"{name}: no such case file, and no bundled case of that name "
+                           "(`toothcontact cases` lists them)")
 
 
 @dataclass
@@ -69,7 +83,7 @@ def run_case(path: str | Path, out_dir: str | Path | None = None, pictures: bool
     run or the new one. A stage that cannot answer (plots, pictures) says so in the
     document's `stages` and leaves the rest standing. `progress(stage)` is called before
     each stage."""
-    path = Path(path)
+    path = case_path(path)
     _step(progress, "analysing")
     run = analyse_path(path)
     document = run.document
@@ -132,7 +146,7 @@ def render_case(path: str | Path, out_dir: str | Path | None = None, position: i
                 progress: Callable[[str], None] | None = None) -> list[Path]:
     """Analyse a case and write its 3D pictures into `out_dir` (default viz/<case name>/);
     [] without analysing for a kind that has none (analytic kinds, imported meshes)."""
-    path = Path(path)
+    path = case_path(path)
     case, _ = schema.load_case(path)
     if not has_pictures(case):
         return []
@@ -158,7 +172,7 @@ def export_case(path: str | Path, out_dir: str | Path | None = None,
     from . import cad
     from .report import write_text
 
-    path = Path(path)
+    path = case_path(path)
     case, _ = schema.load_case(path)
     if case.kind not in GEOMETRY_KINDS:
         raise schema.CaseError(f"{path}: kind: {case.kind!r} has no solid to export; "
