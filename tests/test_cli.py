@@ -95,7 +95,7 @@ def test_impossible_geometry_names_the_file_and_fields(tmp_path):
     case.write_text(source.replace("teeth = [20, 60]", "teeth = [12, 120]"))
     result = runner.invoke(app, ["run", str(case), "--out", str(tmp_path / "o")])
     assert result.exit_code == 2
-    assert "crown.toml: teeth / module / outside radii:" in result.output
+    assert "crown.toml: teeth / module / pressure_angle / outside radii:" in result.output
     assert "interference" in result.output
 
 

@@ -64,7 +64,7 @@ REFUSED = [
     ("hertz_ball_in_race", {"body2.E": "1e-300 MPa"}, "body2.E"),
     ("crown_spur_metric_bias", {"slope_A": "1"}, "slope_A: '1'"),
     ("crown_example3_sector_check", {"radius": "1e-9 in"}, "radius"),
-    ("crown_example3_sector_check", {"radius": "0.3 in"}, "radius / center_from_B"),
+    ("crown_example3_sector_check", {"radius": "0.3 in"}, "radius / center_from_B / face_width"),
     ("crown_spur_metric_bias", {"edge_clearance": "20 mm"}, "edge_clearance / face_width"),
     ("spur_crowned_20_60", {"pinion.crown.radius": "4 mm"}, "pinion.crown.radius: 4 mm"),
     ("spline_crowned_18t", {"crown.radius": "5 mm"}, "crown.radius: 5 mm"),

@@ -117,7 +117,7 @@ def spur_mesh(case: schema.CrownDesignCase) -> SpurMesh:
     try:
         mesh.check()
     except ValueError as exc:
-        raise CaseError(f"teeth / module / outside radii: {exc}") from None
+        raise CaseError(f"teeth / module / pressure_angle / outside radii: {exc}") from None
     return mesh
 
 
@@ -146,7 +146,7 @@ def crown_design_case(case: schema.CrownDesignCase) -> Result:
                                         profile_curvature, load, C_E, case.edge_clearance)
         except crown.CrownDesignError as exc:
             raise CaseError(f"{exc.fields}: {exc}") from None
-        fields = "slope_A / slope_B"
+        fields = "slope_A / slope_B / face_width"
     else:
         center = case.center_from_B if case.center_from_B is not None else 0.5 * case.face_width
         if case.crown == "bias" and case.center_from_B is None:
@@ -156,7 +156,7 @@ def crown_design_case(case: schema.CrownDesignCase) -> Result:
                             f"{case.face_width:.4g} mm")
         design = crown.check_crown(case.radius, center, case.face_width, case.slope_A, slope_B,
                                    profile_curvature, load, C_E)
-        fields = "radius / center_from_B"
+        fields = "radius / center_from_B / face_width"
     reach = max(design.center_from_B, case.face_width - design.center_from_B)
     if not (0 <= design.center_from_B <= case.face_width and design.radius > reach):
         raise CaseError(f"{fields}: the crown (radius {design.radius:.4g} mm, centre "

@@ -118,6 +118,18 @@ class ModuleOrPitch(Model):
         return self.module if self.module is not None else 1.0 / self.diametral_pitch
 
 
+#: pressure angles of a gear pair (deg): 14.5 to 25 in practice, 30 and more for some
+#: high-load and actuator gears
+PAIR_PRESSURE_ANGLE = (10.0, 40.0)
+
+
+def _check_pair_pressure_angle(angle: float) -> None:
+    low, high = PAIR_PRESSURE_ANGLE
+    if not low <= math.degrees(angle) <= high:
+        raise ValueError(f"pressure_angle: {math.degrees(angle):.4g} deg must lie between "
+                         f"{low:g} and {high:g} deg")
+
+
 class GearPairGeometry(CaseInfo, ModuleOrPitch):
     """Teeth and module of a spur pair; the gear's count is negative for an internal gear."""
 
@@ -134,9 +146,7 @@ class GearPairGeometry(CaseInfo, ModuleOrPitch):
             raise ValueError(f"teeth: {list(self.teeth)} needs at least 5 teeth on each member")
         if z2 < 0 and abs(z2) <= z1:
             raise ValueError(f"teeth: internal gear {z2} must have more teeth than the pinion {z1}")
-        if not 0 < self.pressure_angle < math.radians(45):
-            raise ValueError(f"pressure_angle: {math.degrees(self.pressure_angle):.4g} deg "
-                             "must lie between 0 and 45 deg")
+        _check_pair_pressure_angle(self.pressure_angle)
         return self
 
 
@@ -636,9 +646,7 @@ class ImportedCase(CaseInfo):
 
     @model_validator(mode="after")
     def _angles(self):
-        if not 0 < self.pressure_angle < math.radians(45):
-            raise ValueError(f"pressure_angle: {math.degrees(self.pressure_angle):.4g} deg "
-                             "must lie between 0 and 45 deg")
+        _check_pair_pressure_angle(self.pressure_angle)
         return self
 
 
