@@ -75,6 +75,30 @@ def test_pairs_share_the_load_by_one_rigid_rotation(aligned):
     assert checked >= 3
 
 
+def test_loaded_transmission_error_adds_the_common_approach_over_the_base_radius(aligned):
+    """The gear lags under load by D/r_b2 (spur, beta_b = 0): at every position the loaded
+    TE is the unloaded one plus 1e6·(s_k + delta_k + W_k/K)/r_b2 for each loaded pair k
+    (r_b2 = 0.5·60·3·cos 20°, closed form; the cycle's turn slope is its own finite
+    difference), to 0.5 % of the addition; the single-pair positions lag most (their one
+    pair carries the whole load), and the summary holds its peak to peak."""
+    rows = aligned.sections["positions"]
+    summary = aligned.sections["summary"]
+    r_b2 = 0.5 * 60 * 3.0 * math.cos(math.radians(20.0))
+    assert aligned.cycle.turn_slope == pytest.approx(r_b2, rel=1e-6)
+    stiffness = single_stiffness(20, 60) * 1e3 * 30.0
+    for r in rows:
+        added = 1e6 * (r["bem_approach_mm"] + r["bem_load_N"] / stiffness) / r_b2
+        assert r["loaded_transmission_error_urad"] - r["transmission_error_urad"] == \
+            pytest.approx(added, rel=0.005)
+    by_roll = {r["roll_deg"]: r["loaded_transmission_error_urad"] for r in rows}
+    single = [roll for roll in by_roll if sum(r["roll_deg"] == roll for r in rows) == 1]
+    double = [roll for roll in by_roll if roll not in single]
+    assert single and double
+    assert min(by_roll[k] for k in single) > max(by_roll[k] for k in double)
+    assert summary["loaded_transmission_error_peak_to_peak_urad"] == pytest.approx(
+        max(by_roll.values()) - min(by_roll.values()), rel=1e-12)
+
+
 def design():
     """Seed 003's bias crown for the metric pair (cases/crown_spur_metric_bias.toml):
     radius R and its centre from mid-face toward end B."""

@@ -199,3 +199,17 @@ def test_an_imported_tooth_count_that_the_body_does_not_show_is_named(tmp_path):
     raw["pinion"]["teeth"] = 40
     result, out = run(raw, tmp_path)
     assert result.exit_code == 2 and "pinion.teeth: 40" in result.output, result.output
+
+
+def test_a_partial_analysis_table_keeps_the_kinds_own_defaults():
+    """A spline with only `pressure_grid` given keeps its 3 positions and 9 × 41 grid (it
+    fell back to the generic 21 positions: 378 contacts, over a minute); a worm set its
+    11 × 121 grid."""
+    from toothcontact.case import parse_case
+
+    spline = parse_case(edited("spline_crowned_18t", {"analysis": {"pressure_grid": 64}},
+                               small=False))
+    assert (spline.analysis.positions, spline.analysis.grid) == (3, (9, 41))
+    assert spline.analysis.pressure_grid == 64
+    worm = parse_case(edited("worm_saba_set", {"analysis": {"positions": 3}}, small=False))
+    assert (worm.analysis.positions, worm.analysis.grid) == (3, (11, 121))

@@ -434,7 +434,7 @@ def _spur_contact(case: schema.SpurCase, pair, result: Result) -> None:
                      "N/(mm·µm) over the whole face width (Method B, solid blanks, ISO 53 "
                      "rack; for a short pattern the real tooth is softer)", result)
     if case.analysis.interference:
-        _spur_interference(mesh, pair, cycle.rows, result)
+        _spur_interference(mesh, pair, cycle, result)
 
 
 #: a collision point counts as interference when it lies this close (mm) to a member's tip
@@ -447,7 +447,7 @@ INTERFERENCE_BAND = 0.05
 INTERFERENCE_MESH = 0.01
 
 
-def _spur_interference(mesh, pair, rows: list[dict], result: Result) -> None:
+def _spur_interference(mesh, pair, cycle, result: Result) -> None:
     """Tip and root interference of the placed bodies (python-fcl) at every mesh position:
     meshes (INTERFERENCE_MESH) of sectors holding the teeth in contact over the cycle and
     one more on each side (a tooth entering mesh), their BVHs built once and placed at each
@@ -456,6 +456,7 @@ def _spur_interference(mesh, pair, rows: list[dict], result: Result) -> None:
     from .mesh import collision_body, interference, place
     from .surfaces.generation import generate_ring_side, generate_side
 
+    rows = cycle.rows
     reach = max(abs(r["pair"]) for r in rows) + 1     # the teeth in contact, and one more
     bodies, bands = {}, {}
     for name, gear, mods in (("pinion", pair.pinion, pair.pinion_modifications),
@@ -473,7 +474,7 @@ def _spur_interference(mesh, pair, rows: list[dict], result: Result) -> None:
         bands[name] = tuple(sorted((form, gear.tip_radius)))
     found = []
     for roll in sorted({r["roll_deg"] for r in rows}):
-        lag = next(r["transmission_error_urad"] for r in rows if r["roll_deg"] == roll) * 1e-6
+        lag = next(float(cycle.gear_turn[k]) for k, r in enumerate(rows) if r["roll_deg"] == roll)
         phi = math.radians(roll)
         frames = {"pinion": mesh.pinion_frame(phi), "gear": mesh.gear_frame(phi, 0, lag)}
         hit = interference(*(place(bodies[n], frames[n].R, frames[n].origin)
@@ -495,6 +496,37 @@ def _spur_interference(mesh, pair, rows: list[dict], result: Result) -> None:
                                f"{len(found)} positions with interference"
                                + (f", first at roll {found[0]['roll_deg']:.2f} deg near "
                                   f"{found[0]['points_mm'][0]} mm" if found else "")))
+
+
+def _loaded_transmission_error(cycle, stiffness: float | None, summary: dict) -> None:
+    """loaded_transmission_error_urad on every row of a position whose loaded contact was
+    solved: the unloaded one plus D/turn_slope, D (mm) the position's common approach (a
+    loaded pair's half-space approach plus its bending W/c'), and its peak to peak in the
+    summary. None where the position has no solved pair."""
+    compliance = 0.0 if stiffness is None else 1.0 / stiffness
+    positions: dict[float, list[int]] = {}
+    for k, row in enumerate(cycle.rows):
+        positions.setdefault(row["roll_deg"], []).append(k)
+    values = []
+    for ks in positions.values():
+        solved = [k for k in ks if cycle.rows[k]["bem_status"] == "solved"]
+        te = None
+        if solved:
+            k = max(solved, key=lambda j: cycle.rows[j]["bem_load_N"])
+            row, slope = cycle.rows[k], float(cycle.turn_slope[k])
+            approach = row["bem_approach_mm"] + compliance * row["bem_load_N"]
+            if math.isfinite(slope) and slope > 0.0:
+                te = row["transmission_error_urad"] + 1e6 * approach / slope
+                values.append(te)
+        for k in ks:
+            cycle.rows[k]["loaded_transmission_error_urad"] = te
+    summary["loaded_transmission_error_peak_to_peak_urad"] = (
+        max(values) - min(values) if len(values) == len(positions) else None)
+    summary["transmission_error_note"] = (
+        "transmission errors are the gear's (a worm set's wheel's) rotation from where "
+        "conjugate flanks would hold it, in µrad, positive where it lags behind; the loaded "
+        "one adds the turn that closes the position's common approach D (half-space contact "
+        "and tooth bending): D/r_b2·cos(beta_b) on a parallel pair")
 
 
 def _loaded_sections(cycle, C_E: float, grid: int, stiffness: float | None, bending: str,
@@ -521,6 +553,7 @@ def _loaded_sections(cycle, C_E: float, grid: int, stiffness: float | None, bend
         load_sharing="one rigid rotation for all pairs of a position; each pair's approach "
                      f"from its half-space solution; {bending}",
         bem_failed_contacts=len(failed))
+    _loaded_transmission_error(cycle, stiffness, summary)
     result.checks.append(Check(
         "loaded contact solved at every contact", not failed,
         f"{len(failed)} of {len(rows)} contacts not solved"

@@ -88,6 +88,18 @@ class CaseInfo(Model):
     source: str = ""
     assumptions: list[str] = []
 
+    @model_validator(mode="before")
+    @classmethod
+    def _kind_analysis_defaults(cls, data):
+        """A partial [analysis] table keeps the kind's own defaults for the keys it leaves
+        out (a spline's 3 positions, a worm set's 7), not the generic ones."""
+        field = cls.model_fields.get("analysis")
+        if isinstance(data, dict) and field is not None and isinstance(data.get("analysis"), dict):
+            own = field.default
+            kept = {k: getattr(own, k) for k in own.model_fields_set if k not in data["analysis"]}
+            data = {**data, "analysis": {**kept, **data["analysis"]}}
+        return data
+
 
 class Material(Model):
     E: Modulus = Field(description="Young's modulus, e.g. '206 GPa'")

@@ -97,6 +97,19 @@ def _plain_log(axis) -> None:
     axis.set_minor_formatter(FuncFormatter(minor))
 
 
+#: the least span (µrad) of the transmission-error axis: a flat curve's round-off ripple
+#: is not blown up to fill the panel
+TE_LEAST_SPAN = 2.0
+
+
+def _least_span(ax, values: np.ndarray, span: float) -> None:
+    """Widen the y axis to at least `span` around the values' middle."""
+    finite = values[np.isfinite(values)]
+    if finite.size and np.ptp(finite) < span:
+        middle = 0.5 * (finite.min() + finite.max())
+        ax.set_ylim(middle - 0.5 * span, middle + 0.5 * span)
+
+
 def _gapped(x: np.ndarray, y: np.ndarray, step: float) -> tuple[np.ndarray, np.ndarray]:
     """Sorted by x, with a NaN inserted where consecutive x differ by more than 1.5 steps,
     so a line does not bridge positions where the series is absent."""
@@ -115,8 +128,10 @@ def _gapped(x: np.ndarray, y: np.ndarray, step: float) -> tuple[np.ndarray, np.n
 def mesh_cycle(result: dict, path: str | Path) -> Path:
     """The contact over the mesh cycle of a contact case (result['positions']).
 
-    Four panels: transmission error (µrad) over roll angle (deg); peak contact pressure
-    p_max (MPa), the ellipse semi-axes a and b (mm, log scale) and the worst edge margin
+    Four panels: transmission error (µrad, the gear's lag; loaded beside unloaded where
+    solved, the axis at least TE_LEAST_SPAN tall) over roll angle (deg); peak contact
+    pressure (MPa: the loaded solution's where solved, Hertz's dotted beside it), the
+    ellipse semi-axes a and b (mm, log scale) and the worst edge margin
     (mm, zero line = edge of the flank, edge contact in the warning colour) per tooth pair
     over roll angle. For a spline (kind "spline", 'pair' = tooth index, every tooth at each
     position) the last three panels run over the tooth index, one series per position.
@@ -147,26 +162,41 @@ def mesh_cycle(result: dict, path: str | Path) -> Path:
     (ax_te, ax_p), (ax_ab, ax_m) = fig.subplots(2, 2)
     fig.suptitle(_title(result, "Mesh cycle", 110), fontsize=11)
 
-    # transmission error: one value per position
+    # transmission error: one value per position, unloaded and (where solved) loaded
     rolls = np.unique(roll[np.isfinite(roll)])
-    te_roll = np.array([te[np.nonzero(roll == r)[0][0]] for r in rolls])
-    ax_te.plot(rolls, te_roll, "o-", color="black", ms=4, lw=1.2)
-    ax_te.set(title="Transmission error", xlabel="roll angle (deg)" if by_tooth else x_label,
+    first = [np.nonzero(roll == r)[0][0] for r in rolls]
+    loaded_te = _column(rows, "loaded_transmission_error_urad")
+    ax_te.plot(rolls, te[first], "o-", color="black", ms=4, lw=1.2, label="unloaded")
+    shown = [te[first]]
+    if np.isfinite(loaded_te).any():
+        ax_te.plot(rolls, loaded_te[first], "s-", color=WARNING, ms=4, lw=1.2, label="loaded")
+        shown.append(loaded_te[first])
+        ax_te.legend(fontsize=8, loc="best")
+    ax_te.set(title="Transmission error (gear lag)",
+              xlabel="roll angle (deg)" if by_tooth else x_label,
               ylabel="transmission error (µrad)")
+    _least_span(ax_te, np.concatenate(shown), TE_LEAST_SPAN)
     _plain_axis(ax_te.yaxis)
+    loaded_p = _column(rows, "bem_p_max_MPa")
+    has_loaded = np.isfinite(loaded_p).any()
 
     handles = []
     for i, g in enumerate(groups):
         colour = SERIES[i % len(SERIES)]
         sel = group == g
         xs = x[sel]
-        ax_p.plot(*_gapped(xs, p_max[sel], step), "o-", color=colour, ms=4, lw=1.2)
+        if has_loaded:
+            ax_p.plot(*_gapped(xs, loaded_p[sel], step), "o-", color=colour, ms=4, lw=1.2)
+            ax_p.plot(*_gapped(xs, p_max[sel], step), ":", color=colour, lw=1.0)
+        else:
+            ax_p.plot(*_gapped(xs, p_max[sel], step), "o-", color=colour, ms=4, lw=1.2)
         ax_ab.plot(*_gapped(xs, a[sel], step), "o-", color=colour, ms=4, lw=1.2)
         ax_ab.plot(*_gapped(xs, b[sel], step), "s--", color=colour, ms=3.5, lw=1.2)
         ax_m.plot(*_gapped(xs, margin[sel], step), "o-", color=colour, ms=4, lw=1.2)
         handles.append(Line2D([], [], color=colour, marker="o", ms=4, label=label(g)))
 
-    ax_p.set(title="Peak contact pressure", xlabel=x_label, ylabel="p_max (MPa)")
+    ax_p.set(title="Peak pressure: loaded (—), Hertz (···)" if has_loaded
+             else "Peak contact pressure (Hertz)", xlabel=x_label, ylabel="p_max (MPa)")
     ax_ab.set(title="Contact ellipse semi-axes", xlabel=x_label,
               ylabel="semi-axis a (solid), b (dashed) (mm)")
     if np.any(np.isfinite(a) & (a > 0)) or np.any(np.isfinite(b) & (b > 0)):

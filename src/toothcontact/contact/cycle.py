@@ -67,6 +67,13 @@ class ContactCycle:
     pattern_centre: np.ndarray
     ease_off: EaseOff
     settings: CycleSettings
+    #: per row, the gear's turn from its conjugate place (rad, as its frame turns: the
+    #: transmission error before its sign is made a lag)
+    gear_turn: np.ndarray
+    #: per row, how fast the gear's lag closes the gap at its position (mm/rad, > 0; the
+    #: base radius r_b2·cos(beta_b) on a parallel pair): an approach D under load adds
+    #: D/turn_slope to the lag
+    turn_slope: np.ndarray
 
     def contact_uv(self, member: str, k: int) -> tuple[np.ndarray, np.ndarray]:
         """Row k's contact point parameters on "pinion" or "gear", as arrays of one."""
@@ -129,7 +136,8 @@ def parallel_cycle(mesh, pinion: Flank, gear: Flank, normal_load: float,
     # the lag on the refined minimum (a little below the best grid point)
     s_min = np.full(len(phis), np.inf)
     np.minimum.at(s_min, P, contacts.s)
-    delta -= s_min / _lag_slope(mesh, pinion, gear, phis, pairs, P, J, delta, contacts)
+    slope = _lag_slope(mesh, pinion, gear, phis, pairs, P, J, delta, contacts)
+    delta -= s_min / slope
     gaps = contacts.s - s_min[P]
     keep = np.lexsort((pairs[J], P))
     keep = keep[gaps[keep] <= settings.approach]
@@ -137,12 +145,14 @@ def parallel_cycle(mesh, pinion: Flank, gear: Flank, normal_load: float,
     share = normal_load / np.bincount(P, minlength=len(phis))[P]
     pf, gf, contacts = pinion_frames[P, J], gear_frames(P, J, delta[P]), _take(contacts, keep)
     with np.errstate(all="ignore"):
+        # the transmission error as a lag: positive where the gear trails its conjugate place
+        lag = -np.sign(slope[P]) * delta[P]
         rows, planes, angle, centre = _pair_results(pinion, gear, pf, gf, np.degrees(phis[P]), pairs[J],
-                                            delta[P], contacts, gaps[keep], share, C_E, settings)
+                                            lag, contacts, gaps[keep], share, C_E, settings)
         ease = _ease_off(mesh, pinion, gear, phis, pairs, pinion_frames, gear_frames, delta,
                          *near_pairs, settings.ease_off_grid)
     cycle = ContactCycle(rows, pinion, gear, pf, gf, contacts, planes, angle, centre, ease,
-                         settings)
+                         settings, delta[P], np.abs(slope[P]))
     if settings.field_grid:
         for row, pattern in zip(rows, rigid_patterns(cycle, settings.field_grid)):
             row.update({"rigid_pattern_area_mm2": pattern.area,
