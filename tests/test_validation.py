@@ -82,6 +82,7 @@ REFUSED = [
     ("spur_crowned_20_60", {"module": "1e300 mm"}, "module"),
     ("spur_crowned_20_60", {"center_distance": "1e-3 mm"}, "center_distance"),
     ("worm_eps_oversized_hob", {"worm.length": "1e300 mm"}, "worm.length"),
+    ("worm_eps_oversized_hob", {"worm.pressure_angle": "0.02 deg"}, "worm.pressure_angle"),
     ("worm_eps_oversized_hob", {"misalignment.worm_tilt": math.nan},
      "misalignment.worm_tilt"),
     ("imported_peer_uncrowned_20_60", {"base_helix_angle": "90 deg"}, "base_helix_angle"),

@@ -378,6 +378,10 @@ class SplineCase(CaseInfo, ModuleOrPitch):
 ROOT_DEPTH = 2.4
 
 
+#: a worm's profile angle (deg): 20 in most sets, 15 to 30 in practice
+WORM_PRESSURE_ANGLE = (10.0, 40.0)
+
+
 class WormSpec(Model):
     """The worm: flank form, starts, module and lead, hand, profile angle, length."""
 
@@ -401,6 +405,10 @@ class WormSpec(Model):
             raise ValueError("worm.lead_angle / worm.pitch_diameter: give exactly one of them")
         if self.lead_angle is not None and not 0 < self.lead_angle < math.radians(45):
             raise ValueError("worm.lead_angle: must lie between 0 and 45 deg")
+        low, high = WORM_PRESSURE_ANGLE
+        if not low <= math.degrees(self.pressure_angle) <= high:
+            raise ValueError(f"worm.pressure_angle: {math.degrees(self.pressure_angle):.4g} deg "
+                             f"must lie between {low:g} and {high:g} deg")
         return self
 
     def axial_module_and_pitch_diameter(self) -> tuple[float, float]:
