@@ -209,7 +209,9 @@ def test_spline_contact_all_teeth(tilt):
 
 def test_tip_interference_is_found_when_the_centre_distance_is_too_short():
     """Pulling the gear 1 mm closer drives the tips into the mates' roots: python-fcl on
-    the placed bodies reports it; at the nominal centre distance there is none."""
+    the placed bodies reports it, every point on a tip circle (the gear's tip scraping
+    the pinion below its active profile, the pinion's tip in the gear's root); at the
+    nominal centre distance there is none."""
     from toothcontact.analyses import analyse
 
     base = {**CASE, "load": {"tangential_load": "8000 N"},
@@ -218,6 +220,13 @@ def test_tip_interference_is_found_when_the_centre_distance_is_too_short():
     assert nominal["interference"]["found"] == []
     close = analyse(parse_case({**base, "center_distance": "119 mm"})).as_dict()
     assert close["interference"]["found"]
-    points = np.array(close["interference"]["found"][0]["points_mm"])
-    radii = np.hypot(points[:, 0], points[:, 1])
-    assert np.all((radii > 32.5) | (radii < 27.0))  # at the pinion tip or deep at its root
+    pair = gearset.gear_pair(parse_case({**base, "center_distance": "119 mm"}))
+    for found in close["interference"]["found"]:
+        points = np.array(found["points_mm"])
+        to_pinion = np.hypot(points[:, 0], points[:, 1])
+        to_gear = np.hypot(points[:, 0] - 119.0, points[:, 1])
+        # where a tip corner runs into the mate: within 0.1 mm of the pinion's or the
+        # gear's tip circle (the crossing of the surfaces lies as deep as the overlap)
+        on_tip = (np.isclose(to_pinion, pair.pinion.tip_radius, atol=0.1)
+                  | np.isclose(to_gear, pair.gear.tip_radius, atol=0.1))
+        assert on_tip.all(), (to_pinion, to_gear)

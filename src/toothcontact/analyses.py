@@ -449,29 +449,20 @@ INTERFERENCE_MESH = 0.01
 
 def _spur_interference(mesh, pair, cycle, result: Result) -> None:
     """Tip and root interference of the placed bodies (python-fcl) at every mesh position:
-    meshes (INTERFERENCE_MESH) of sectors holding the teeth in contact over the cycle and
-    one more on each side (a tooth entering mesh), their BVHs built once and placed at each
-    position."""
-    from . import cad
-    from .mesh import collision_body, interference, place
-    from .surfaces.generation import generate_ring_side, generate_side
+    tooth surfaces (mesh.gear_mesh, chords within INTERFERENCE_MESH) of the teeth in contact
+    over the cycle and one more on each side (a tooth entering mesh), their BVHs built once
+    and placed at each position."""
+    from .mesh import collision_body, gear_mesh, interference, place
+    from .surfaces.outline import ToothOutline
 
     rows = cycle.rows
     reach = max(abs(r["pair"]) for r in rows) + 1     # the teeth in contact, and one more
     bodies, bands = {}, {}
     for name, gear, mods in (("pinion", pair.pinion, pair.pinion_modifications),
                              ("gear", pair.gear, pair.gear_modifications)):
-        sector = None if gear.internal or 2 * reach + 1 >= gear.teeth else 2 * reach + 1
-        body = cad.build_gear(gear, mods, teeth=sector)
-        mesh_ = cad.tessellate(body.solid, INTERFERENCE_MESH)
-        vertices = mesh_.vertices
-        if sector is not None:  # centre the sector on tooth 0
-            turn = -reach * 2.0 * math.pi / gear.teeth
-            c, sn = math.cos(turn), math.sin(turn)
-            vertices = vertices @ np.array([[c, sn, 0.0], [-sn, c, 0.0], [0.0, 0.0, 1.0]])
-        bodies[name] = collision_body(vertices, mesh_.faces)
-        form = (generate_ring_side(gear) if gear.internal else generate_side(gear)).form_radius
-        bands[name] = tuple(sorted((form, gear.tip_radius)))
+        outline = ToothOutline(gear, mods)
+        bodies[name] = collision_body(*gear_mesh(outline, 2 * reach + 1, INTERFERENCE_MESH))
+        bands[name] = tuple(sorted((outline.generated.form_radius, gear.tip_radius)))
     found = []
     for roll in sorted({r["roll_deg"] for r in rows}):
         lag = next(float(cycle.gear_turn[k]) for k, r in enumerate(rows) if r["roll_deg"] == roll)

@@ -13,6 +13,8 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
+from ..surfaces.outline import polar
+
 
 def chord_parameters(points: np.ndarray) -> np.ndarray:
     """Chord-length parameters in [0, 1] of a polyline."""
@@ -47,10 +49,6 @@ def arc(a, b, c):
 
     return BRepBuilderAPI_MakeEdge(GC_MakeArcOfCircle(
         gp_Pnt(*map(float, a)), gp_Pnt(*map(float, b)), gp_Pnt(*map(float, c))).Value()).Edge()
-
-
-def polar(radius: float, angle: float, z: float) -> tuple[float, float, float]:
-    return radius * math.cos(angle), radius * math.sin(angle), z
 
 
 def half_root_arc(radius: float, space_angle: float, point: np.ndarray, z: float,
