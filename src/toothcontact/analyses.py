@@ -373,7 +373,16 @@ def spur_geometry_case(case: schema.SpurCase) -> Result:
         "working_pressure_angle_deg": math.degrees(pair.working_pressure_angle),
         "transverse_contact_ratio": mesh.contact_ratio, "overlap_ratio": pair.overlap_ratio,
         "transverse_base_pitch_mm": mesh.base_pitch,
-        "rho1_lpstc_mm": mesh.lpstc()}
+        "rho1_lpstc_mm": mesh.lpstc(),
+        "normal_backlash_mm": pair.normal_backlash,
+        "transverse_backlash_mm": pair.operating_backlash,
+        "backlash_note": "j_bn along the contact normal and j_wt on the operating pitch "
+                         "circles (ISO 21771), from the teeth thinned for the case's backlash "
+                         "(half on each member; " + (
+                             "ISO/TR 10064-2's least recommended (2/3)(0.06 + 0.0005·a + "
+                             "0.03·m_n) mm, as none was given" if case.backlash is None else
+                             "as given") + ") at the centre distance; the gear is placed "
+                         "on the working flanks, the backlash on the back ones"}
     result.checks.append(Check("transverse contact ratio above 1", mesh.contact_ratio > 1.0,
                                f"{mesh.contact_ratio:.3f}"))
     edge = pair.path_limits()
@@ -438,8 +447,8 @@ def _spur_contact(case: schema.SpurCase, pair, result: Result) -> None:
 
 
 #: a collision point counts as interference when it lies this close (mm) to a member's tip
-#: or root circle, or beyond them: contact between the involute flanks (the loaded ones, or
-#: the back flanks of a pair without backlash) is not interference
+#: or root circle, or beyond them; between them, on the involute flanks, it is the contact
+#: (working flanks) or the backlash used up (back flanks)
 INTERFERENCE_BAND = 0.05
 
 
@@ -463,7 +472,7 @@ def _spur_interference(mesh, pair, cycle, result: Result) -> None:
         outline = ToothOutline(gear, mods)
         bodies[name] = collision_body(*gear_mesh(outline, 2 * reach + 1, INTERFERENCE_MESH))
         bands[name] = tuple(sorted((outline.generated.form_radius, gear.tip_radius)))
-    found = []
+    found, back = [], []
     for roll in sorted({r["roll_deg"] for r in rows}):
         lag = next(float(cycle.gear_turn[k]) for k, r in enumerate(rows) if r["roll_deg"] == roll)
         phi = math.radians(roll)
@@ -480,13 +489,34 @@ def _spur_interference(mesh, pair, cycle, result: Result) -> None:
         if not on_flanks.all():
             found.append({"roll_deg": roll,
                           "points_mm": hit.points[~on_flanks][:5].round(4).tolist()})
+        coast = on_flanks & (_pinion_side(frames["pinion"], pair.pinion, hit.points) < 0)
+        if coast.any():
+            back.append({"roll_deg": roll, "points_mm": hit.points[coast][:5].round(4).tolist()})
     result.sections["interference"] = {
         "checked_positions": len({r["roll_deg"] for r in rows}), "band_mm": INTERFERENCE_BAND,
-        "found": found}
+        "found": found, "back_flanks": back}
+    backlash = f"the normal backlash {round(pair.normal_backlash * 1e3, 1) + 0.0:g} µm"
     result.checks.append(Check("no tip or root interference of the bodies", not found,
                                f"{len(found)} positions with interference"
                                + (f", first at roll {found[0]['roll_deg']:.2f} deg near "
-                                  f"{found[0]['points_mm'][0]} mm" if found else "")))
+                                  f"{found[0]['points_mm'][0]} mm" if found else "")
+                               + (f"; the back flanks touch too ({backlash} is used up): the "
+                                  "tips run into the mates' back flanks" if found and back
+                                  else "")))
+    result.checks.append(Check(
+        "backlash left under the misalignment (the back flanks clear)", not back,
+        (f"the back flanks touch at {len(back)} positions, first at roll "
+         f"{back[0]['roll_deg']:.2f} deg near {back[0]['points_mm'][0]} mm: {backlash} is used "
+         "up (case field backlash)") if back else f"{backlash} clears at every position"))
+
+
+def _pinion_side(frame, pinion, points: np.ndarray) -> np.ndarray:
+    """+1 where a world point lies on the working (+1) half of its nearest pinion tooth or
+    the space beside it, -1 on the coast half."""
+    local = frame.to_local(points)
+    angle = np.arctan2(local[:, 1], local[:, 0]) - pinion.twist_per_length * local[:, 2]
+    pitch = 2.0 * math.pi / pinion.teeth
+    return np.where((angle + 0.5 * pitch) % pitch - 0.5 * pitch >= 0.0, 1, -1)
 
 
 def _loaded_transmission_error(cycle, stiffness: float | None, summary: dict) -> None:

@@ -78,11 +78,20 @@ class ParallelMesh:
 
     def __init__(self, pair: GearPair, misalignment: Misalignment = Misalignment()):
         g = pair.gear
-        # gear tooth 0 beside the space that holds pinion tooth 0, on the driven side
+        # gear tooth 0 beside the space that holds pinion tooth 0, on the driven side; a
+        # thinned pinion turned forward by its thinning (its working flank where the rack's
+        # would be), the gear by the rest of half the backlash (the whole backlash on the
+        # back flanks); a coaxial spline keeps its clearance centred: closing it is its lag
         pitch = 2.0 * math.pi / g.teeth
+        forward, close = 0.0, 0.0
+        if pair.center_distance > 0.0:
+            p = pair.pinion
+            forward = 0.5 * p.thinning / p.pitch_radius
+            r_w1 = pair.operating_pitch_radius
+            close = (0.5 * pair.operating_backlash - r_w1 * forward) / (r_w1 * g.teeth / p.teeth)
         self._place(pair.pinion.teeth, g.teeth, g.internal, pair.center_distance,
                     pair.working_pressure_angle, misalignment,
-                    0.5 * pitch if g.internal else math.pi - 0.5 * pitch)
+                    0.5 * pitch - close if g.internal else math.pi - 0.5 * pitch + close, forward)
 
     @classmethod
     def of_layout(cls, pinion_teeth: int, gear_teeth: int, centre_distance: float,
@@ -96,8 +105,10 @@ class ParallelMesh:
                     misalignment, gear_start)
         return mesh
 
-    def _place(self, z1, z2, internal, centre_distance, alpha, misalignment, gear_start):
+    def _place(self, z1, z2, internal, centre_distance, alpha, misalignment, gear_start,
+               pinion_start=0.0):
         self.misalignment = misalignment
+        self.pinion_start = pinion_start
         self.pinion_teeth, self.gear_teeth, self.internal = z1, z2, internal
         self.ratio = z1 / z2
         a = centre_distance + misalignment.center_distance_error
@@ -121,7 +132,8 @@ class ParallelMesh:
         return phi1 + tooth * 2.0 * math.pi / self.pinion_teeth
 
     def pinion_frame(self, phi1: float, tooth: int = 0) -> Frame:
-        return Frame(rotation([0, 0, 1], self.driver_turn(phi1, tooth)), np.zeros(3))
+        return Frame(rotation([0, 0, 1], self.pinion_start + self.driver_turn(phi1, tooth)),
+                     np.zeros(3))
 
     def gear_frame(self, phi1: float, tooth: int = 0, delta: float = 0.0) -> Frame:
         """The gear's frame when the pinion has turned phi1 and the gear lags by delta (rad,

@@ -327,6 +327,11 @@ class SpurCase(GearPairGeometry):
     hand: Literal["right", "left"] = Field("right", description="the pinion's hand")
     face_width: Length = Field(description="e.g. '30 mm'")
     center_distance: Length | None = None
+    backlash: quantity("length", low=0.0) | None = Field(
+        None, description="normal backlash j_bn the teeth are thinned for, half on each "
+                          "member, e.g. '0.1 mm'; default ISO/TR 10064-2's least recommended "
+                          "(2/3)(0.06 + 0.0005·a + 0.03·m_n) mm; '0 mm' for teeth as the rack "
+                          "gives them (both flanks touch)")
     rack: Rack = Rack()
     pinion: Member = Member()
     gear: Member = Member()

@@ -47,6 +47,27 @@ class GearPair:
         u = self.gear.teeth / self.pinion.teeth
         return self.center_distance / (u - 1.0 if self.internal else u + 1.0)
 
+    @property
+    def operating_backlash(self) -> float:
+        """j_wt (mm): the transverse circular backlash on the operating pitch circles, from
+        the teeth as cut (thinning included) at the centre distance: the operating pitch
+        less both tooth thicknesses there, s_w = 2·r_w·psi(r_w), psi(r) = psi_b -+ inv(alpha)
+        (ISO 21771: 0 for unthinned teeth at the centre distance their shifts give)."""
+        alpha_w = self.working_pressure_angle
+        r_w1 = self.operating_pitch_radius
+        r_w2 = r_w1 * self.gear.teeth / self.pinion.teeth
+        sign = 1.0 if self.internal else -1.0           # a ring's tooth widens outward
+        s_w1 = 2.0 * r_w1 * (self.pinion.base_half_angle - inv(alpha_w))
+        s_w2 = 2.0 * r_w2 * (self.gear.base_half_angle + sign * inv(alpha_w))
+        return 2.0 * math.pi * r_w1 / self.pinion.teeth - s_w1 - s_w2
+
+    @property
+    def normal_backlash(self) -> float:
+        """j_bn (mm): the backlash along the contact normal, j_wt·cos(alpha_wt)·cos(beta_b)
+        (ISO 21771)."""
+        return (self.operating_backlash * math.cos(self.working_pressure_angle)
+                * math.cos(self.pinion.base_helix_angle))
+
     def transverse_mesh(self) -> SpurMesh:
         """The transverse line-of-action geometry (contact ratio, LPSTC, ...)."""
         p, g = self.pinion, self.gear
@@ -160,6 +181,8 @@ def gear_pair(case: SpurCase) -> GearPair:
                 f"working pressure angle in (0, 70) deg (inv(alpha_w) = {involute_w:.4g})")
         alpha_w = brentq(lambda a: inv(a) - involute_w, 1e-9, math.radians(70))
         center = abs(r_sum) * math.cos(alpha_t) / math.cos(alpha_w)
+    thinning = _thinning(case, center, pinion)
+    pinion, gear = replace(pinion, thinning=thinning), replace(gear, thinning=thinning)
     check_proportions(pinion, gear, center if case.center_distance is None else None)
     d = case.deflection
     deflection = None if d is None else Deflection(d.slope, d.bending, tuple(d.table))
@@ -168,6 +191,29 @@ def gear_pair(case: SpurCase) -> GearPair:
     check_mesh(pair, "center_distance" if case.center_distance is not None else
                "teeth / pinion.profile_shift / gear.profile_shift / rack.addendum")
     return pair
+
+
+def recommended_backlash(center_distance: float, normal_module: float) -> float:
+    """j_bn,min (mm): the least normal backlash ISO/TR 10064-2:1996 recommends for steel
+    gears in a steel housing, (2/3)·(0.06 + 0.0005·a + 0.03·m_n), a and m_n in mm (also
+    AGMA 2002-B88 without the 2/3)."""
+    return 2.0 / 3.0 * (0.06 + 0.0005 * center_distance + 0.03 * normal_module)
+
+
+#: the largest normal backlash a pair is analysed with, × m_n
+MAX_BACKLASH = 0.5
+
+
+def _thinning(case: SpurCase, center: float, pinion: CylindricalGear) -> float:
+    """Each member's transverse thinning on the reference circle (mm) for the case's normal
+    backlash (default `recommended_backlash`), half of it on each: j_bn = cos(alpha_n)·
+    cos(beta)·(ds_t1 + ds_t2) (ISO 21771, at the centre distance)."""
+    j_bn = (recommended_backlash(center, case.module_mm) if case.backlash is None
+            else case.backlash)
+    if not 0.0 <= j_bn <= MAX_BACKLASH * case.module_mm:
+        raise ValueError(f"backlash: {j_bn:.4g} mm normal backlash; allowed 0 to "
+                         f"{MAX_BACKLASH} × module = {MAX_BACKLASH * case.module_mm:.4g} mm")
+    return j_bn / (2.0 * math.cos(pinion.pressure_angle) * math.cos(pinion.helix_angle))
 
 
 def check_mesh(pair: GearPair, fields: str) -> None:

@@ -56,7 +56,7 @@ def gear_mesh(outline, teeth: int | None = None,
     and a section where an end relief begins. The
     surface is open (no end faces, no closure of a sector): interference is where two such
     surfaces cross."""
-    from .surfaces.outline import arc_points
+    from .surfaces.outline import polar_angle
 
     gear = outline.gear
     flank = outline.flanks[1]
@@ -78,27 +78,15 @@ def gear_mesh(outline, teeth: int | None = None,
         inner = 0.5 * gear.face_width - relief.length
         z = np.union1d(z, [-inner, inner])
     first = outline.section(u, 0.0)
-    n_tip = steps(gear.tip_radius, _polar(first.flank_plus[0]) - _polar(first.flank_minus[-1]))
-    n_root = steps(first.root_radius, _polar(first.fillet_minus[0]) - first.space_before)
+    n_tip = steps(gear.tip_radius,
+                  polar_angle(first.flank_plus[0]) - polar_angle(first.flank_minus[-1]))
+    n_root = steps(first.root_radius, polar_angle(first.fillet_minus[0]) - first.space_before)
 
     k = gear.teeth if teeth is None or teeth >= gear.teeth else teeth
     turns = (np.arange(gear.teeth) if k == gear.teeth else np.arange(k) - k // 2) * outline.pitch
     rings = []
     for height in z:
-        t = outline.section(u, float(height))
-        near = 0.5 * (t.space_before + t.space_after)     # polar angles near the tooth's
-        middle = _polar(t.tip_middle, near)
-        tooth = np.concatenate([
-            arc_points(t.root_radius, t.space_before, _polar(t.fillet_minus[0], near),
-                       height, n_root)[:-1],
-            t.fillet_minus, t.flank_minus[1:],
-            arc_points(gear.tip_radius, _polar(t.flank_minus[-1], near), middle, height,
-                       n_tip)[1:-1],
-            arc_points(gear.tip_radius, middle, _polar(t.flank_plus[0], near), height,
-                       n_tip)[:-1],
-            t.flank_plus, t.fillet_plus[1:],
-            arc_points(t.root_radius, _polar(t.fillet_plus[-1], near), t.space_after,
-                       height, n_root)[1:-1]])
+        tooth = outline.section(u, float(height)).points(n_tip, n_root)[:-1]
         rings.append(np.concatenate([tooth @ _turn_z(a).T for a in turns]))
     vertices = np.concatenate(rings)
     n, closed = len(rings[0]), k == gear.teeth
@@ -108,12 +96,6 @@ def gear_mesh(outline, teeth: int | None = None,
     faces = np.concatenate([np.concatenate([np.column_stack([a, b, c]), np.column_stack([a, c, d])])
                             for a, b, c, d in quads])
     return vertices, faces
-
-
-def _polar(point, near: float = 0.0) -> float:
-    """The polar angle (rad) of a point, taken within half a turn of `near`."""
-    angle = np.arctan2(point[1], point[0]) - near
-    return float(near + np.arctan2(np.sin(angle), np.cos(angle)))
 
 
 def _turn_z(angle: float) -> np.ndarray:

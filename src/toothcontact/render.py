@@ -368,28 +368,6 @@ def _join(parts: list[np.ndarray]) -> np.ndarray:
     return np.concatenate(out)
 
 
-def _gear_tooth_outline(gear, flanks: dict, generated, z: float, nu: int) -> np.ndarray:
-    """Outline of tooth 0 of a cylindrical gear in the plane z, from the centre of the space
-    before it to the centre of the space after it (as cad.gear builds its sections)."""
-    from .cad.gear import _fillet_section, _flank_section
-
-    (u0, u1), _ = flanks[1].domain
-    u = np.linspace(u0, u1, nu)
-    forward = slice(None, None, -1) if gear.internal else slice(None)
-    minus = _flank_section(flanks[-1], u, z)[forward]
-    plus = _flank_section(flanks[1], u, z)[forward]
-    fil_minus = _fillet_section(gear, flanks[-1], generated, -1, z, minus[0])       # root -> form
-    fil_plus = _fillet_section(gear, flanks[1], generated, 1, z, plus[0])[::-1]     # form -> root
-    turn = gear.twist_per_length * z
-    pitch = 2.0 * math.pi / gear.teeth
-    tip = _arc(minus[-1], plus[-1], 9)
-    start, end = fil_minus[0], fil_plus[-1]
-    root = 0.5 * (math.hypot(*start[:2]) + math.hypot(*end[:2]))
-    before = _arc(_polar(root, turn - 0.5 * pitch, z), start, 5)
-    after = _arc(end, _polar(root, turn + 0.5 * pitch, z), 5)
-    return _join([before, fil_minus, minus, tip, plus[::-1], fil_plus, after])
-
-
 def _wheel_tooth_outline(minus_flank, plus_flank, z: float, nu: int) -> np.ndarray:
     """Outline of tooth 0 of a worm wheel in the plane z2 = z (as cad.wheel builds it)."""
     u = np.linspace(0.0, 1.0, nu)
@@ -448,14 +426,11 @@ def _teeth_around(count: int, total: int) -> list[int]:
 def cylindrical_body(pv, gear, modifications, teeth, nu: int = 24) -> dict:
     """Spur/helical gear, spline hub or sleeve bodies: for each count in `teeth` (a tuple),
     that many teeth around tooth 0 (or all). Returns {count: PolyData}."""
-    from .surfaces.generation import generate_ring_side, generate_side
-    from .surfaces.modified import ModifiedFlank
+    from .surfaces.outline import ToothOutline
 
-    generated = generate_ring_side(gear) if gear.internal else generate_side(gear)
-    flanks = {}
-    for side in (1, -1):
-        flank = gear.flank(side, generated.form_radius)
-        flanks[side] = flank if modifications.empty else ModifiedFlank(flank, modifications)
+    teeth_outline = ToothOutline(gear, modifications)
+    (u0, u1), _ = teeth_outline.flanks[1].domain
+    u = np.linspace(u0, u1, nu)
     twist = abs(gear.twist_per_length) * gear.face_width
     nz = max(2 if modifications.empty else 9, int(math.ceil(twist / 0.02)) + 1)
     zs = np.linspace(-0.5 * gear.face_width, 0.5 * gear.face_width, nz)
@@ -466,7 +441,7 @@ def cylindrical_body(pv, gear, modifications, teeth, nu: int = 24) -> dict:
 
     def outline(z):
         if z not in outlines:
-            outlines[z] = _gear_tooth_outline(gear, flanks, generated, z, nu)
+            outlines[z] = teeth_outline.section(u, z).points(9, 5)
         return outlines[z]
 
     return {count: _toothed_body(pv, outline, zs, _teeth_around(count, gear.teeth),

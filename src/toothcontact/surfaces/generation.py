@@ -59,7 +59,9 @@ def generate_side(gear: CylindricalGear, samples: int = 40) -> GeneratedSide:
     x_ref = r + gear.profile_shift * m               # rack reference line (radial position)
     x_tip = x_ref - gear.dedendum * m                # rack tip line = gear root circle
     y_center = 0.5 * math.pi * gear.transverse_module  # rack tooth centre (the gear's space)
-    half_width = lambda depth: 0.25 * math.pi * gear.transverse_module - depth * math.tan(alpha)  # noqa: E731
+    # the rack tooth fills the gear's space: wider by the gear's thinning (root circle kept)
+    half_width = lambda depth: (0.25 * math.pi * gear.transverse_module + 0.5 * gear.thinning  # noqa: E731
+                                - depth * math.tan(alpha))
 
     # tip rounding: ellipse, semi-axes rho (x) and rho/cos(beta) (y), tangent to the tip
     # line at tau = 0 and to the flank at tan(tau_t) = 1/(tan(alpha_t)·cos(beta))

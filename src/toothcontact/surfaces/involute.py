@@ -35,7 +35,9 @@ class CylindricalGear:
     teeth: |z|; internal: an internal (ring) gear; normal_module, pressure_angle (normal, rad),
     helix_angle (rad, 0 = spur), hand "right"/"left", profile_shift x (for an internal gear
     positive x moves the profile away from the axis, thinning the tooth), addendum,
-    dedendum and root_radius coefficients of the basic rack (× m_n), face_width (mm)."""
+    dedendum and root_radius coefficients of the basic rack (× m_n), face_width (mm),
+    thinning: the transverse tooth-thickness allowance on the reference circle (arc mm, taken
+    off both flanks alike; the gear's share of a pair's backlash)."""
 
     teeth: int
     normal_module: float
@@ -48,6 +50,7 @@ class CylindricalGear:
     dedendum: float = 1.25
     root_radius: float = 0.38
     internal: bool = False
+    thinning: float = 0.0
 
     def __post_init__(self):
         problems = []
@@ -65,6 +68,8 @@ class CylindricalGear:
             problems.append(f"face width {self.face_width} must be > 0")
         if not 0 <= self.root_radius < self.dedendum:
             problems.append("root radius coefficient must lie in [0, dedendum)")
+        if not self.thinning >= 0:
+            problems.append(f"thinning {self.thinning} must be >= 0")
         if problems:
             raise ValueError("; ".join(problems))
 
@@ -105,10 +110,11 @@ class CylindricalGear:
 
     @property
     def tooth_thickness(self) -> float:
-        """Transverse tooth thickness on the reference circle (arc, mm)."""
+        """Transverse tooth thickness on the reference circle (arc, mm), less the thinning."""
         sign = -1.0 if self.internal else 1.0
         return self.transverse_module * (0.5 * math.pi
-                                         + 2.0 * sign * self.profile_shift * math.tan(self.pressure_angle))
+                                         + 2.0 * sign * self.profile_shift * math.tan(self.pressure_angle)
+                                         ) - self.thinning
 
     @property
     def tip_radius(self) -> float:

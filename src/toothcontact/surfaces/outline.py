@@ -37,6 +37,12 @@ def arc_points(radius: float, start: float, end: float, z: float, count: int) ->
                             np.full(count, z)])
 
 
+def polar_angle(point, near: float = 0.0) -> float:
+    """The polar angle (rad) of a point, taken within half a turn of `near`."""
+    angle = math.atan2(point[1], point[0]) - near
+    return near + math.atan2(math.sin(angle), math.cos(angle))
+
+
 @dataclass(frozen=True)
 class ToothSection:
     """Tooth 0 in the plane z, its pieces in the order the outline runs: fillet_minus
@@ -54,6 +60,24 @@ class ToothSection:
     root_radius: float
     space_before: float
     space_after: float
+
+    def points(self, tip_points: int, root_points: int) -> np.ndarray:
+        """The tooth as one polyline from the centre of the space before it to the centre
+        of the space after it, the tip arc by `tip_points` points and each half root arc by
+        `root_points` (every point once)."""
+        z, near = self.z, 0.5 * (self.space_before + self.space_after)
+        tip_radius = math.hypot(*self.tip_middle[:2])
+        middle = polar_angle(self.tip_middle, near)
+        angle = lambda p: polar_angle(p, near)  # noqa: E731
+        return np.concatenate([
+            arc_points(self.root_radius, self.space_before, angle(self.fillet_minus[0]), z,
+                       root_points)[:-1],
+            self.fillet_minus, self.flank_minus[1:],
+            arc_points(tip_radius, angle(self.flank_minus[-1]), middle, z, tip_points)[1:-1],
+            arc_points(tip_radius, middle, angle(self.flank_plus[0]), z, tip_points)[:-1],
+            self.flank_plus, self.fillet_plus[1:],
+            arc_points(self.root_radius, angle(self.fillet_plus[-1]), self.space_after, z,
+                       root_points)[1:]])
 
 
 class ToothOutline:
