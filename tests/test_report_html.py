@@ -1,5 +1,8 @@
-"""report.html: one self-contained page (pictures embedded, nothing fetched), failed checks
-first; it loads in a headless Chromium when one is installed."""
+"""report.html and report.md from their templates: one self-contained page (pictures
+embedded, nothing fetched), key results first, then the design checks (failed ones flagged)
+apart from the source-data notes, human labels and rounded numbers, the positions collapsed,
+the inputs as given; the page loads in a headless Chromium when one is installed (CI
+installs Debian's)."""
 
 import base64
 import re
@@ -35,9 +38,12 @@ def document() -> dict:
         "positions": [{"roll_deg": -9.0, "pair": 0, "edge_margins_mm": {"pinion_tip": -0.2}},
                       {"roll_deg": 0.0, "pair": 0, "edge_margins_mm": {}}],
         "ease_off": {"separation_um": [[1.0, None], [2.0, 3.0]] * 10},
-        "checks": [{"name": "stress within the allowable", "ok": True, "detail": "1993 < 2000"},
+        "checks": [{"name": "stress within the allowable", "ok": True, "detail": "1993 < 2000",
+                    "kind": "design"},
                    {"name": "contact ellipse clear of the tip", "ok": False,
-                    "detail": "worst margin -0.2 mm"}],
+                    "detail": "worst margin -0.2 mm", "kind": "design"},
+                   {"name": "published eta_tot at -20 °C equals eta_z·eta_spindle", "ok": False,
+                    "detail": "the source's column is inconsistent", "kind": "source"}],
         "notes": ["crown measured along the flank normal"],
     }
 
@@ -50,7 +56,7 @@ def images(tmp_path):
     return paths
 
 
-def test_html_is_self_contained_with_the_failed_checks_first(images):
+def test_html_is_self_contained_key_results_and_failed_checks_first(images):
     page = report.html(document(), images)
     assert page.startswith("<!DOCTYPE html>")
     # nothing is fetched: no external address, stylesheet link or script
@@ -59,16 +65,54 @@ def test_html_is_self_contained_with_the_failed_checks_first(images):
     # every picture embedded, as data
     assert page.count('src="data:image/png;base64,') == len(images)
     assert base64.b64encode(PNG).decode() in page
-    # the failed check comes before everything else that reports
+    # key results, then the failed design check, then pictures, results, inputs
+    key = page.index("Key results")
     failed = page.index("contact ellipse clear of the tip")
-    assert failed < page.index("Inputs (as given)") < page.index("Results")
-    assert failed < page.index("<img")
-    assert "Failed checks (1 of 2)" in page
-    # inputs with their units as given, assumptions of the case and of the tool
-    assert "30 mm" in page and "8000 N" in page
+    assert key < failed < page.index("<img") < page.index('id="results"') < page.index("Inputs (as given)")
+    assert "1 of 2 design checks failed" in page
+    assert "largest Hertz pressure" in page and "1993 MPa" in page
+    # the source's inconsistency is a note of its own, not a failed design check
+    source = page.index("published eta_tot at -20")
+    assert source > page.index("Source data and method") > page.index('id="results"')
+    # human labels with units; the positions table collapsed
+    assert "pinion roll [deg]" in page and "roll_deg" not in page
+    assert "<details><summary>" not in page or "positions" in page
+    # inputs with their units as given (no escaped unicode, no empty table headers),
+    # assumptions of the case and of the tool
+    assert "30 mm" in page and "8000 N" in page and "[load]" in page
     assert "steel on steel" in page and "equal split" in page and "flank normal" in page
     # text is escaped
     assert "A &lt;pair&gt; &amp; its teeth" in page and "<pair>" not in page
+
+
+def test_markdown_holds_no_giant_line_and_names_the_pictures(images):
+    """The ease-off matrix is summarised, not dumped; every line stays readable."""
+    text = report.markdown(document(), [p.name for p in images])
+    assert max(len(line) for line in text.splitlines()) < 2000
+    assert "[20 × 2 values, 1 to 3]" in text
+    assert text.index("## Key results") < text.index("## Design checks") < text.index("## Results")
+    assert "(mesh_cycle.png)" in text and "\n\n\n" not in text
+
+
+def test_inputs_are_shown_as_given():
+    """Unicode stays itself, a table holding only sub-tables gets no empty header."""
+    from toothcontact.report_view import toml_lines
+
+    lines = toml_lines({"title": "z = 20 × 60", "pinion": {"crown": {"height": "10 um"}}})
+    assert lines[0] == 'title = "z = 20 × 60"'
+    assert "[pinion]" not in lines and "[pinion.crown]" in lines
+
+
+def test_labels_and_numbers_read_as_an_engineer_writes_them():
+    from toothcontact.report_view import label, number
+
+    assert label("face_position_mm") == "position along the face [mm]"
+    assert label("loaded_transmission_error_urad") == "transmission error (loaded) [µrad]"
+    assert label("normal_backlash_mm") == "normal backlash [mm]"
+    assert label("viscosity_mm2_s") == "viscosity [mm²/s]"
+    assert number(1.96638e-08) == "1.966e-08" and number(1.96638e-08, scale=3.0) == "0"
+    assert number(3265.9474) == "3266" and number(True) == "yes" and number(None) == ""
+    assert number({"pinion_tip": -0.2}) == "pinion_tip: -0.2"
 
 
 def test_write_run_writes_the_html_beside_the_markdown(images, tmp_path):
@@ -89,20 +133,38 @@ def chromium() -> str | None:
 
 @pytest.mark.skipif(chromium() is None, reason="no Chromium installed")
 def test_the_page_loads_in_headless_chromium(images, tmp_path):
+    """The page as a browser shows it: its DOM after load (a probe script added to a test
+    copy reports every image's decoded size: each must have loaded) and a screenshot that is
+    not blank (many distinct colours, text and pictures)."""
+    from PIL import Image
+
     page = tmp_path / "report.html"
-    page.write_text(report.html(document(), images), encoding="utf-8")
+    text = report.html(document(), images)
+    page.write_text(text, encoding="utf-8")
+    probe = tmp_path / "probe.html"
+    probe.write_text(text.replace("</body>", """<script>
+addEventListener("load", () => { const p = document.createElement("p"); p.id = "probe";
+p.textContent = [...document.images].map(i => i.complete + ":" + i.naturalWidth).join(",");
+document.body.append(p); });</script></body>"""), encoding="utf-8")
     flags = ["--headless", "--no-sandbox", "--disable-gpu", "--disable-quic", "--no-first-run",
              "--disable-background-networking", "--disable-component-update", "--disable-sync",
-             f"--user-data-dir={tmp_path / 'profile'}", "--enable-logging=stderr", "--v=0"]
-    done = subprocess.run([chromium(), *flags, "--dump-dom", page.as_uri()],
+             f"--user-data-dir={tmp_path / 'profile'}", "--enable-logging=stderr", "--v=0",
+             "--virtual-time-budget=5000"]
+    done = subprocess.run([chromium(), *flags, "--dump-dom", probe.as_uri()],
                           capture_output=True, text=True, timeout=120, check=False)
     assert done.returncode == 0, done.stderr[-2000:]
     dom = done.stdout
-    assert "Failed checks (1 of 2)" in dom and dom.count("<img") == len(images)
+    assert "1 of 2 design checks failed" in dom and dom.count("<img") == len(images)
+    loaded = re.search(r'<p id="probe">([^<]*)</p>', dom).group(1).split(",")
+    assert loaded == ["true:40"] * len(images)
     # no console error from the page itself (Chromium's own messages about its sandbox,
     # D-Bus and the like are not the page's)
     assert "Uncaught" not in done.stderr and "CONSOLE(" not in done.stderr
     shot = tmp_path / "shot.png"
     subprocess.run([chromium(), *flags, f"--screenshot={shot}", "--window-size=1200,1600",
                     page.as_uri()], capture_output=True, text=True, timeout=120, check=True)
-    assert shot.stat().st_size > 10_000
+    image = Image.open(shot).convert("RGB")
+    assert image.size == (1200, 1600)
+    colours = image.getcolors(maxcolors=1 << 20)
+    assert len(colours) > 50                             # text, boxes and the red pictures
+    assert sum(n for n, c in colours if c == (214, 39, 40)) > 40 * 30 / 2   # a picture shows

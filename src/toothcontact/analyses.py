@@ -23,14 +23,18 @@ from .case import CaseError
 
 @dataclass
 class Check:
-    """A pass/fail statement about the result, shown at the top of the report when failed."""
+    """A pass/fail statement about the result. kind "design": about the design (a failed one
+    is flagged at the top of the report and exits the run with 1); "source": whether a
+    source's own printed numbers agree with each other (a misprint is the source's, not the
+    design's); "method": a self-check of the method (two routes to the same number)."""
 
     name: str
     ok: bool
     detail: str
+    kind: str = "design"
 
     def as_dict(self) -> dict:
-        return {"name": self.name, "ok": bool(self.ok), "detail": self.detail}
+        return {"name": self.name, "ok": bool(self.ok), "detail": self.detail, "kind": self.kind}
 
 
 @dataclass
@@ -99,7 +103,7 @@ def hertz_case(case: schema.HertzCase) -> Result:
                       "stress_MPa": roark.p0, "approach_mm": roark.approach},
         },
         checks=[Check("Roark's alpha/beta form equals the exact Hertz solution", agree < 1e-6,
-                      f"largest relative difference {agree:.1e} (limit 1e-6)")],
+                      f"largest relative difference {agree:.1e} (limit 1e-6)", "method")],
     )
 
 
@@ -246,13 +250,14 @@ def _published_checks(cond: schema.Condition, eta_z: float, gamma: float) -> lis
     checks = []
     if cond.published_eta_z is not None:
         checks.append(Check(f"eta_z {at} matches the published value", abs(eta_z - cond.published_eta_z) <= 0.01,
-                            f"computed {eta_z:.3f}, published {cond.published_eta_z:.3f} (tolerance 0.01)"))
+                            f"computed {eta_z:.3f}, published {cond.published_eta_z:.3f} (tolerance 0.01)",
+                            "source"))
         if cond.published_mu_zm is not None:
             own = worm_efficiency.efficiency_worm_driving(gamma, cond.published_mu_zm)
             checks.append(Check(f"published eta_z {at} follows from the published mu_zm",
                                 abs(own - cond.published_eta_z) <= 0.005,
                                 f"eta_z(mu_zm={cond.published_mu_zm}) = {own:.4f}, published "
-                                f"{cond.published_eta_z:.3f} (tolerance 0.005)"))
+                                f"{cond.published_eta_z:.3f} (tolerance 0.005)", "source"))
     if None not in (cond.published_eta_total, cond.published_eta_z, cond.eta_spindle):
         product = cond.published_eta_z * cond.eta_spindle
         checks.append(Check(f"published eta_tot {at} equals eta_z·eta_spindle",
@@ -260,7 +265,7 @@ def _published_checks(cond: schema.Condition, eta_z: float, gamma: float) -> lis
                             f"{cond.published_eta_z:.3f} × {cond.eta_spindle:.3f} = {product:.3f}, "
                             f"published {cond.published_eta_total:.3f} (tolerance 0.01): "
                             + ("consistent" if abs(product - cond.published_eta_total) <= 0.01
-                               else "the source's column is inconsistent")))
+                               else "the source's column is inconsistent"), "source"))
     return checks
 
 

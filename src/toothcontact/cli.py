@@ -101,7 +101,7 @@ def run(case: Path = typer.Argument(..., help="case file (TOML), or the name of 
 
     with _Progress(None, case.stem) as progress:
         document, written = _guarded(lambda: runner.run_case(case, out, pictures, progress.stage))
-    failed = [c for c in document["checks"] if not c["ok"]]
+    failed = [c for c in document["checks"] if not c["ok"] and c["kind"] == "design"]
     folder = written[0].parent if written else out
     typer.echo(f"{case.stem}: wrote {_wrote(written)} -> {folder}")
     for name, stage in document.get("stages", {}).items():
@@ -109,6 +109,9 @@ def run(case: Path = typer.Argument(..., help="case file (TOML), or the name of 
             typer.echo(f"  warning: the {name} could not be made here: {stage['reason']}")
     for check in failed:
         typer.echo(f"  check failed: {check['name']}: {check['detail']}")
+    for check in document["checks"]:
+        if not check["ok"] and check["kind"] != "design":
+            typer.echo(f"  note ({check['kind']}): {check['name']}: {check['detail']}")
     if failed:
         raise typer.Exit(EXIT_CHECK_FAILED)
 
@@ -193,7 +196,7 @@ def demo(out: Path = typer.Option(Path("out"), "--out", help="output folder")):
             progress.stage(path.stem)
             document, written = _guarded(lambda: runner.run_case(
                 path, out / path.stem, progress=lambda what: progress.stage(f"{path.stem}: {what}")))
-            failed = sum(not c["ok"] for c in document["checks"])
+            failed = sum(not c["ok"] and c["kind"] == "design" for c in document["checks"])
             solids = ""
             if document["kind"] in runner.GEOMETRY_KINDS:
                 progress.stage(f"{path.stem}: solids")

@@ -1,0 +1,340 @@
+"""What a report shows, read from a result document (no recomputation, no case parsing):
+the key results that decide the design, the design checks apart from the source-data and
+method checks, the inputs as given, and the results as tables with human labels, units and
+numbers rounded to four significant digits. The templates (templates/report.*.j2) lay it
+out as Markdown and as one self-contained HTML page."""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+
+#: sections of a document that are not result tables
+META = {"case", "kind", "title", "source", "assumptions", "toothcontact_version", "units",
+        "inputs", "checks", "notes", "stages"}
+
+#: key suffix -> unit shown in a label (longest first)
+UNITS = [("_mm2_s", "mm²/s"), ("_per_mm", "1/mm"), ("_mm2", "mm²"), ("_urad", "µrad"),
+         ("_MPa", "MPa"), ("_Nm", "N·m"), ("_deg", "deg"), ("_rad", "rad"), ("_mm", "mm"),
+         ("_um", "µm"), ("_N", "N"), ("_C", "°C")]
+
+#: labels of keys whose words alone do not say what they are
+LABELS = {
+    "roll_deg": "pinion roll", "pair": "tooth pair", "p_max_MPa": "Hertz peak pressure",
+    "max_p_max_MPa": "largest Hertz pressure (equal split)",
+    "bem_max_p_max_MPa": "largest loaded pressure", "bem_p_max_MPa": "loaded peak pressure",
+    "bem_load_N": "loaded share", "bem_area_mm2": "loaded contact area",
+    "bem_approach_mm": "loaded approach", "bem_status": "loaded solution",
+    "bem_reason": "why not solved", "bem_iterations": "solver iterations",
+    "bem_relative_error": "solver residual", "bem_grid": "solver grid",
+    "bem_raw_peak_MPa": "largest cell pressure (not a design value)",
+    "a_mm": "semi-axis a", "b_mm": "semi-axis b", "A_per_mm": "curvature sum A",
+    "B_per_mm": "curvature sum B", "A_analytic_per_mm": "A from the flank curvatures",
+    "B_analytic_per_mm": "B from the flank curvatures", "fit_rms_mm": "gap fit rms",
+    "transmission_error_urad": "transmission error (unloaded)",
+    "loaded_transmission_error_urad": "transmission error (loaded)",
+    "transmission_error_peak_to_peak_urad": "transmission error, peak to peak (unloaded)",
+    "loaded_transmission_error_peak_to_peak_urad": "transmission error, peak to peak (loaded)",
+    "edge_margin_mm": "edge margin", "edge_margins_mm": "edge margins",
+    "contact_radius_pinion_mm": "contact radius on the pinion",
+    "face_position_mm": "position along the face", "separation_mm": "separation",
+    "E_star_MPa": "E*", "Y_VISC": "viscosity factor Y_VISC", "mu_zm": "mean friction mu_zm",
+    "eta_z": "efficiency eta_z (worm driving)", "eta_wheel_driving": "efficiency (wheel driving)",
+    "eta_kim": "efficiency (misalignment model)", "eta_total": "total efficiency",
+    "I": "AGMA geometry factor I", "Cp_sqrt_MPa": "elastic coefficient Cp",
+    "K_D_mm": "K_D", "rho1_mm": "profile radius rho1", "rho2_mm": "profile radius rho2",
+    "rho1_lpstc_mm": "pinion profile radius at the LPSTC",
+}
+
+#: a number this close to zero, relative to the largest of its kind, shows as 0
+ZERO = 1e-8
+
+
+def label(key: str) -> str:
+    """A key's label with its unit: 'face_position_mm' -> 'position along the face [mm]'."""
+    unit = next((u for suffix, u in UNITS if key.endswith(suffix)), None)
+    if key in LABELS:
+        words = LABELS[key]
+    else:
+        stem = key[: -len(next(s for s, u in UNITS if key.endswith(s)))] if unit else key
+        words = stem.replace("_", " ")
+    return f"{words} [{unit}]" if unit else words
+
+
+def number(value, scale: float | None = None) -> str:
+    """A value as text: numbers to four significant digits (0 when within ZERO of `scale`),
+    None as '', booleans as yes/no, dicts as 'key: value' pairs, short lists inline and long
+    ones by their shape and range."""
+    if value is None:
+        return ""
+    if isinstance(value, bool):
+        return "yes" if value else "no"
+    if isinstance(value, int):
+        return str(value)
+    if isinstance(value, float):
+        if not math.isfinite(value):
+            return str(value)
+        if value == 0.0 or (scale and abs(value) < ZERO * scale):
+            return "0"
+        return f"{value:.4g}"
+    if isinstance(value, dict):
+        return "; ".join(f"{k}: {number(v)}" for k, v in value.items())
+    if isinstance(value, (list, tuple)):
+        flat = _flatten(value)
+        if len(flat) > 12:
+            finite = [v for v in flat if isinstance(v, (int, float)) and not isinstance(v, bool)
+                      and math.isfinite(v)]
+            shape = " × ".join(str(n) for n in _shape(value))
+            span = f", {number(min(finite))} to {number(max(finite))}" if finite else ""
+            return f"[{shape} values{span}]"
+        return "[" + ", ".join(number(v) for v in value) + "]"
+    return str(value)
+
+
+def _flatten(value) -> list:
+    if isinstance(value, (list, tuple)):
+        return [x for v in value for x in _flatten(v)]
+    return [value]
+
+
+def _shape(value) -> list[int]:
+    if isinstance(value, (list, tuple)) and value:
+        return [len(value)] + _shape(value[0])
+    return []
+
+
+@dataclass(frozen=True)
+class KeyResult:
+    """One figure that decides the design: what it is, its value with unit, and where."""
+
+    label: str
+    value: str
+    where: str = ""
+    bad: bool = False
+
+
+@dataclass(frozen=True)
+class Table:
+    """A results table: `rows` of cells (text), `numeric` per column; a table of many rows
+    is shown collapsed."""
+
+    title: str
+    headers: list[str]
+    rows: list[list[str]]
+    numeric: list[bool]
+    collapsed: bool = False
+    note: str = ""
+
+
+@dataclass(frozen=True)
+class CheckLine:
+    name: str
+    ok: bool
+    detail: str
+    kind: str
+
+
+@dataclass
+class ReportView:
+    title: str
+    case: str
+    kind: str
+    source: str
+    version: str
+    units: str
+    key_results: list[KeyResult]
+    design_checks: list[CheckLine]
+    other_checks: list[CheckLine]
+    assumptions: list[str]
+    tool_notes: list[str]
+    inputs: str
+    tables: list[Table]
+    stages: list[tuple[str, str]] = field(default_factory=list)
+
+    @property
+    def failed(self) -> list[CheckLine]:
+        return [c for c in self.design_checks if not c.ok]
+
+
+#: a table of more rows than this is shown collapsed
+COLLAPSE_ROWS = 12
+
+
+def view(document: dict) -> ReportView:
+    """The report of a result document."""
+    checks = [CheckLine(c["name"], bool(c["ok"]), c["detail"], c.get("kind", "design"))
+              for c in document.get("checks", [])]
+    summary = document.get("summary") if isinstance(document.get("summary"), dict) else {}
+    tool = list(document.get("notes") or [])
+    for key in ("load_sharing", "transmission_error_note", "edge_pressure_note"):
+        if summary.get(key):
+            tool.append(summary[key])
+    tables = [t for key, value in document.items() if key not in META
+              for t in _tables(key, value)]
+    stages = [(name, stage.get("reason", "")) for name, stage in
+              (document.get("stages") or {}).items() if stage.get("status") == "failed"]
+    return ReportView(
+        title=document.get("title") or document["case"], case=document["case"],
+        kind=document["kind"], source=document.get("source") or "",
+        version=str(document.get("toothcontact_version", "")), units=document.get("units", ""),
+        key_results=key_results(document),
+        design_checks=[c for c in checks if c.kind == "design"],
+        other_checks=[c for c in checks if c.kind != "design"],
+        assumptions=[str(a) for a in document.get("assumptions") or []], tool_notes=tool,
+        inputs="\n".join(toml_lines(document.get("inputs") or {})), tables=tables,
+        stages=stages)
+
+
+def _tables(key: str, value) -> list[Table]:
+    title = key.replace("_", " ")
+    if isinstance(value, dict):
+        plain = {k: v for k, v in value.items() if not k.endswith("_note")
+                 and k not in ("load_sharing",)}
+        if not plain:
+            return []
+        note = "; ".join(f"{number(v)}" for k, v in value.items() if k.endswith("_note"))
+        rows = [[label(k), number(v)] for k, v in plain.items()]
+        return [Table(title, ["quantity", "value"], rows, [False, True], note=note)]
+    if isinstance(value, list) and value and all(isinstance(r, dict) for r in value):
+        keys = list(dict.fromkeys(k for row in value for k in row))
+        scale = {k: max((abs(r[k]) for r in value if isinstance(r.get(k), float)
+                         and math.isfinite(r[k])), default=0.0) for k in keys}
+        rows = [[number(r.get(k), scale[k]) for k in keys] for r in value]
+        numeric = [all(isinstance(r.get(k), (int, float)) and not isinstance(r.get(k), bool)
+                       for r in value if r.get(k) is not None) for k in keys]
+        return [Table(title, [label(k) for k in keys], rows, numeric,
+                      collapsed=len(value) > COLLAPSE_ROWS)]
+    return []
+
+
+# ---------------------------------------------------------------------------------------
+# key results
+
+
+def key_results(document: dict) -> list[KeyResult]:
+    """The figures that decide the design, by what the document holds: the loaded contact
+    and its pattern (contact kinds), the crown (crown design), the efficiency (worm sets),
+    the ellipse (Hertz)."""
+    out: list[KeyResult] = []
+    summary = document.get("summary") if isinstance(document.get("summary"), dict) else None
+    if summary:
+        driven = "wheel" if document["kind"] == "worm" else "gear"
+        out += _contact_figures(summary, document.get("positions") or [], driven)
+    mesh = document.get("mesh") or {}
+    if "normal_backlash_mm" in mesh:
+        out.append(KeyResult("normal backlash", f"{number(mesh['normal_backlash_mm'] * 1e3)} µm",
+                             f"centre distance {number(mesh['center_distance_mm'])} mm"))
+    if "transverse_contact_ratio" in mesh:
+        out.append(KeyResult("contact ratio", number(mesh["transverse_contact_ratio"]),
+                             f"overlap ratio {number(mesh['overlap_ratio'])}"))
+    crown = document.get("crown")
+    if isinstance(crown, dict):
+        out.append(KeyResult("crown radius", f"{number(crown['radius_mm'])} mm",
+                             f"centre {number(crown.get('center_from_B_mm'))} mm from end B; "
+                             f"drop {number(crown['drop_A_mm'] * 1e3)} µm at A, "
+                             f"{number(crown['drop_B_mm'] * 1e3)} µm at B"))
+    contact = document.get("contact")
+    if isinstance(contact, dict) and "stress_MPa" in contact:
+        out.append(KeyResult("contact stress", f"{number(contact['stress_MPa'])} MPa",
+                             f"ellipse {number(contact['a_mm'])} × {number(contact['b_mm'])} mm"))
+        margins = [contact[k] for k in ("edge_margin_A_mm", "edge_margin_B_mm") if k in contact]
+        if margins:
+            out.append(KeyResult("least margin to the face ends", f"{number(min(margins))} mm",
+                                 "", min(margins) < -1e-6))
+    hertz = document.get("hertz")
+    if isinstance(hertz, dict):
+        out.append(KeyResult("peak pressure", f"{number(hertz['p_max_MPa'])} MPa",
+                             f"ellipse a = {number(hertz['a_mm'])} mm, b = {number(hertz['b_mm'])} "
+                             f"mm; approach {number(hertz['approach_mm'] * 1e3)} µm"))
+    spline = document.get("spline")
+    if isinstance(spline, dict) and "contact_stress_MPa" in spline:      # a crown design
+        out.append(KeyResult("crown radius", f"{number(spline['crown_radius_mm'])} mm",
+                             f"height {number(spline['crown_height_mm'] * 1e3)} µm; the "
+                             f"tilted tooth fits up to {number(spline['crown_radius_fit_max_mm'])} mm"))
+        out.append(KeyResult("contact stress", f"{number(spline['contact_stress_MPa'])} MPa",
+                             f"tooth load {number(spline['tooth_load_N'])} N"))
+    efficiency = document.get("efficiency")
+    if isinstance(efficiency, list) and efficiency:
+        out += _efficiency_figures(efficiency)
+    return out
+
+
+def _contact_figures(summary: dict, rows: list[dict], driven: str) -> list[KeyResult]:
+    out = []
+    solved = [r for r in rows if r.get("bem_status") == "solved"]
+    if summary.get("bem_max_p_max_MPa") is not None and solved:
+        top = max(solved, key=lambda r: r["bem_p_max_MPa"])
+        where = f"roll {number(top['roll_deg'])} deg, pair {top['pair']}"
+        if top.get("edge_loaded"):
+            where += f", edge-loaded at {top.get('edge_pressure_at')}"
+        out.append(KeyResult("largest loaded contact pressure",
+                             f"{number(summary['bem_max_p_max_MPa'])} MPa", where,
+                             bool(top.get("edge_loaded"))))
+        loaded = summary.get("edge_loaded_contacts")
+        if loaded is not None:
+            out.append(KeyResult("edge-loaded contacts", f"{loaded} of {len(solved)}",
+                                 "edge pressure above a quarter of the peak", loaded > 0))
+    elif summary.get("max_p_max_MPa") is not None:
+        out.append(KeyResult("largest Hertz pressure", f"{number(summary['max_p_max_MPa'])} MPa",
+                             "equal load split, no loaded solution"))
+    for what, key, edge in (("face ends", "worst_face_edge_margin_mm", "worst_face_edge"),
+                            ("tip and form", "worst_profile_edge_margin_mm", "worst_profile_edge")):
+        if summary.get(key) is not None:
+            out.append(KeyResult(f"worst edge margin ({what})", f"{number(summary[key])} mm",
+                                 f"at {summary.get(edge)} (negative: the pattern is cut)",
+                                 summary[key] < 0))
+    span = summary.get("face_position_range_mm")
+    if span:
+        value = (f"{number(span[0])} mm" if number(span[0]) == number(span[1]) else
+                 f"{number(span[0])} to {number(span[1])} mm")
+        out.append(KeyResult("pattern centre on the face", value,
+                             "from mid-face, toward end B positive"))
+    for label_, key in (("transmission error, peak to peak (unloaded)",
+                         "transmission_error_peak_to_peak_urad"),
+                        ("transmission error, peak to peak (loaded)",
+                         "loaded_transmission_error_peak_to_peak_urad")):
+        if summary.get(key) is not None:
+            out.append(KeyResult(label_, f"{number(summary[key])} µrad", f"the {driven}'s lag"))
+    return out
+
+
+def _efficiency_figures(rows: list[dict]) -> list[KeyResult]:
+    out = []
+    for key, what in (("eta_z", "efficiency eta_z (worm driving)"),
+                      ("eta_kim", "efficiency (misalignment model)"),
+                      ("eta_total", "total efficiency")):
+        values = [r[key] for r in rows if isinstance(r.get(key), (int, float))]
+        if values:
+            at = [r.get("temperature_C", r.get("output_torque_Nm")) for r in rows]
+            out.append(KeyResult(what, f"{number(min(values))} to {number(max(values))}",
+                                 f"over {len(values)} conditions"
+                                 + (f" ({number(min(at))} to {number(max(at))} °C)"
+                                    if "temperature_C" in rows[0] else "")))
+    locking = [r.get("self_locking") for r in rows if "self_locking" in r]
+    if locking:
+        out.append(KeyResult("self-locking", "yes" if all(locking) else
+                             "no" if not any(locking) else "at some conditions"))
+    return out
+
+
+# ---------------------------------------------------------------------------------------
+# inputs as given
+
+
+def toml_lines(table: dict, prefix: str = "") -> list[str]:
+    """The case's inputs as TOML text: plain keys first, then each sub-table (a table that
+    holds only sub-tables gets no header of its own)."""
+    import json
+
+    lines = [f"{k} = {json.dumps(v, ensure_ascii=False)}" for k, v in table.items()
+             if not isinstance(v, dict) and not (isinstance(v, list) and v and isinstance(v[0], dict))]
+    for k, v in table.items():
+        name = f"{prefix}{k}"
+        if isinstance(v, dict):
+            inner = toml_lines(v, f"{name}.")
+            has_plain = any(not isinstance(x, dict) for x in v.values())
+            lines += (["", f"[{name}]"] if has_plain else []) + inner
+        elif isinstance(v, list) and v and isinstance(v[0], dict):
+            for row in v:
+                lines += ["", f"[[{name}]]", *toml_lines(row, f"{name}.")]
+    return lines
