@@ -8,8 +8,9 @@ Pure functions: nothing here reads or writes files.
 from __future__ import annotations
 
 import math
+import re
 import warnings
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 from pathlib import Path
 
 import numpy as np
@@ -630,7 +631,8 @@ def _contact_sections(cycle, loads: dict, result: Result) -> None:
             "face_mm": ease.face_mm.round(4).tolist(), "radius_mm": ease.radius_mm.round(4).tolist(),
             "separation_um": [[None if not np.isfinite(s) else round(float(s) * 1e3, 3)
                                for s in line] for line in ease.separation],
-            "approach_um": cycle.settings.approach * 1e3}
+            "approach_um": cycle.settings.approach * 1e3,
+            "member": cycle.settings.ease_off_member}
     te = [r["transmission_error_urad"] for r in rows]
     result.sections["positions"] = rows
     summary = {**loads, "max_p_max_MPa": max(r["p_max_MPa"] for r in rows),
@@ -805,12 +807,42 @@ def _worm_contact(case: schema.WormCase, parts, result: Result) -> None:
     try:
         cycle = parallel_cycle(mesh, worm, wheel, normal_load, C_E,
                               _cycle_settings(a, pairs=(-2, -1, 0, 1, 2),
-                                              ease_off_grid=(21, 41)))
+                                              ease_off_grid=(41, 61), ease_off_member="gear"))
     except (ValueError, RuntimeError) as exc:
         raise CaseError(f"misalignment / load: no contact could be found: {exc}") from None
     _contact_sections(cycle, loads, result)
     _loaded_sections(cycle, C_E, a.pressure_grid, None,
                      "tooth bending left out: the teeth share by their contact approaches", result)
+    _publish_names(result, {"pinion": "worm", "gear": "wheel"})
+
+
+#: an edge of a flank as the contact engine names it: member (its driver "pinion", its
+#: driven "gear") and edge
+_EDGE = re.compile(r"\b(pinion|gear)_(?=(tip|form|root|end_A|end_B)\b)")
+
+
+def _publish_names(result: Result, names: dict[str, str]) -> None:
+    """Results under the names of the parts (a worm set's worm and wheel) where the contact
+    engine speaks of its driver and driven member as pinion and gear: the edges in the rows,
+    the summary and the check details, and the contact-radius key."""
+    def edge(text):
+        return _EDGE.sub(lambda m: f"{names[m.group(1)]}_", text) if isinstance(text, str) else text
+
+    for row in result.sections.get("positions", []):
+        if "contact_radius_pinion_mm" in row:
+            row[f"contact_radius_{names['pinion']}_mm"] = row.pop("contact_radius_pinion_mm")
+        for key in ("edge_contact_at", "edge_pressure_at"):
+            if key in row:
+                row[key] = edge(row[key])
+        if isinstance(row.get("edge_margins_mm"), dict):
+            row["edge_margins_mm"] = {edge(k): v for k, v in row["edge_margins_mm"].items()}
+    summary = result.sections.get("summary", {})
+    for key in ("worst_face_edge", "worst_profile_edge"):
+        if key in summary:
+            summary[key] = edge(summary[key])
+    if "ease_off" in result.sections:
+        result.sections["ease_off"]["member"] = names[result.sections["ease_off"]["member"]]
+    result.checks = [replace(c, detail=edge(c.detail)) for c in result.checks]
 
 
 def imported_case(case: schema.ImportedCase) -> Result:

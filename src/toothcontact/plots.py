@@ -149,7 +149,7 @@ def mesh_cycle(result: dict, path: str | Path) -> Path:
     if by_tooth:
         x, group, x_label = pair, roll, "tooth index"
     else:
-        x, group, x_label = roll, pair, "pinion roll angle (deg)"
+        x, group, x_label = roll, pair, f"{_driver(result)} roll angle (deg)"
 
     def label(g: float) -> str:
         return f"roll {g:g}°" if by_tooth else (f"pair {int(g):+d}" if g else "pair 0")
@@ -172,7 +172,7 @@ def mesh_cycle(result: dict, path: str | Path) -> Path:
         ax_te.plot(rolls, loaded_te[first], "s-", color=WARNING, ms=4, lw=1.2, label="loaded")
         shown.append(loaded_te[first])
         ax_te.legend(fontsize=8, loc="best")
-    ax_te.set(title="Transmission error (gear lag)",
+    ax_te.set(title=f"Transmission error ({'wheel' if result.get('kind') == 'worm' else 'gear'} lag)",
               xlabel="roll angle (deg)" if by_tooth else x_label,
               ylabel="transmission error (µrad)")
     _least_span(ax_te, np.concatenate(shown), TE_LEAST_SPAN)
@@ -248,11 +248,12 @@ def mesh_cycle(result: dict, path: str | Path) -> Path:
 
 
 def ease_off_map(face_mm, radius_mm, separation_um, path: str | Path,
-                 approach_um: float | None = None, title: str = "Ease-off: flank separation") -> Path:
+                 approach_um: float | None = None, title: str = "Ease-off: flank separation",
+                 member: str = "pinion") -> Path:
     """Map of the separation (ease-off) of a flank pair over the flank.
 
     face_mm: face position from mid-face (mm, positive toward end B), length nx;
-    radius_mm: pinion radius (mm), length ny; separation_um: (ny, nx) separation (µm),
+    radius_mm: radius on the `member` (mm), length ny; separation_um: (ny, nx) separation (µm),
     NaN where there is no flank (left blank). approach_um: draws the contour
     separation = approach (µm), the rigid contact pattern at that approach."""
     x = np.asarray(face_mm, dtype=float).ravel()
@@ -293,7 +294,7 @@ def ease_off_map(face_mm, radius_mm, separation_um, path: str | Path,
     colorbar.set_label("separation (µm)")
     ax.set(title="\n".join(textwrap.wrap(title, 90)),
            xlabel="face position from mid-face (mm, + toward end B)",
-           ylabel="pinion radius (mm)")
+           ylabel=f"{member} radius (mm)")
     ax.legend(handles=handles, loc="upper center", bbox_to_anchor=(0.5, -0.14), ncol=1,
               fontsize=8, frameon=False)
     return _save(fig, path)
@@ -657,6 +658,11 @@ def worm_efficiency_vs_torque(result: dict, path: str | Path) -> Path:
 # 6. dispatch
 
 
+def _driver(result: dict) -> str:
+    """The name of a result's driving member: worm, spline hub or pinion."""
+    return {"worm": "worm", "spline": "hub"}.get(result.get("kind"), "pinion")
+
+
 def figures_for(result: dict, out_dir: str | Path) -> list[Path]:
     """Every figure that applies to a result document, written into `out_dir`:
     mesh_cycle.png (any result with 'positions'), ease_off.png (a result with an 'ease_off'
@@ -675,7 +681,8 @@ def figures_for(result: dict, out_dir: str | Path) -> list[Path]:
             ease["face_mm"], ease["radius_mm"],
             np.array([[_num(v) for v in row] for row in ease["separation_um"]]),
             out / "ease_off.png", approach_um=ease.get("approach_um"),
-            title=_title(result, "Ease-off: flank separation")))
+            title=_title(result, f"Ease-off: separation on the {ease.get('member', 'pinion')} "
+                                 "flank"), member=ease.get("member", "pinion")))
     if kind == "crown_design":
         written.append(crown_design_chart(result, out / "crown_design.png"))
     if kind == "worm_efficiency":

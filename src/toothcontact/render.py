@@ -175,22 +175,13 @@ class Patch:
     cropped: bool = False
 
 
-def pattern_member(case) -> str:
-    """The member whose flank shows the pattern: the wheel of a worm set (where a worm
-    gear's pattern is judged; the worm's thread winds round several times), else the
-    driver (pinion, spline hub)."""
-    return "gear" if getattr(case, "kind", None) == "worm" else "pinion"
-
-
-def flank_patch(cycle, member: str = "pinion", pad: int = 2) -> Patch:
-    """The ease-off of the member's flank. The driver's comes with the cycle; the driven
-    member's is found here from the placements of the cycle's contacts (driven_ease_off).
-    A flank that winds round its axis (a worm thread) is cut to the part near the pattern
-    (within 50 approaches), padded by `pad` grid lines."""
-    if member == "gear":
-        ease = driven_ease_off(cycle)
-    else:
-        ease = cycle.ease_off
+def flank_patch(cycle, pad: int = 2) -> Patch:
+    """The ease-off the cycle mapped (on the member cycle.settings.ease_off_member: the
+    driver's flank, or a worm wheel's). A flank that winds round its axis (a worm thread)
+    is cut to the part near the pattern (within 50 approaches), padded by `pad` grid
+    lines."""
+    member = cycle.settings.ease_off_member
+    ease = cycle.ease_off
     flank = getattr(cycle, member)
     s = ease.separation
     if not _winds(flank):
@@ -202,24 +193,6 @@ def flank_patch(cycle, member: str = "pinion", pad: int = 2) -> Patch:
     su = slice(max(iu[0] - pad, 0), min(iu[-1] + pad + 1, len(ease.u)))
     sv = slice(max(iv[0] - pad, 0), min(iv[-1] + pad + 1, len(ease.v)))
     return Patch(member, flank, ease.u[su], ease.v[sv], ease.points[su, sv], s[su, sv], True)
-
-
-def driven_ease_off(cycle, grid: tuple[int, int] = (41, 61)):
-    """The driven member's (gear's, wheel's) ease-off: the least separation of its tooth-0
-    flank from the driver over the placements of the cycle's contacts (contact.field.ease_off
-    with the roles swapped; each placement's turn is the angle of the member's frame about
-    its own axis). Only contacts' placements are used, so far from the pattern the
-    separation is an upper bound; within the approach it is exact."""
-    from .contact.field import ease_off
-
-    frames = cycle.gear_frames
-    axis, x = frames.R[:, :, 2], frames.R[:, :, 0]
-    ref = x[0] - axis[0] * np.dot(x[0], axis[0])
-    ref /= np.linalg.norm(ref)
-    ref2 = np.cross(axis[0], ref)
-    turns = np.arctan2(x @ ref2, x @ ref)
-    with np.errstate(all="ignore"):
-        return ease_off(cycle.gear, cycle.pinion, frames, cycle.pinion_frames, turns, grid)
 
 
 def _winds(flank) -> bool:
@@ -737,7 +710,7 @@ def pattern_scene(result, case=None, name: str = "", view: str = "head-on",
     own frame (tooth 0)."""
     pv = _pyvista()
     cycle = result.cycle
-    patch = patch or flank_patch(cycle, pattern_member(case))
+    patch = patch or flank_patch(cycle)
     member, flank = patch.member, patch.flank
     names = MEMBER_NAMES.get(getattr(case, "kind", ""), ("pinion", "gear"))
     owner, mate = (names[0], names[1]) if member == "pinion" else (names[1], names[0])
@@ -1088,7 +1061,7 @@ def pressure_scene(result, case=None, name: str = "", patch: Patch | None = None
     (bem_p_max_MPa, which leaves out the singular cells at a sharp edge)."""
     pv = _pyvista()
     cycle = result.cycle
-    patch = patch or flank_patch(cycle, pattern_member(case))
+    patch = patch or flank_patch(cycle)
     flank = patch.flank
     points, pressure = pressure_on_flank(cycle, result.loaded, patch)
     plotter = _plotter(pv)
@@ -1202,7 +1175,7 @@ def pictures_for(result, case, out_dir: str | Path, name: str = "", position: in
     if cycle is None:
         written.append(_finish(geometry_scene(case, name, bodies), out / "pair.png"))
         return written
-    patch = flank_patch(cycle, pattern_member(case))
+    patch = flank_patch(cycle)
     for view, filename in (("head-on", "pattern_head_on.png"),
                            ("perspective", "pattern_perspective.png")):
         written.append(_finish(pattern_scene(result, case, name, view, bodies, patch),

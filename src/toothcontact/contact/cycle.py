@@ -15,7 +15,7 @@ among the pairs in contact. Units: mm, N, MPa, rad.
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass, fields
+from dataclasses import dataclass, fields, replace
 
 import numpy as np
 
@@ -43,7 +43,10 @@ class CycleSettings:
     approach: float = 0.00632             # mm, Litvin's rigid approach for the pattern
     fit_points: int = 21
     pairs: tuple[int, ...] = (-2, -1, 0, 1, 2)
-    ease_off_grid: tuple[int, int] = (31, 61)   # pinion flank grid of the ease-off map
+    ease_off_grid: tuple[int, int] = (31, 61)   # flank grid of the ease-off map
+    #: whose flank the ease-off is mapped on: "pinion" (the driver), or "gear" (the driven
+    #: member: a worm wheel's, where a worm gear's pattern is judged)
+    ease_off_member: str = "pinion"
     field_grid: int = 201     # points per side of each contact's separation field; 0 = none
 
 
@@ -153,6 +156,8 @@ def parallel_cycle(mesh, pinion: Flank, gear: Flank, normal_load: float,
                          *near_pairs, settings.ease_off_grid)
     cycle = ContactCycle(rows, pinion, gear, pf, gf, contacts, planes, angle, centre, ease,
                          settings, delta[P], np.abs(slope[P]))
+    if settings.ease_off_member == "gear":
+        cycle = replace(cycle, ease_off=_driven_ease_off(cycle, settings.ease_off_grid))
     if settings.field_grid:
         for row, pattern in zip(rows, rigid_patterns(cycle, settings.field_grid)):
             row.update({"rigid_pattern_area_mm2": pattern.area,
@@ -169,6 +174,21 @@ def _ease_off(mesh, pinion, gear, phis, pairs, pinion_frames, gear_frames, delta
     micrometre and left out)."""
     turns = np.array([mesh.driver_turn(phis[p], pairs[j]) for p, j in zip(P, J)], float)
     return ease_off(pinion, gear, pinion_frames[P, J], gear_frames(P, J, delta[P]), turns, grid)
+
+
+def _driven_ease_off(cycle: ContactCycle, grid: tuple[int, int]) -> EaseOff:
+    """The driven member's (gear's, wheel's) ease-off: the least separation of its tooth-0
+    flank from the driver over the placements of the cycle's contacts (field.ease_off with
+    the roles swapped; each placement's turn is the angle of the member's frame about its
+    own axis). Only the contacts' placements are used: far from the pattern the separation
+    is an upper bound; within the approach it is exact."""
+    frames = cycle.gear_frames
+    axis, x = frames.R[:, :, 2], frames.R[:, :, 0]
+    ref = x[0] - axis[0] * np.dot(x[0], axis[0])
+    ref /= np.linalg.norm(ref)
+    turns = np.arctan2(x @ np.cross(axis[0], ref), x @ ref)
+    with np.errstate(all="ignore"):
+        return ease_off(cycle.gear, cycle.pinion, frames, cycle.pinion_frames, turns, grid)
 
 
 def _take(contacts: ContactPoints, index) -> ContactPoints:
