@@ -214,3 +214,25 @@ def test_render_command(tmp_path):
     result = runner.invoke(app, ["render", str(cases / "spur_crowned_20_60.toml"), "--out",
                                  str(tmp_path), "--exaggerate", "-1"])
     assert result.exit_code == 2 and "--exaggerate" in result.output
+
+
+@pytest.mark.parametrize("half", [0.3, 2.0, 10.0, 47.0])
+def test_the_scale_bar_is_a_round_length_drawn_to_scale(half):
+    """A head-on picture's mm bar: 1, 2 or 5 × 10^k mm, between a fifteenth and a sixth of
+    the window's width, and on the screen exactly that long (its ends projected through
+    the camera: pixels per mm = window height / (2·half) in an orthographic view)."""
+    pv = render._pyvista()
+    plotter = render._plotter(pv)
+    focus, normal, up = np.zeros(3), np.array([0.0, 0.0, 1.0]), np.array([0.0, 1.0, 0.0])
+    render._camera(plotter, focus, normal, up, half, parallel=True)
+    before = len(plotter.renderer.actors)
+    length = render._scale_bar(plotter, focus, normal, up, half)
+    width = 2.0 * half * render.WINDOW[0] / render.WINDOW[1]
+    mantissa = length / 10.0 ** math.floor(math.log10(length))
+    assert round(mantissa, 9) in (1.0, 2.0, 5.0)
+    assert width / 15.0 < length <= width / 6.0
+    bar = list(plotter.renderer.actors.values())[before].GetMapper().GetInput()
+    ends = render.project(plotter, np.asarray(bar.points))
+    assert abs(ends[1, 0] - ends[0, 0]) == pytest.approx(
+        length * render.WINDOW[1] / (2.0 * half), rel=0.01)
+    plotter.close()

@@ -813,7 +813,12 @@ def _worm_contact(case: schema.WormCase, parts, result: Result) -> None:
     _contact_sections(cycle, loads, result)
     _loaded_sections(cycle, C_E, a.pressure_grid, None,
                      "tooth bending left out: the teeth share by their contact approaches", result)
-    _publish_names(result, {"pinion": "worm", "gear": "wheel"})
+    _publish_names(result, PUBLISHED_NAMES["worm"])
+
+
+#: the names a kind's results give the contact engine's driver ("pinion") and driven member
+#: ("gear"); a kind not listed keeps those
+PUBLISHED_NAMES = {"worm": {"pinion": "worm", "gear": "wheel"}}
 
 
 #: an edge of a flank as the contact engine names it: member (its driver "pinion", its

@@ -263,9 +263,17 @@ def _patch_boundary(patch: Patch, n: int = 121) -> dict[str, np.ndarray]:
     return out
 
 
+def row_name(case, member: str) -> str:
+    """The name the result rows give `member` ("pinion" or "gear", the contact engine's
+    driver and driven member): a worm set's are the worm and the wheel."""
+    from .analyses import PUBLISHED_NAMES
+
+    return PUBLISHED_NAMES.get(getattr(case, "kind", ""), {}).get(member, member)
+
+
 def edge_contacts(rows: list[dict], member: str) -> dict[str, float]:
-    """Edges of `member` ("pinion" or "gear") that a contact ellipse crosses, with the worst
-    margin (mm, negative), from the rows' edge_margins_mm."""
+    """Edges of `member` (as the rows name it, see row_name) that a contact ellipse crosses,
+    with the worst margin (mm, negative), from the rows' edge_margins_mm."""
     worst = {}
     for row in rows:
         for key, margin in (row.get("edge_margins_mm") or {}).items():
@@ -545,6 +553,10 @@ def _texts(plotter, title: str, legend: list[str] = (), warnings: list[str] = ()
         y -= 6
 
 
+def _ordinal(n: int) -> str:
+    return f"{n}{'th' if 10 <= n % 100 <= 20 else {1: 'st', 2: 'nd', 3: 'rd'}.get(n % 10, 'th')}"
+
+
 def _title(case, name: str, what: str) -> str:
     title = getattr(case, "title", "") or name
     return _wrap(f"{name}: {title}" if name and title != name else title) + "\n" + what
@@ -631,6 +643,40 @@ def _refit(plotter, points: np.ndarray, box, margin: float = 1.05, rounds: int =
 
 #: where a flank goes in a picture with a title above and a colour bar below
 FLANK_BOX = (0.05, 0.14, 0.95, 0.80)
+
+#: a pattern picture outlines at most this many ellipses (every n-th of more; the edge
+#: contacts always), so that many contacts do not become a tangle
+MAX_OUTLINES = 15
+
+
+def _scale_bar(plotter, focus: np.ndarray, direction: np.ndarray, up: np.ndarray,
+               half: float, stretch: float = 1.0) -> float:
+    """A mm scale bar in the bottom right corner of an orthographic view (focus, looking
+    along -direction, `half` mm from the middle to the top): a round length (1, 2 or 5
+    × 10^k mm) near a sixth of the window's width, drawn across (along the face, which
+    `stretch` leaves at scale). Returns its length (mm)."""
+    pv = _pyvista()
+    aspect = WINDOW[0] / WINDOW[1]
+    width = 2.0 * half * aspect
+    target = width / 6.0
+    power = 10.0 ** math.floor(math.log10(target))
+    length = max(m * power for m in (1.0, 2.0, 5.0) if m * power <= target)
+    direction = direction / np.linalg.norm(direction)
+    right = np.cross(up, direction)
+    right /= np.linalg.norm(right)
+    x1, y = 0.95, 0.115                                    # window fractions, above the bar
+    end = focus + right * (x1 - 0.5) * width + up * (y - 0.5) * 2.0 * half
+    start = end - right * length
+    tick = up * 0.008 * 2.0 * half
+    ink = dict(color=INK, line_width=3, lighting=False)
+    plotter.add_mesh(pv.lines_from_points(np.array([start, end])), **ink)
+    for p in (start, end):
+        plotter.add_mesh(pv.lines_from_points(np.array([p - tick, p + tick])), **ink)
+    text = f"{length:g} mm" + (" along the face" if stretch > 1.05 else "")
+    left = (x1 - length / width) * WINDOW[0]           # the label ends left of the bar
+    plotter.add_text(text, position=(int(left - 12 * len(text) - 12), int(y * WINDOW[1]) - 8),
+                     font_size=10, color=INK)
+    return length
 
 
 def _edge_labels(plotter, edges: dict[str, np.ndarray], centre: np.ndarray, offset: float,
@@ -742,7 +788,7 @@ def pattern_scene(result, case=None, name: str = "", view: str = "head-on",
                      scalar_bar_args=bar, interpolate_before_map=True, **_surface_props())
 
     # the flank's edges; red along the stretch that each crossing ellipse cuts
-    crossed = edge_contacts(cycle.rows, member)
+    crossed = edge_contacts(cycle.rows, row_name(case, member))
     edges = _patch_boundary(patch)
     outlines = ellipse_outlines(cycle, member)
     for edge, line in edges.items():
@@ -750,18 +796,25 @@ def pattern_scene(result, case=None, name: str = "", view: str = "head-on",
             continue
         lifted = warp(_lift(flank, line, lift))
         plotter.add_mesh(pv.lines_from_points(lifted), color=INK, line_width=2, lighting=False)
-        cut = [lifted[i0:i1 + 1] for i0, i1 in _cut_stretches(cycle.rows, member, edge, line,
+        cut = [lifted[i0:i1 + 1] for i0, i1 in _cut_stretches(cycle.rows, row_name(case, member), edge, line,
                                                                outlines, 0.01 * span)]
         mesh = _polylines(pv, cut)
         if mesh is not None:
             plotter.add_mesh(mesh, color=WARNING, line_width=7, lighting=False)
     _edge_labels(plotter, edges, centre, 0.035 * span, set(crossed), warp)
 
-    # every contact's ellipse
+    # the ellipses: every edge contact's, and of the others every n-th (at most MAX_OUTLINES)
     edge_rows = np.array([bool(r["edge_contact"]) for r in cycle.rows])
     near = _near_patch(patch, outlines)
-    for rows, color, width, opacity in ((~edge_rows, OUTLINE, 1.0, 0.6),
-                                        (edge_rows, WARNING, 2.0, 1.0)):
+    plain, cut = np.flatnonzero(~edge_rows & near), np.flatnonzero(edge_rows & near)
+    every = max(1, math.ceil(len(plain) / MAX_OUTLINES), math.ceil(len(cut) / MAX_OUTLINES))
+    outlined, cut_outlined = np.zeros(len(cycle.rows), bool), np.zeros(len(cycle.rows), bool)
+    outlined[plain[::every]] = True
+    cut_outlined[cut[::every]] = True
+    if len(cut):      # the deepest cut is always drawn
+        cut_outlined[min(cut, key=lambda k: cycle.rows[k]["edge_margin_mm"] or 0.0)] = True
+    for rows, color, width, opacity in ((outlined, OUTLINE, 1.0, 0.6),
+                                        (cut_outlined, WARNING, 2.0, 1.0)):
         lines = [warp(_lift(flank, outlines[k], 1.5 * lift))
                  for k in np.flatnonzero(rows & near)]
         mesh = _polylines(pv, lines)
@@ -774,17 +827,22 @@ def pattern_scene(result, case=None, name: str = "", view: str = "head-on",
             + ("looking at it head-on" if view == "head-on" else "perspective"))
     legend = [f"paint: the flank's least separation from the {mate} over the mesh cycle "
               f"({positions} positions)",
-              f"outlines: the Hertz ellipse of each of the {len(cycle.rows)} contacts"]
+              (f"outlines: the Hertz ellipse of each of the {len(cycle.rows)} contacts"
+               if every == 1 else f"outlines: the Hertz ellipse of every {_ordinal(every)} of "
+               f"the {len(cycle.rows)} contacts (edge contacts in red, the deepest cut always)")]
     if patch.cropped:
         legend.append("the part of the flank near the pattern")
-    if stretch > 1.0:
+    if stretch > 1.05:
         legend.append(f"NOTE: the profile direction is drawn {stretch:.1f} times its scale "
                       "(a long, shallow flank)")
     warnings = []
     if crossed:
-        warnings.append(f"EDGE CONTACT (red): {int(edge_rows.sum())} ellipses cross the "
+        prefix = row_name(case, member) + "_"
+        cutting = sum(any(k.startswith(prefix) and m is not None and m < 0
+                          for k, m in (r.get("edge_margins_mm") or {}).items()) for r in cycle.rows)
+        warnings.append(f"EDGE CONTACT (red): {cutting} contacts cross the "
                         + ", ".join(f"{e.replace('_', ' ')} ({m:+.3f} mm)" for e, m in crossed.items()))
-    other = edge_contacts(cycle.rows, "gear" if member == "pinion" else "pinion")
+    other = edge_contacts(cycle.rows, row_name(case, "gear" if member == "pinion" else "pinion"))
     if other:
         warnings.append(f"and the {mate}'s " + ", ".join(
             f"{e.replace('_', ' ')} ({m:+.3f} mm)" for e, m in other.items()))
@@ -802,6 +860,7 @@ def pattern_scene(result, case=None, name: str = "", view: str = "head-on",
     if view == "head-on":
         focus, half = _fit(pts, centre, normal, up, 1.1, FLANK_BOX)
         _camera(plotter, focus, normal, up, half, parallel=True)
+        _scale_bar(plotter, focus, normal, up, half, stretch)
     else:
         direction = normal + 0.5 * up - 0.8 * across
         target = pts if tooth is None or patch.cropped else np.concatenate(
@@ -1082,7 +1141,7 @@ def pressure_scene(result, case=None, name: str = "", patch: Patch | None = None
     plotter.add_mesh(surface, scalars="pressure (MPa)", cmap=PRESSURE_CMAP, clim=(0.0, top),
                      nan_color=NO_PAINT, above_color="#fde725", scalar_bar_args=bar,
                      **_surface_props())
-    crossed = edge_contacts(cycle.rows, patch.member)
+    crossed = edge_contacts(cycle.rows, row_name(case, patch.member))
     edges = _patch_boundary(patch)
     for edge, line in edges.items():
         if len(line) < 2:
@@ -1096,7 +1155,7 @@ def pressure_scene(result, case=None, name: str = "", patch: Patch | None = None
     peak = max((r.get("bem_raw_peak_MPa", 0.0) for r in cycle.rows), default=0.0)
     legend = [f"the largest pressure at each point over the {solved} loaded contacts of the "
               f"cycle; design peak {top:.0f} MPa"]
-    if stretch > 1.0:
+    if stretch > 1.05:
         legend.append(f"NOTE: the profile direction is drawn {stretch:.1f} times its scale")
     if peak > top * 1.001:
         legend.append(f"(cells at a sharp edge reach {peak:.0f} MPa: singular, "
@@ -1114,6 +1173,7 @@ def pressure_scene(result, case=None, name: str = "", patch: Patch | None = None
            legend, warnings)
     focus, half = _fit(warp(patch.points.reshape(-1, 3)), centre, normal, up, 1.1, FLANK_BOX)
     _camera(plotter, focus, normal, up, half, parallel=True)
+    _scale_bar(plotter, focus, normal, up, half, stretch)
     return plotter
 
 
