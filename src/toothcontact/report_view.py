@@ -227,6 +227,14 @@ def key_results(document: dict) -> list[KeyResult]:
     if "transverse_contact_ratio" in mesh:
         out.append(KeyResult("contact ratio", number(mesh["transverse_contact_ratio"]),
                              f"overlap ratio {number(mesh['overlap_ratio'])}"))
+    wheel, worm = document.get("wheel"), document.get("worm")
+    if isinstance(wheel, dict) and "center_distance_mm" in wheel and isinstance(worm, dict):
+        out.append(KeyResult("ratio", f"{number(wheel['ratio'])}",
+                             f"{worm['starts']}-start {worm['form']} worm, {wheel['teeth']} "
+                             "wheel teeth"))
+        out.append(KeyResult("centre distance", f"{number(wheel['center_distance_mm'])} mm",
+                             f"lead angle {number(worm['lead_angle_deg'])} deg, wheel face "
+                             f"width {number(wheel['face_width_mm'])} mm"))
     crown = document.get("crown")
     if isinstance(crown, dict):
         out.append(KeyResult("crown radius", f"{number(crown['radius_mm'])} mm",
