@@ -89,3 +89,19 @@ def test_a_killed_run_leaves_the_previous_run_and_the_next_run_cleans_up(tmp_pat
     assert listing(out) == before
     runner.run_case(HERTZ, out, pictures=False)
     assert no_leftovers(out)
+
+
+def test_a_defaulted_material_is_stated_in_the_result():
+    """The default steel (E = 206 GPa) and a mate's material taken from the member's are
+    named in the notes, which the report lists; a given material is not."""
+    from toothcontact.analyses import analyse
+    from toothcontact.case import parse_case
+
+    raw = {"kind": "spur", "teeth": [20, 60], "module": "3 mm", "pressure_angle": "20 deg",
+           "face_width": "30 mm"}
+    notes = analyse(parse_case(raw)).notes
+    assert "material: none given, so steel: E = 206 GPa, nu = 0.3" in notes
+    assert "gear_material: none given, so the same as material" in notes
+    given = analyse(parse_case({**raw, "material": {"E": "210 GPa", "nu": 0.29},
+                                "gear_material": {"E": "100 GPa", "nu": 0.3}})).notes
+    assert not any("none given" in n for n in given)

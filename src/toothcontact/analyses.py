@@ -73,7 +73,21 @@ def analyse(case: schema.CaseInfo) -> Result:
     # the analyses' own warnings are notes for the reader; a numerical library's runtime
     # warnings (an overflow inside a guarded step) are not
     result.notes.extend(str(w.message) for w in caught if issubclass(w.category, UserWarning))
+    result.notes.extend(_defaulted_materials(case))
     return result
+
+
+def _defaulted_materials(case: schema.CaseInfo) -> list[str]:
+    """Notes naming the materials the case left to their defaults (steel; the mate's)."""
+    given = case.model_fields_set
+    notes = []
+    if "material" in type(case).model_fields and "material" not in given:
+        m = case.material
+        notes.append(f"material: none given, so steel: E = {m.E / 1e3:g} GPa, nu = {m.nu:g}")
+    for mate in ("gear_material", "wheel_material", "sleeve_material"):
+        if mate in type(case).model_fields and getattr(case, mate) is None:
+            notes.append(f"{mate}: none given, so the same as material")
+    return notes
 
 
 def _ellipse(contact: hertz.PointContact) -> dict:
