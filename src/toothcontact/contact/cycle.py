@@ -152,11 +152,12 @@ def parallel_cycle(mesh, pinion: Flank, gear: Flank, normal_load: float,
         lag = -np.sign(slope[P]) * delta[P]
         rows, planes, angle, centre = _pair_results(pinion, gear, pf, gf, np.degrees(phis[P]), pairs[J],
                                             lag, contacts, gaps[keep], share, C_E, settings)
-        ease = _ease_off(mesh, pinion, gear, phis, pairs, pinion_frames, gear_frames, delta,
-                         *near_pairs, settings.ease_off_grid)
+        ease = (_ease_off(mesh, pinion, gear, phis, pairs, pinion_frames, gear_frames, delta,
+                          *near_pairs, settings.ease_off_grid)
+                if settings.ease_off_member == "pinion" else None)
     cycle = ContactCycle(rows, pinion, gear, pf, gf, contacts, planes, angle, centre, ease,
                          settings, delta[P], np.abs(slope[P]))
-    if settings.ease_off_member == "gear":
+    if ease is None:       # the driven member's, from the cycle's own placements
         cycle = replace(cycle, ease_off=_driven_ease_off(cycle, settings.ease_off_grid))
     if settings.field_grid:
         for row, pattern in zip(rows, rigid_patterns(cycle, settings.field_grid)):

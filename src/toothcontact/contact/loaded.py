@@ -8,10 +8,10 @@ rigid rotation of the gear: each closes by the same approach D, taken up by its 
 approach (the solver's delta_k(W_k), measured from its own gap, which includes its
 separation at first touch) and, for gears, its teeth's bending W_k/K (K = c'·b of the pair,
 analytic.stiffness); the loads sum to the normal load. The split is found by modelling each
-pair as delta_k(W) = s_k + c_k·W^n_k (n_k = 2/3, Hertz's law, at first; then fitted through
-the pair's last two solves, since a line contact's approach grows nearly linearly), c_k
-calibrated from its last solve, solving the model for D, solving each pair again, until
-the loads settle.
+pair as delta_k(W) = s_k + c_k·W^n_k (n_k = 2/3 and c_k from the rigid analysis's Hertz
+approach at first; then c_k calibrated from its last solve and n_k fitted through its last
+two, since a line contact's approach grows nearly linearly), solving the model for D,
+solving each loaded pair again, until the loads settle.
 
 The pressure at a sharp face end is singular: the raw peak grows as the grid is refined. The
 edge is therefore reported as the pressure averaged over a strip `EDGE_STRIP` wide at the
@@ -169,6 +169,13 @@ class _Pair:
         self.field = field
         self.last: ContactSolution | None = None
 
+    def hertz_coefficient(self) -> float:
+        """c of Hertz's approach law delta = c·W^(2/3) (mm/N^(2/3)) from the rigid
+        analysis's approach at the row's load; NaN where it gives none (a line, an area)."""
+        row = self.cycle.rows[self.k]
+        approach = row.get("approach_mm")
+        return approach / row["normal_load_N"] ** (2.0 / 3.0) if approach else math.nan
+
     @property
     def last_pressure(self):
         return None if self.last is None else self.last.pressure_MPa
@@ -196,36 +203,41 @@ class _Pair:
 
 def _share(pairs: list[_Pair], load: float, stiffness: float | None) -> list[ContactSolution | None]:
     """Solutions of the pairs of one position under their shares of `load` (see module):
-    each pair's approach modelled as s_k + c_k·W^n_k, n_k = 2/3 (Hertz's point contact) at
-    first and then fitted through its last two solutions (a line contact's approach grows
-    nearly linearly), the model solved for the split, each pair solved again, until the
-    loads settle."""
+    each pair's approach modelled as s_k + c_k·W^n_k, n_k = 2/3 and c_k from the rigid
+    analysis's Hertz approach at first (a pair without one, a line or an area, is first
+    solved at the equal split to calibrate it), then c_k from its last solution and n_k
+    fitted through its last two (a line contact's approach grows nearly linearly); the model
+    solved for the split, the loaded pairs solved there, until the split settles; the
+    solutions returned are those at the final split. A pair the model leaves unloaded is
+    not solved."""
     if len(pairs) == 1:
         return [pairs[0].solve(load)]
+    count = len(pairs)
     s = np.array([p.separation for p in pairs])
     compliance = 0.0 if stiffness is None else 1.0 / stiffness
-    loads = np.full(len(pairs), load / len(pairs))       # start: the equal split
-    solutions = [p.solve(w) for p, w in zip(pairs, loads)]
-    exponent = np.full(len(pairs), 2.0 / 3.0)
-    carried = np.ones(len(pairs), bool)
-    split = loads
+    exponent = np.full(count, 2.0 / 3.0)
+    c = np.array([p.hertz_coefficient() for p in pairs])
+    at = np.full(count, np.nan)                     # the load of each pair's last solution
+    solutions: list[ContactSolution | None] = [None] * count
+    for k in np.flatnonzero(~np.isfinite(c)):
+        at[k] = load / count
+        solutions[k] = pairs[k].solve(at[k])
+        c[k] = max(solutions[k].approach_mm - s[k], 1e-12) / at[k] ** exponent[k]
+    split, carried = None, np.ones(count, bool)
     for _ in range(20):
-        rise = np.array([max(sol.approach_mm - p.separation, 1e-12)
-                         for sol, p in zip(solutions, pairs)])
-        c = rise / loads ** exponent
         new = _split(c, exponent, s, compliance, load)
-        settled = np.max(np.abs(new - split)) <= SHARE_TOLERANCE * load
+        settled = split is not None and np.max(np.abs(new - split)) <= SHARE_TOLERANCE * load
         split = new
-        # a pair the split leaves (nearly) unloaded keeps its last calibration
         carried = new > 1e-6 * load
-        again = [p.solve(w) if on else sol
-                 for p, w, on, sol in zip(pairs, new, carried, solutions)]
-        change = np.where(carried, new / loads, 1.0)
-        for k in np.flatnonzero(np.abs(np.log(change)) > 0.01):
-            fitted = (math.log(max(again[k].approach_mm - s[k], 1e-12) / rise[k])
-                      / math.log(new[k] / loads[k]))
-            exponent[k] = min(max(fitted, 0.5), 1.0)
-        solutions, loads = again, np.where(carried, new, loads)
+        for k in np.flatnonzero(carried):
+            before, before_at = solutions[k], at[k]
+            solutions[k], at[k] = pairs[k].solve(new[k]), new[k]
+            rise = max(solutions[k].approach_mm - s[k], 1e-12)
+            if before is not None and abs(math.log(new[k] / before_at)) > 0.01:
+                fitted = (math.log(rise / max(before.approach_mm - s[k], 1e-12))
+                          / math.log(new[k] / before_at))
+                exponent[k] = min(max(fitted, 0.5), 1.0)
+            c[k] = rise / new[k] ** exponent[k]
         if settled:
             break
     return [sol if on else None for sol, on in zip(solutions, carried)]
