@@ -173,8 +173,12 @@ def test_pictures_of_a_contact_case_are_written_whole(aligned, tmp_path):
 
     for path in written:
         image = np.asarray(Image.open(path).convert("RGB"))
-        assert image.shape == (render.WINDOW[1], render.WINDOW[0], 3)
+        # the head-on pictures are cut off below their colour bar (the frame filled)
+        assert image.shape[1:] == (render.WINDOW[0], 3)
+        assert 0.4 * render.WINDOW[1] < image.shape[0] <= render.WINDOW[1]
         assert len(np.unique(image.reshape(-1, 3), axis=0)) > 300, path.name
+        # the bottom rows hold the colour bar's labels, not an empty band
+        assert len(np.unique(image[-int(0.15 * render.WINDOW[1]):].reshape(-1, 3), axis=0)) > 20
 
 
 def test_a_bad_position_fails_before_anything_is_written(aligned, tmp_path):

@@ -117,8 +117,13 @@ def project(plotter, points) -> np.ndarray:
 
 
 def _finish(plotter, path: Path) -> Path:
+    """Screenshot, close and write the picture, cut off below `plotter._keep_above` (a
+    window fraction from the bottom, set by a head-on layout) where the picture ends."""
     image = screenshot(plotter)
+    keep = getattr(plotter, "_keep_above", 0.0)
     plotter.close()
+    if keep > 0.0:
+        image = image[: int(round((1.0 - keep) * image.shape[0]))]
     return write_png(image, path)
 
 
@@ -551,6 +556,7 @@ def _texts(plotter, title: str, legend: list[str] = (), warnings: list[str] = ()
         y -= line * len(lines)
         backed(plotter.add_text("\n".join(lines), position=(8, y), font_size=10, color=color))
         y -= 6
+    plotter._text_bottom = y / WINDOW[1]      # where the texts end (window fraction)
 
 
 def _ordinal(n: int) -> str:
@@ -649,12 +655,32 @@ FLANK_BOX = (0.05, 0.14, 0.95, 0.80)
 MAX_OUTLINES = 15
 
 
+def _head_on_layout(plotter, points: np.ndarray, centre: np.ndarray, normal: np.ndarray,
+                    up: np.ndarray, stretch: float) -> None:
+    """Frame a head-on picture of a flank (its `points`, seen along `normal`, `up` up):
+    fitted just under the texts (call after _texts) with room for the colour bar and the
+    mm scale bar below it, which then sit right under the flank, and the empty rest of
+    the window cut off (see _finish)."""
+    top = min(FLANK_BOX[3], getattr(plotter, "_text_bottom", 1.0) - 0.06)  # room for "tip"
+    focus, half = _fit(points, centre, normal, up, 1.1, (FLANK_BOX[0], FLANK_BOX[1],
+                                                          FLANK_BOX[2], top))
+    heights = 0.5 + ((points[np.isfinite(points).all(axis=1)] - focus) @ up) / (2.0 * half)
+    rise = top - heights.max()                        # a wide flank: up to the texts
+    focus = focus - up * rise * 2.0 * half
+    _camera(plotter, focus, normal, up, half, parallel=True)
+    bar = max(0.035, heights.min() + rise - 0.16)     # under the edge labels
+    plotter.scalar_bar.SetPosition(0.17, bar)
+    _scale_bar(plotter, focus, normal, up, half, stretch, bar + 0.08)
+    plotter._keep_above = max(bar - 0.03, 0.0)
+
+
 def _scale_bar(plotter, focus: np.ndarray, direction: np.ndarray, up: np.ndarray,
-               half: float, stretch: float = 1.0) -> float:
+               half: float, stretch: float = 1.0, y: float = 0.115) -> float:
     """A mm scale bar in the bottom right corner of an orthographic view (focus, looking
     along -direction, `half` mm from the middle to the top): a round length (1, 2 or 5
     × 10^k mm) near a sixth of the window's width, drawn across (along the face, which
-    `stretch` leaves at scale). Returns its length (mm)."""
+    `stretch` leaves at scale), at the window height `y` (fraction). Returns its length
+    (mm)."""
     pv = _pyvista()
     aspect = WINDOW[0] / WINDOW[1]
     width = 2.0 * half * aspect
@@ -664,7 +690,7 @@ def _scale_bar(plotter, focus: np.ndarray, direction: np.ndarray, up: np.ndarray
     direction = direction / np.linalg.norm(direction)
     right = np.cross(up, direction)
     right /= np.linalg.norm(right)
-    x1, y = 0.95, 0.115                                    # window fractions, above the bar
+    x1 = 0.95                                          # window fraction
     end = focus + right * (x1 - 0.5) * width + up * (y - 0.5) * 2.0 * half
     start = end - right * length
     tick = up * 0.008 * 2.0 * half
@@ -858,9 +884,7 @@ def pattern_scene(result, case=None, name: str = "", view: str = "head-on",
         pts = np.concatenate([pts, shown[np.isfinite(shown).all(axis=1)]])
     pts = warp(pts)
     if view == "head-on":
-        focus, half = _fit(pts, centre, normal, up, 1.1, FLANK_BOX)
-        _camera(plotter, focus, normal, up, half, parallel=True)
-        _scale_bar(plotter, focus, normal, up, half, stretch)
+        _head_on_layout(plotter, pts, centre, normal, up, stretch)
     else:
         direction = normal + 0.5 * up - 0.8 * across
         target = pts if tooth is None or patch.cropped else np.concatenate(
@@ -1171,9 +1195,7 @@ def pressure_scene(result, case=None, name: str = "", patch: Patch | None = None
             e.replace("_", " ") for e in crossed))
     _texts(plotter, _title(case, name, f"loaded contact on the {owner}'s flank, head-on"),
            legend, warnings)
-    focus, half = _fit(warp(patch.points.reshape(-1, 3)), centre, normal, up, 1.1, FLANK_BOX)
-    _camera(plotter, focus, normal, up, half, parallel=True)
-    _scale_bar(plotter, focus, normal, up, half, stretch)
+    _head_on_layout(plotter, warp(patch.points.reshape(-1, 3)), centre, normal, up, stretch)
     return plotter
 
 
