@@ -2,7 +2,6 @@
 included (issue 12): every bundled case rewritten in inch/pound/degree-Fahrenheit units and
 in radians, analysed beside the original."""
 
-import copy
 import math
 import re
 
