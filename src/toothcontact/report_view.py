@@ -247,8 +247,10 @@ def key_results(document: dict) -> list[KeyResult]:
                              f"ellipse {number(contact['a_mm'])} × {number(contact['b_mm'])} mm"))
         margins = [contact[k] for k in ("edge_margin_A_mm", "edge_margin_B_mm") if k in contact]
         if margins:
-            out.append(KeyResult("least margin to the face ends", f"{number(min(margins))} mm",
-                                 "", min(margins) < -1e-6))
+            shown = number(min(margins), scale=contact["a_mm"])
+            out.append(KeyResult("least margin to the face ends", f"{shown} mm",
+                                 "the ellipse just reaches the end" if shown == "0" else
+                                 "negative: a face end cuts the ellipse", min(margins) < -1e-6))
     hertz = document.get("hertz")
     if isinstance(hertz, dict):
         out.append(KeyResult("peak pressure", f"{number(hertz['p_max_MPa'])} MPa",
@@ -288,7 +290,8 @@ def _contact_figures(summary: dict, rows: list[dict], driven: str) -> list[KeyRe
     for what, key, edge in (("face ends", "worst_face_edge_margin_mm", "worst_face_edge"),
                             ("tip and form", "worst_profile_edge_margin_mm", "worst_profile_edge")):
         if summary.get(key) is not None:
-            out.append(KeyResult(f"worst edge margin ({what})", f"{number(summary[key])} mm",
+            out.append(KeyResult(f"worst edge margin ({what})",
+                                 f"{number(summary[key], scale=1.0)} mm",
                                  f"at {summary.get(edge)} (negative: the pattern is cut)",
                                  summary[key] < 0))
     span = summary.get("face_position_range_mm")
