@@ -53,9 +53,9 @@ def gear_mesh(outline, teeth: int | None = None,
     that no triangle strays more than `chord` (mm) from the surface, half of it along the
     profile and half across: profile points from the sag of a 17-point trial (sag ~ 1/n²),
     arcs and helix steps from the circle's r·dθ²/8, a lead-curved flank at least 9 sections
-    and a section where an end relief begins. The
-    surface is open (no end faces, no closure of a sector): interference is where two such
-    surfaces cross."""
+    and a section where an end relief begins. The surface is open (no end faces, no
+    closure of a sector): interference is where two such surfaces cross."""
+    from .assembly import rotation
     from .surfaces.outline import polar_angle
 
     gear = outline.gear
@@ -87,7 +87,7 @@ def gear_mesh(outline, teeth: int | None = None,
     rings = []
     for height in z:
         tooth = outline.section(u, float(height)).points(n_tip, n_root)[:-1]
-        rings.append(np.concatenate([tooth @ _turn_z(a).T for a in turns]))
+        rings.append(np.concatenate([tooth @ rotation([0, 0, 1], a).T for a in turns]))
     vertices = np.concatenate(rings)
     n, closed = len(rings[0]), k == gear.teeth
     i = np.arange(n if closed else n - 1)
@@ -96,11 +96,6 @@ def gear_mesh(outline, teeth: int | None = None,
     faces = np.concatenate([np.concatenate([np.column_stack([a, b, c]), np.column_stack([a, c, d])])
                             for a, b, c, d in quads])
     return vertices, faces
-
-
-def _turn_z(angle: float) -> np.ndarray:
-    c, s = np.cos(angle), np.sin(angle)
-    return np.array([[c, -s, 0.0], [s, c, 0.0], [0.0, 0.0, 1.0]])
 
 
 def collision_body(vertices: np.ndarray, faces: np.ndarray):

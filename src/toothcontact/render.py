@@ -29,6 +29,7 @@ from pathlib import Path
 import numpy as np
 
 from . import __version__
+from .surfaces.outline import polar
 
 #: picture size (pixels)
 WINDOW = (1200, 900)
@@ -335,10 +336,6 @@ def _arc(p: np.ndarray, q: np.ndarray, n: int) -> np.ndarray:
     return np.column_stack([r * np.cos(angle), r * np.sin(angle), np.full(n, p[2])])
 
 
-def _polar(radius: float, angle: float, z: float) -> np.ndarray:
-    return np.array([radius * math.cos(angle), radius * math.sin(angle), z])
-
-
 def _turn(points: np.ndarray, angle: float) -> np.ndarray:
     c, s = math.cos(angle), math.sin(angle)
     return points @ np.array([[c, s, 0.0], [-s, c, 0.0], [0.0, 0.0, 1.0]])
@@ -364,8 +361,8 @@ def _wheel_tooth_outline(minus_flank, plus_flank, z: float, nu: int) -> np.ndarr
     root = 0.5 * (math.hypot(*minus[-1, :2]) + math.hypot(*plus[-1, :2]))
     after = 0.5 * (math.atan2(plus[-1, 1], plus[-1, 0]) + math.atan2(minus[-1, 1], minus[-1, 0])
                    + pitch)
-    return _join([_arc(_polar(root, after - pitch, z), minus[-1], 5), minus[::-1],
-                  _arc(minus[0], plus[0], 9), plus, _arc(plus[-1], _polar(root, after, z), 5)])
+    return _join([_arc(polar(root, after - pitch, z), minus[-1], 5), minus[::-1],
+                  _arc(minus[0], plus[0], 9), plus, _arc(plus[-1], polar(root, after, z), 5)])
 
 
 def _toothed_body(pv, outline_at, zs: np.ndarray, teeth: list[int], pitch: float,
