@@ -211,10 +211,10 @@ def test_render_command(tmp_path):
                                  "--out", str(tmp_path)])
     assert result.exit_code == 0 and "no 3D picture" in result.output
     assert not (tmp_path / "hertz_sphere_on_flat").exists()
-    result = runner.invoke(app, ["render", str(cases / "helical_bias_crown_tip_relief.toml"),
+    result = runner.invoke(app, ["render", str(cases / "worm_saba_set.toml"),
                                  "--out", str(tmp_path)])
     assert result.exit_code == 0, result.output
-    assert [p.name for p in (tmp_path / "helical_bias_crown_tip_relief").iterdir()] == ["pair.png"]
+    assert [p.name for p in (tmp_path / "worm_saba_set").iterdir()] == ["pair.png"]
     result = runner.invoke(app, ["render", str(cases / "spur_crowned_20_60.toml"), "--out",
                                  str(tmp_path), "--exaggerate", "-1"])
     assert result.exit_code == 2 and "--exaggerate" in result.output

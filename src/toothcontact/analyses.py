@@ -17,7 +17,7 @@ import numpy as np
 
 from . import case as schema
 from .analytic import agma, crown, hertz, spline, worm_efficiency
-from .analytic.stiffness import single_stiffness
+from .analytic.stiffness import face_load_factor, mesh_stiffness, single_stiffness
 from .analytic.spur_mesh import SpurMesh
 from .case import CaseError
 
@@ -455,13 +455,15 @@ def _spur_contact(case: schema.SpurCase, pair, result: Result) -> None:
     except (ValueError, RuntimeError) as exc:
         raise CaseError(f"misalignment / load: no contact could be found: {exc}") from None
     _contact_sections(cycle, {"tangential_load_N": wt, "normal_load_N": normal_load}, result)
-    stiffness = single_stiffness(pair.pinion.teeth, -pair.gear.teeth if pair.gear.internal
-                                 else pair.gear.teeth, pair.pinion.profile_shift,
-                                 pair.gear.profile_shift, case.helix_angle)
-    _loaded_sections(cycle, C_E, a.pressure_grid, stiffness * 1e3 * case.face_width,
-                     f"tooth bending: ISO 6336-1 single stiffness c' = {stiffness:.2f} "
-                     "N/(mm·µm) over the whole face width (Method B, solid blanks, ISO 53 "
-                     "rack; for a short pattern the real tooth is softer)", result)
+    from .contact.compliance import PairCompliance, ToothCompliance
+
+    teeth = PairCompliance(ToothCompliance(pair.pinion, case.material.E, case.material.nu),
+                           ToothCompliance(pair.gear, gear_material.E, gear_material.nu))
+    _loaded_sections(cycle, C_E, a.pressure_grid, teeth,
+                     "tooth bending from each member's exact transverse slices (bending, shear, "
+                     "axial and gear body compliance) coupled along the face as a Pasternak "
+                     "line (contact.compliance), solved with the contact in one system", result)
+    _load_distribution(case, pair, result)
     if case.analysis.interference:
         _spur_interference(mesh, pair, cycle, result)
 
@@ -539,12 +541,12 @@ def _pinion_side(frame, pinion, points: np.ndarray) -> np.ndarray:
     return np.where((angle + 0.5 * pitch) % pitch - 0.5 * pitch >= 0.0, 1, -1)
 
 
-def _loaded_transmission_error(cycle, stiffness: float | None, summary: dict) -> None:
+def _loaded_transmission_error(cycle, summary: dict) -> None:
     """loaded_transmission_error_urad on every row of a position whose loaded contact was
     solved: the unloaded one plus D/turn_slope, D (mm) the position's common approach (a
-    loaded pair's half-space approach plus its bending W/c'), and its peak to peak in the
-    summary. None where the position has no solved pair."""
-    compliance = 0.0 if stiffness is None else 1.0 / stiffness
+    loaded pair's approach: its contact deformation and, where modelled, its teeth's
+    bending), and its peak to peak in the summary. None where the position has no solved
+    pair."""
     positions: dict[float, list[int]] = {}
     for k, row in enumerate(cycle.rows):
         positions.setdefault(row["roll_deg"], []).append(k)
@@ -555,9 +557,8 @@ def _loaded_transmission_error(cycle, stiffness: float | None, summary: dict) ->
         if solved:
             k = max(solved, key=lambda j: cycle.rows[j]["bem_load_N"])
             row, slope = cycle.rows[k], float(cycle.turn_slope[k])
-            approach = row["bem_approach_mm"] + compliance * row["bem_load_N"]
             if math.isfinite(slope) and slope > 0.0:
-                te = row["transmission_error_urad"] + 1e6 * approach / slope
+                te = row["transmission_error_urad"] + 1e6 * row["bem_approach_mm"] / slope
                 values.append(te)
         for k in ks:
             cycle.rows[k]["loaded_transmission_error_urad"] = te
@@ -567,10 +568,10 @@ def _loaded_transmission_error(cycle, stiffness: float | None, summary: dict) ->
         "transmission errors are the gear's (a worm set's wheel's) rotation from where "
         "conjugate flanks would hold it, in µrad, positive where it lags behind; the loaded "
         "one adds the turn that closes the position's common approach D (half-space contact "
-        "and tooth bending): D/r_b2·cos(beta_b) on a parallel pair")
+        "and, where modelled, tooth bending): D/r_b2·cos(beta_b) on a parallel pair")
 
 
-def _loaded_sections(cycle, C_E: float, grid: int, stiffness: float | None, bending: str,
+def _loaded_sections(cycle, C_E: float, grid: int, teeth, bending: str,
                      result: Result) -> None:
     """The loaded contact of every row (contact.loaded): bem_* and edge keys on each row
     (bem_status "solved", "unloaded" or "failed" with bem_reason: a position the solver
@@ -582,7 +583,7 @@ def _loaded_sections(cycle, C_E: float, grid: int, stiffness: float | None, bend
 
     rows = cycle.rows
     try:
-        loaded, failed = loaded_cycle(cycle, C_E, grid, stiffness)
+        loaded, failed = loaded_cycle(cycle, C_E, grid, teeth)
     except (ValueError, RuntimeError) as exc:   # no gap field to solve on: the stage fails
         loaded, failed = [None] * len(rows), {k: str(exc) for k in range(len(rows))}
     result.loaded = loaded
@@ -594,7 +595,7 @@ def _loaded_sections(cycle, C_E: float, grid: int, stiffness: float | None, bend
         load_sharing="one rigid rotation for all pairs of a position; each pair's approach "
                      f"from its half-space solution; {bending}",
         bem_failed_contacts=len(failed))
-    _loaded_transmission_error(cycle, stiffness, summary)
+    _loaded_transmission_error(cycle, summary)
     result.checks.append(Check(
         "loaded contact solved at every contact", not failed,
         f"{len(failed)} of {len(rows)} contacts not solved"
@@ -629,6 +630,90 @@ def _loaded_sections(cycle, C_E: float, grid: int, stiffness: float | None, bend
         f"contact's peak {worst['bem_p_max_MPa']:.0f} MPa, at roll {worst['roll_deg']:.2f} deg "
         f"pair {worst['pair']}; {100 * worst['edge_load_fraction']:.2f} % of its load in the "
         f"strip; edge-loaded above {EDGE_LOAD_RATIO:g}"))
+
+
+#: strips across the face the line loads of a position are summed on: the load
+#: distribution at the scale of the face. They leave out the EDGE_STRIP at each face end:
+#: a sharp end's pressure peak there is the edge pressure's business, not K_H_beta's
+FACE_STRIPS = 20
+
+
+def _load_distribution(case: schema.SpurCase, pair, result: Result) -> None:
+    """The mesh's load along the face from the loaded contacts (their line loads, all pairs
+    of a position summed on one face grid of the pinion) and what follows from it, beside
+    ISO 6336-1's figures for the same pair:
+    - load_distribution: face_mm, and per position roll_deg, line_load_N_per_mm, K_H_beta;
+    - summary: K_H_beta, the largest over the cycle of the position's largest line load
+      over its mean W/b (ISO 6336-1 §7's definition; b the common face width);
+      mesh_stiffness_N_per_mm_um, the mean over the cycle of W/(D - s_min)/b·cos²β_b (D the
+      position's loaded approach, s_min its least unloaded separation; the cos²β_b makes it
+      ISO's transverse force over transverse deflection), the model's counterpart of c_γα; single_stiffness_N_per_mm_um, the largest of it at positions
+      with one loaded pair (c'); the ISO values c' and c_γα (Method B) and ISO's K_H_beta
+      for the case's slope over the face with the model's stiffness (Method C, linear mesh
+      misalignment: no crown, no running-in) beside them.
+    Nothing is added when no position was solved (or the loaded contact was not asked for)."""
+    cycle, loaded = result.cycle, result.loaded
+    if loaded is None:
+        return
+    rows = cycle.rows
+    positions: dict[float, list[int]] = {}
+    for k, row in enumerate(rows):
+        positions.setdefault(row["roll_deg"], []).append(k)
+    width = min(pair.pinion.face_width, pair.gear.face_width)
+    transverse = math.cos(pair.pinion.base_helix_angle) ** 2
+    from .contact.loaded import EDGE_STRIP
+
+    end = 0.5 * pair.pinion.face_width - EDGE_STRIP
+    edges = np.linspace(-end, end, FACE_STRIPS + 1)
+    rolls, lines, factors, stiffness, single = [], [], [], [], []
+    for roll, ks in positions.items():
+        solved = [k for k in ks if loaded[k] is not None]
+        if not solved or any(rows[k]["bem_status"] == "failed" for k in ks):
+            continue
+        line = sum(loaded[k].line_load(edges) for k in solved)
+        load = sum(loaded[k].solution.load_N for k in solved)
+        rolls.append(roll)
+        lines.append(line)
+        factors.append(float(line.max() / (load / width)))
+        lead = max(solved, key=lambda k: loaded[k].solution.load_N)
+        closing = loaded[lead].solution.approach_mm - min(rows[k]["separation_mm"] for k in ks)
+        if closing > 0:     # ISO's c: the transverse force over the transverse deflection
+            stiffness.append(load / closing / width * 1e-3 * transverse)
+            if len(solved) == 1:
+                single.append(stiffness[-1])
+    if not rolls:
+        return
+    result.sections["load_distribution"] = {
+        "face_mm": (0.5 * (edges[1:] + edges[:-1])).round(4).tolist(), "roll_deg": rolls,
+        "line_load_N_per_mm": [line.round(3).tolist() for line in lines],
+        "K_H_beta": factors,
+        "note": f"line loads along the pinion's face (N/mm of face, along the contact normal) "
+                f"on {FACE_STRIPS} strips between {EDGE_STRIP} mm from each face end (the edge "
+                "pressure covers those), face_mm their centres, all tooth pairs of a position "
+                f"summed; K_H_beta is the largest over the mean W/b on b = {width:g} mm"}
+    summary = result.sections["summary"]
+    iso_single = single_stiffness(pair.pinion.teeth, -pair.gear.teeth if pair.gear.internal
+                                  else pair.gear.teeth, pair.pinion.profile_shift,
+                                  pair.gear.profile_shift, case.helix_angle)
+    iso_mesh = mesh_stiffness(iso_single, pair.transverse_mesh().contact_ratio)
+    model_mesh = float(np.mean(stiffness)) if stiffness else None
+    summary.update(
+        K_H_beta=max(factors),
+        mesh_stiffness_N_per_mm_um=model_mesh,
+        single_stiffness_N_per_mm_um=max(single) if single else None,
+        iso_single_stiffness_N_per_mm_um=iso_single,
+        iso_mesh_stiffness_N_per_mm_um=iso_mesh,
+        iso_K_H_beta_linear=(face_load_factor(abs(case.misalignment.slope) * width * 1e3,
+                                              0.85 * model_mesh,
+                                              summary["tangential_load_N"] / width)
+                             if model_mesh else None),
+        stiffness_note="mesh_stiffness_N_per_mm_um is the model's mean secant stiffness over "
+                       "the cycle per mm of face (ISO's c_γα counterpart), "
+                       "single_stiffness_N_per_mm_um its largest with one pair in contact "
+                       "(c'); iso_* are ISO 6336-1 Method B for solid blanks; "
+                       "iso_K_H_beta_linear is ISO 6336-1 Method C for the case's slope as a "
+                       "linear mesh misalignment over b with c_γβ = 0.85 of the model's mesh "
+                       "stiffness, and ignores crowns and running-in")
 
 
 def _contact_sections(cycle, loads: dict, result: Result) -> None:

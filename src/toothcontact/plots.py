@@ -300,6 +300,36 @@ def ease_off_map(face_mm, radius_mm, separation_um, path: str | Path,
     return _save(fig, path)
 
 
+def load_distribution(result: dict, path: str | Path) -> Path:
+    """The mesh's line load along the face over the cycle (the result's load_distribution
+    section): a map of the load per mm of face (N/mm) by face position and roll angle,
+    each position's largest marked, and beside it the position's K_Hβ (its largest over
+    the mean W/b), the cycle's largest marked."""
+    section = result["load_distribution"]
+    face = np.asarray(section["face_mm"], float)
+    rolls = np.asarray(section["roll_deg"], float)
+    lines = np.asarray(section["line_load_N_per_mm"], float)
+    factors = np.asarray(section["K_H_beta"], float)
+    fig = _figure(5.2)
+    ax, side = fig.subplots(1, 2, sharey=True, gridspec_kw={"width_ratios": [4, 1]})
+    mesh = ax.pcolormesh(face, rolls, lines, shading="nearest", cmap="viridis")
+    ax.plot(face[np.argmax(lines, axis=1)], rolls, "+", color="black", ms=8, mew=1.2,
+            label="largest line load of the position")
+    colorbar = fig.colorbar(mesh, ax=side, pad=0.08)
+    colorbar.set_label("line load (N/mm of face)")
+    ax.set(xlabel="face position from mid-face (mm, + toward end B)",
+           ylabel=f"{_driver(result)} roll angle (deg)")
+    ax.legend(loc="upper center", bbox_to_anchor=(0.5, -0.14), fontsize=8, frameon=False)
+    side.plot(factors, rolls, "o-", color=WARNING, ms=3, lw=1.0)
+    worst = int(np.argmax(factors))
+    side.plot(factors[worst], rolls[worst], "s", color="black", ms=6)
+    side.axvline(1.0, color="0.6", lw=0.8)
+    side.set(xlabel="K_Hβ", title=f"largest {factors[worst]:.3f}")
+    fig.suptitle(_title(result, "Load distribution along the face over the mesh cycle", 95),
+                 fontsize=10)
+    return _save(fig, path)
+
+
 # ---------------------------------------------------------------------------------------
 # 3. crown design chart (seed 003)
 
@@ -667,7 +697,8 @@ def figures_for(result: dict, out_dir: str | Path) -> list[Path]:
     """Every figure that applies to a result document, written into `out_dir`:
     mesh_cycle.png (any result with 'positions'), ease_off.png (a result with an 'ease_off'
     section: face_mm, radius_mm, separation_um, optional approach_um), crown_design.png
-    (kind crown_design), worm_efficiency_temperature.png and worm_efficiency_torque.png
+    (kind crown_design), load_distribution.png (a result with a 'load_distribution' section),
+    worm_efficiency_temperature.png and worm_efficiency_torque.png
     (kind worm_efficiency, with conditions / an anti-rattle spring). [] when none applies
     (hertz, spline_crown)."""
     out = Path(out_dir)
@@ -683,6 +714,8 @@ def figures_for(result: dict, out_dir: str | Path) -> list[Path]:
             out / "ease_off.png", approach_um=ease.get("approach_um"),
             title=_title(result, f"Ease-off: separation on the {ease.get('member', 'pinion')} "
                                  "flank"), member=ease.get("member", "pinion")))
+    if result.get("load_distribution"):
+        written.append(load_distribution(result, out / "load_distribution.png"))
     if kind == "crown_design":
         written.append(crown_design_chart(result, out / "crown_design.png"))
     if kind == "worm_efficiency":

@@ -220,6 +220,18 @@ def key_results(document: dict) -> list[KeyResult]:
     if summary:
         driven = "wheel" if document["kind"] == "worm" else "gear"
         out += _contact_figures(summary, document.get("positions") or [], driven)
+    if summary and summary.get("K_H_beta") is not None:
+        out.append(KeyResult("face load factor K_Hβ", number(summary["K_H_beta"]),
+                             "largest line load over the mean W/b over the cycle"
+                             + (f"; ISO 6336-1 for the slope alone "
+                                f"{number(summary['iso_K_H_beta_linear'])}"
+                                if summary.get("iso_K_H_beta_linear") is not None else "")))
+    if summary and summary.get("mesh_stiffness_N_per_mm_um") is not None:
+        out.append(KeyResult("mesh stiffness c_γα", f"{number(summary['mesh_stiffness_N_per_mm_um'])}"
+                             " N/(mm·µm)", f"ISO 6336-1 {number(summary['iso_mesh_stiffness_N_per_mm_um'])}"
+                             + (f"; single pair {number(summary['single_stiffness_N_per_mm_um'])}"
+                                if summary.get("single_stiffness_N_per_mm_um") is not None else "")
+                             + f"; ISO c' {number(summary['iso_single_stiffness_N_per_mm_um'])}"))
     mesh = document.get("mesh") or {}
     if "normal_backlash_mm" in mesh:
         out.append(KeyResult("normal backlash", f"{number(mesh['normal_backlash_mm'] * 1e3)} µm",

@@ -1,4 +1,6 @@
-"""Tooth stiffness of a spur or helical pair, for sharing the load between tooth pairs.
+"""Tooth stiffness of a spur or helical pair: ISO 6336-1's single and mesh stiffness and
+its face load factor K_Hβ (the references the tooth-compliance model is checked against),
+and the gear body's compliance under a tooth (Sainsot et al. 2004) that model uses.
 
 ISO 6336-1:2006 §9 (Method B, solid gears): the theoretical single stiffness of a tooth
 pair is c'_th = 1/q' with the flexibility q' = C1 + C2/zn1 + C3/zn2 + C4·x1 + C5·x1/zn1
@@ -30,3 +32,49 @@ def single_stiffness(z1: int, z2: int, x1: float = 0.0, x2: float = 0.0,
     q = (c1 + c2 / zn1 + c3 / zn2 + c4 * x1 + c5 * x1 / zn1 + c6 * x2 + c7 * x2 / zn2
          + c8 * x1 ** 2 + c9 * x2 ** 2)
     return C_M / q * math.cos(helix_angle)
+
+
+def mesh_stiffness(single: float, contact_ratio: float) -> float:
+    """Mesh stiffness c_γα (N/(mm·µm)) from the single stiffness c' and the transverse
+    contact ratio ε_α: ISO 6336-1:2006 §9.3.3, c_γα = c'·(0.75·ε_α + 0.25)."""
+    return single * (0.75 * contact_ratio + 0.25)
+
+
+def face_load_factor(misalignment_um: float, stiffness: float, line_load: float) -> float:
+    """K_Hβ of ISO 6336-1:2006 §7.6 (Method C, a linear mesh misalignment) for the effective
+    mesh misalignment F_βy (µm) over the face, the mesh stiffness c_γβ (N/(mm·µm)) and the
+    mean line load F_m/b (N/mm): 1 + F_βy·c_γβ/(2·F_m/b) while that is at most 2 (the load
+    spreads over the whole face), sqrt(2·F_βy·c_γβ/(F_m/b)) beyond (it covers part of it)."""
+    ratio = misalignment_um * stiffness / line_load
+    return 1.0 + 0.5 * ratio if ratio <= 2.0 else math.sqrt(2.0 * ratio)
+
+
+#: Sainsot, Velex & Duverger (2004), Table 1, as reprinted by Chaari et al. (2009) Table 1:
+#: the coefficients (A, B, C, D, E, F) of L*, M*, P*, Q*, each
+#: X* = A/θ_f² + B·h_fi² + C·h_fi/θ_f + D/θ_f + E·h_fi + F
+FOUNDATION = {"L": (-5.574e-5, -1.9986e-3, -2.3015e-4, 4.7702e-3, 0.0271, 6.8045),
+              "M": (60.111e-5, 28.100e-3, -83.431e-4, -9.9256e-3, 0.1624, 0.9086),
+              "P": (-50.952e-5, 185.50e-3, 0.0538e-4, 53.300e-3, 0.2895, 0.9236),
+              "Q": (-6.2042e-5, 9.0889e-3, -4.0964e-4, 7.8297e-3, -0.1472, 0.6904)}
+
+
+def foundation_compliance(u_f: float, S_f: float, theta_f: float, h_fi: float,
+                          load_angle: float, E: float) -> float:
+    """Compliance (mm²/N per unit face width) of the gear body under a tooth (the fillet
+    foundation): Sainsot, Velex & Duverger, "Contribution of gear body to tooth deflections
+    - a new bidimensional analytical formula", J. Mech. Des. 126 (2004) 748-752, as used by
+    Chaari et al. (2009) eq (5):
+    cos²α_m/E · [L*(u_f/S_f)² + M*(u_f/S_f) + P*(1 + Q*·tan²α_m)].
+    u_f (mm): from the root circle along the tooth's centre line to where the load line
+    crosses it; S_f (mm): the tooth's chord on the root circle; theta_f (rad): half the
+    angle that chord subtends; h_fi: root radius over bore radius; load_angle α_m (rad):
+    the load's angle to the perpendicular of the centre line; E (MPa)."""
+    def star(name):
+        A, B, C, D, E_, F = FOUNDATION[name]
+        return (A / theta_f ** 2 + B * h_fi ** 2 + C * h_fi / theta_f + D / theta_f
+                + E_ * h_fi + F)
+
+    ratio = u_f / S_f
+    return (math.cos(load_angle) ** 2 / E
+            * (star("L") * ratio ** 2 + star("M") * ratio
+               + star("P") * (1.0 + star("Q") * math.tan(load_angle) ** 2)))

@@ -3,15 +3,16 @@ with the load shared between the tooth pairs of a mesh position.
 
 Each contact's gap field (field.contact_field: the tangent plane around the contact, masked
 where either flank has no material) is solved by the elastic half-space solver
-(pressure.solve_contact) for that contact's load. Pairs in contact at one position share one
-rigid rotation of the gear: each closes by the same approach D, taken up by its contact
-approach (the solver's delta_k(W_k), measured from its own gap, which includes its
-separation at first touch) and, for gears, its teeth's bending W_k/K (K = c'·b of the pair,
-analytic.stiffness); the loads sum to the normal load. The split is found by modelling each
-pair as delta_k(W) = s_k + c_k·W^n_k (n_k = 2/3 and c_k from the rigid analysis's Hertz
-approach at first; then c_k calibrated from its last solve and n_k fitted through its last
-two, since a line contact's approach grows nearly linearly), solving the model for D,
-solving each loaded pair again, until the loads settle.
+(pressure.solve_contact) for that contact's load; for cylindrical gears the teeth's bending
+along the face (compliance.PairCompliance: slices coupled along the face) is part of the same
+system, so a pair's approach is its contact deformation and its teeth's bending together.
+Pairs in contact at one position share one rigid rotation of the gear: each closes by the
+same approach D (its approach measured from its own gap, which includes its separation at
+first touch); the loads sum to the normal load. The split is found by modelling each pair as
+delta_k(W) = s_k + c_k·W^n_k (n_k = 2/3 and c_k from the rigid analysis's Hertz approach at
+first; then c_k calibrated from its last solve and n_k fitted through its last two, since a
+line contact's approach, and a bending tooth's, grows nearly linearly), solving the model
+for D, solving each loaded pair again, until the loads settle.
 
 The pressure at a sharp face end is singular: the raw peak grows as the grid is refined. The
 edge is therefore reported as the pressure averaged over a strip `EDGE_STRIP` wide at the
@@ -26,6 +27,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from .compliance import PairCompliance, StructureOperator
 from .field import GapField, contact_fields, pattern_semi_axes
 from .pressure import ContactSolution, solve_contact
 
@@ -40,6 +42,13 @@ EDGE_LOAD_RATIO = 0.25
 CELL = EDGE_STRIP / 3.0
 #: relative change of the pairs' loads at which the shared solve stops
 SHARE_TOLERANCE = 0.005
+#: with the teeth's bending, the load sharing's rounds solve every COARSE_STEP-th point of
+#: the field (4 times fewer cells), and only the final split on the full grid
+COARSE_STEP = 2
+#: the relative gap error each contact is solved to (pressure.solve_contact), on the full
+#: grid and in the load sharing's coarse rounds: on a 30 µm approach, 0.3 nm and 3 nm;
+#: pressures to 1e-5, the split to 1e-4
+GAP_TOLERANCE, COARSE_TOLERANCE = 1e-5, 1e-4
 
 
 #: the result keys of a loaded contact (LoadedContact.summary); a row without a solution
@@ -67,6 +76,14 @@ class LoadedContact:
 
     field: GapField
     solution: ContactSolution
+    structure: StructureOperator | None = None
+
+    def line_load(self, edges: np.ndarray) -> np.ndarray | None:
+        """The contact's mean load per unit face width (N/mm) on the strips of the pinion's
+        face between `edges` (mm from mid-face); None without a tooth model."""
+        if self.structure is None:
+            return None
+        return self.structure.line_load(self.solution.pressure_MPa, edges)
 
     def summary(self) -> dict:
         """The result keys of a loaded contact; the most loaded edge is named by the flank
@@ -122,15 +139,13 @@ class LoadedContact:
         return float(p[inside].max()) if inside.any() else 0.0
 
 
-def loaded_cycle(cycle, C_E: float, points: int = 128,
-                 pair_stiffness: float | None = None
+def loaded_cycle(cycle, C_E: float, points: int = 128, teeth: PairCompliance | None = None
                  ) -> tuple[list[LoadedContact | None], dict[int, str]]:
     """The loaded solution of every row of a contact.cycle.ContactCycle, loads shared per
     position (None for a pair the others keep unloaded), and the rows whose position could
     not be solved, with the reason (row index -> text; those rows are None too: the other
-    positions keep their solutions). `pair_stiffness` (N/mm): a tooth pair's bending
-    stiffness, None to leave bending out (the pairs then share by their contact approaches
-    alone)."""
+    positions keep their solutions). `teeth`: the members' tooth compliance along the face,
+    None to leave bending out (the pairs then share by their contact approaches alone)."""
     rows = cycle.rows
     out: list[LoadedContact | None] = [None] * len(rows)
     failed: dict[int, str] = {}
@@ -140,16 +155,16 @@ def loaded_cycle(cycle, C_E: float, points: int = 128,
     fields = contact_fields(cycle, range(len(rows)), points, _Pair.MARGIN,   # one batch
                             largest_cell=CELL)
     for ks in positions.values():
-        pairs = [_Pair(cycle, k, points, 1.0 / C_E, fields[k]) for k in ks]
         load = sum(rows[k]["normal_load_N"] for k in ks)
         try:
-            solutions = _share(pairs, load, pair_stiffness)
+            pairs = [_Pair(cycle, k, points, 1.0 / C_E, fields[k], teeth) for k in ks]
+            solutions = _share(pairs, load)
         except (ValueError, RuntimeError) as exc:
             failed.update({k: str(exc) for k in ks})
             continue
         for k, pair, solution in zip(ks, pairs, solutions):
             if solution is not None:
-                out[k] = LoadedContact(pair.field, solution)
+                out[k] = LoadedContact(pair.field, solution, pair.structure)
     return out, failed
 
 
@@ -160,14 +175,24 @@ class _Pair:
     #: the pattern's box enlarged by this much at first
     MARGIN = 1.5
 
-    def __init__(self, cycle, k: int, points: int, E_star: float, field: GapField):
+    def __init__(self, cycle, k: int, points: int, E_star: float, field: GapField,
+                 teeth: PairCompliance | None):
         self.cycle, self.k, self.points, self.E_star = cycle, k, points, E_star
+        self.teeth = teeth
         self.separation = cycle.rows[k]["separation_mm"]
         self.semi_axes = self.MARGIN * pattern_semi_axes(cycle, [k])[0]
         self.growth = (np.array([1.6, 1.6]) if cycle.rows[k]["contact_model"] == "ellipse"
                        else np.array([2.5, 1.3]))
+        self._use(field)
+
+    def _use(self, field: GapField) -> None:
+        """Solve on `field` from now on (its structure operators built, no solutions yet)."""
         self.field = field
+        self.structure = None if self.teeth is None else self.teeth.operator(self.cycle, field)
+        self.coarse_structure = (None if self.structure is None
+                                 else self.structure.coarsened(COARSE_STEP))
         self.last: ContactSolution | None = None
+        self.last_coarse: ContactSolution | None = None
 
     def hertz_coefficient(self) -> float:
         """c of Hertz's approach law delta = c·W^(2/3) (mm/N^(2/3)) from the rigid
@@ -176,77 +201,103 @@ class _Pair:
         approach = row.get("approach_mm")
         return approach / row["normal_load_N"] ** (2.0 / 3.0) if approach else math.nan
 
-    @property
-    def last_pressure(self):
-        return None if self.last is None else self.last.pressure_MPa
-
-    def solve(self, load: float) -> ContactSolution:
+    def solve(self, load: float, coarse: bool = False) -> ContactSolution:
         """The contact under `load` (N), started from its last solution on this field (the
-        load sharing solves each pair a few times at nearby loads)."""
+        load sharing solves each pair a few times at nearby loads). With the teeth's bending
+        `coarse` solves on every COARSE_STEP-th point of the field (the load sharing's
+        rounds), and the full grid starts from the coarse solution; without it there is one
+        grid."""
+        coarse = coarse and self.structure is not None
         for _ in range(5):
-            dx, dy = self.field.spacing
             try:
-                self.last = solve_contact(self.field.gap, dx, dy, load, self.E_star,
-                                          mask=self.field.material, start=self.last_pressure,
-                                          dtype=np.float32)
-                return self.last
+                return self._solve(load, coarse)
             except ValueError as exc:
                 if "reaches the grid's edge" not in str(exc):
                     raise
             self.semi_axes = self.semi_axes * self.growth
-            self.field = contact_fields(self.cycle, [self.k], self.points, 1.0,
-                                        self.semi_axes[None], CELL)[0]
-            self.last = None
+            self._use(contact_fields(self.cycle, [self.k], self.points, 1.0,
+                                     self.semi_axes[None], CELL)[0])
         raise ValueError(f"the loaded contact at roll {self.cycle.rows[self.k]['roll_deg']:.3f} "
                          "deg outgrows its gap field (the surfaces end around it)")
 
+    def _solve(self, load: float, coarse: bool) -> ContactSolution:
+        dx, dy = self.field.spacing
+        if coarse:
+            step = COARSE_STEP
+            self.last_coarse = solve_contact(
+                self.field.gap[::step, ::step], step * dx, step * dy, load, self.E_star,
+                mask=self.field.material[::step, ::step],
+                start=None if self.last_coarse is None else self.last_coarse.pressure_MPa,
+                dtype=np.float32, structure=self.coarse_structure,
+                reference=self.structure.reference, tol=COARSE_TOLERANCE)
+            return self.last_coarse
+        if self.structure is None or self.last_coarse is None:
+            reference = () if self.structure is None else self.structure.reference
+            self.last = solve_contact(self.field.gap, dx, dy, load, self.E_star,
+                                      mask=self.field.material,
+                                      start=None if self.last is None else self.last.pressure_MPa,
+                                      dtype=np.float32, structure=self.structure,
+                                      reference=reference, tol=GAP_TOLERANCE)
+            return self.last
+        # the full grid refines the contact under the bending the coupled coarse solve found:
+        # the teeth's deflection is smooth along the face, and the coarse and the full
+        # grid's pressures carry the same line load
+        n0, n1 = self.field.gap.shape
+        start = np.repeat(np.repeat(self.last_coarse.pressure_MPa * (load / self.last_coarse.load_N),
+                                    COARSE_STEP, axis=0), COARSE_STEP, axis=1)[:n0, :n1]
+        start = np.where(self.field.material, start, 0.0)
+        bending = self.structure(start)
+        self.last = solve_contact(self.field.gap + bending, dx, dy, load, self.E_star,
+                                  mask=self.field.material, start=start, dtype=np.float32,
+                                  reference=self.structure.reference, tol=GAP_TOLERANCE)
+        return self.last
 
-def _share(pairs: list[_Pair], load: float, stiffness: float | None) -> list[ContactSolution | None]:
+
+def _share(pairs: list[_Pair], load: float) -> list[ContactSolution | None]:
     """Solutions of the pairs of one position under their shares of `load` (see module):
     each pair's approach modelled as s_k + c_k·W^n_k, n_k = 2/3 and c_k from the rigid
     analysis's Hertz approach at first (a pair without one, a line or an area, is first
     solved at the equal split to calibrate it), then c_k from its last solution and n_k
     fitted through its last two (a line contact's approach grows nearly linearly); the model
-    solved for the split, the loaded pairs solved there, until the split settles; the
-    solutions returned are those at the final split. A pair the model leaves unloaded is
-    not solved."""
+    solved for the split, the loaded pairs solved there (on the coarse grid where the teeth
+    bend, see _Pair.solve), until the split settles; the solutions returned are those at
+    the final split on the full grid. A pair the model leaves unloaded is not solved."""
     if len(pairs) == 1:
+        if pairs[0].structure is not None:
+            pairs[0].solve(load, coarse=True)       # the full grid's start
         return [pairs[0].solve(load)]
     count = len(pairs)
     s = np.array([p.separation for p in pairs])
-    compliance = 0.0 if stiffness is None else 1.0 / stiffness
     exponent = np.full(count, 2.0 / 3.0)
     c = np.array([p.hertz_coefficient() for p in pairs])
     at = np.full(count, np.nan)                     # the load of each pair's last solution
     solutions: list[ContactSolution | None] = [None] * count
     for k in np.flatnonzero(~np.isfinite(c)):
         at[k] = load / count
-        solutions[k] = pairs[k].solve(at[k])
+        solutions[k] = pairs[k].solve(at[k], coarse=True)
         c[k] = max(solutions[k].approach_mm - s[k], 1e-12) / at[k] ** exponent[k]
-    split, carried = None, np.ones(count, bool)
+    split = None
     for _ in range(20):
-        new = _split(c, exponent, s, compliance, load)
+        new = _split(c, exponent, s, load)
         settled = split is not None and np.max(np.abs(new - split)) <= SHARE_TOLERANCE * load
         split = new
-        carried = new > 1e-6 * load
-        for k in np.flatnonzero(carried):
+        if settled:
+            break
+        for k in np.flatnonzero(new > 1e-6 * load):
             before, before_at = solutions[k], at[k]
-            solutions[k], at[k] = pairs[k].solve(new[k]), new[k]
+            solutions[k], at[k] = pairs[k].solve(new[k], coarse=True), new[k]
             rise = max(solutions[k].approach_mm - s[k], 1e-12)
             if before is not None and abs(math.log(new[k] / before_at)) > 0.01:
                 fitted = (math.log(rise / max(before.approach_mm - s[k], 1e-12))
                           / math.log(new[k] / before_at))
                 exponent[k] = min(max(fitted, 0.5), 1.0)
             c[k] = rise / new[k] ** exponent[k]
-        if settled:
-            break
-    return [sol if on else None for sol, on in zip(solutions, carried)]
+    return [pair.solve(w) if w > 1e-6 * load else None for pair, w in zip(pairs, split)]
 
 
-def _split(c: np.ndarray, n: np.ndarray, s: np.ndarray, compliance: float,
-           load: float) -> np.ndarray:
-    """Loads W_k >= 0 with s_k + c_k W_k^n_k + compliance·W_k = D for the loaded pairs
-    and sum W_k = load: bisection on D."""
+def _split(c: np.ndarray, n: np.ndarray, s: np.ndarray, load: float) -> np.ndarray:
+    """Loads W_k >= 0 with s_k + c_k W_k^n_k = D for the loaded pairs and sum W_k = load:
+    bisection on D."""
 
     def load_at(D):
         w = np.zeros(len(c))
@@ -256,14 +307,14 @@ def _split(c: np.ndarray, n: np.ndarray, s: np.ndarray, compliance: float,
             lo, hi = 0.0, load
             for _ in range(60):   # the pair's load at approach D (monotone in W)
                 mid = 0.5 * (lo + hi)
-                if s[k] + c[k] * mid ** n[k] + compliance * mid < D:
+                if s[k] + c[k] * mid ** n[k] < D:
                     lo = mid
                 else:
                     hi = mid
             w[k] = 0.5 * (lo + hi)
         return w
 
-    lo, hi = float(np.min(s)), float(np.max(s + c * load ** n + compliance * load))
+    lo, hi = float(np.min(s)), float(np.max(s + c * load ** n))
     for _ in range(60):
         mid = 0.5 * (lo + hi)
         if load_at(mid).sum() < load:

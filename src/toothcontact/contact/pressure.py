@@ -99,12 +99,22 @@ class InfluenceOperator:
     linear one on the grid. K is even in both axes, so its spectrum is real; it is stored as
     such, in float64 and (on first use) float32. The transforms are pruned: rows of the
     padded p that are all zero are not transformed, nor rows of the result thrown away.
+
+    reference: for bodies of finite size, ((depth, E, nu), ...) per body: the displacement
+    is then the compression between the surface and the point at that depth (mm) below the
+    load in each body (E in MPa), not the surface's sinking relative to infinity: K less
+    E_star times the bodies' Boussinesq displacement at their depths (Johnson eq 3.21b,
+    u_z = F/(4πG)·[d²/ρ³ + 2(1-ν)/ρ], ρ² = r² + d², taken at each cell's centre: the depth
+    is many cells). A line contact's approach relative to infinity grows without bound
+    with the contact's length; measured to a depth it does not (Weber's contact flattening
+    of a tooth measures it to the tooth's centre line).
     """
 
-    def __init__(self, shape: tuple[int, int], dx: float, dy: float):
+    def __init__(self, shape: tuple[int, int], dx: float, dy: float,
+                 reference: tuple = (), E_star: float = 1.0):
         n0, n1 = (int(s) for s in shape)
         self.shape, self.dx, self.dy = (n0, n1), float(dx), float(dy)
-        self.kernel = self.coefficients(n0, n1, self.dx, self.dy)   # (2n0, 2n1)
+        self.kernel = self.coefficients(n0, n1, self.dx, self.dy, reference, E_star)
         self._spectrum = {np.float64: np.ascontiguousarray(
             sfft.rfft2(self.kernel, workers=-1).real)}
         # the circulant's spectrum is positive for this kernel; the guard only keeps the
@@ -113,17 +123,24 @@ class InfluenceOperator:
         self._inverse = {np.float64: 1.0 / np.maximum(spectrum, 1e-12 * spectrum.max())}
 
     @staticmethod
-    def coefficients(n0: int, n1: int, dx: float, dy: float) -> np.ndarray:
+    def coefficients(n0: int, n1: int, dx: float, dy: float, reference: tuple = (),
+                     E_star: float = 1.0) -> np.ndarray:
         """Influence coefficients (mm per MPa, E* = 1 MPa) on the 2n0 × 2n1 wrap-around grid:
         index k <= n0 is the offset k·dx, index k > n0 the offset (k - 2n0)·dx.
 
         F is evaluated once on the cell corners (k - 1/2)·dx, (l - 1/2)·dy of the quadrant
         k, l >= 0; the double difference of neighbours is Johnson eq (3.25) for each cell, and
-        the quadrant is mirrored (K is even in both axes)."""
+        the quadrant is mirrored (K is even in both axes). `reference`: see the class."""
         xs = (np.arange(n0 + 2) - 0.5) * dx
         ys = (np.arange(n1 + 2) - 0.5) * dy
         F = _antiderivative(xs[:, None], ys[None, :])
         quadrant = np.diff(np.diff(F, axis=0), axis=1) / math.pi    # (n0 + 1, n1 + 1)
+        r2 = ((np.arange(n0 + 1) * dx) ** 2)[:, None] + ((np.arange(n1 + 1) * dy) ** 2)[None, :]
+        for depth, E, nu in reference:
+            rho = np.sqrt(r2 + depth ** 2)
+            G = E / (2.0 * (1.0 + nu))
+            quadrant = quadrant - E_star * dx * dy / (4.0 * math.pi * G) * (
+                depth ** 2 / rho ** 3 + 2.0 * (1.0 - nu) / rho)
         half = np.concatenate([quadrant, quadrant[-2:0:-1]], axis=0)
         return np.concatenate([half, half[:, -2:0:-1]], axis=1)
 
@@ -157,10 +174,11 @@ class InfluenceOperator:
 
 
 @functools.lru_cache(maxsize=16)
-def influence_operator(shape: tuple[int, int], dx: float, dy: float) -> InfluenceOperator:
-    """The grid's :class:`InfluenceOperator`, built once per (shape, dx, dy) and kept (the
-    last 16; ``influence_operator.cache_clear()`` forgets them)."""
-    return InfluenceOperator(shape, dx, dy)
+def influence_operator(shape: tuple[int, int], dx: float, dy: float, reference: tuple = (),
+                       E_star: float = 1.0) -> InfluenceOperator:
+    """The grid's :class:`InfluenceOperator`, built once per (shape, dx, dy, reference,
+    E_star) and kept (the last 16; ``influence_operator.cache_clear()`` forgets them)."""
+    return InfluenceOperator(shape, dx, dy, reference, E_star)
 
 
 # --------------------------------------------------------------------------------------------
@@ -448,7 +466,13 @@ def _state(g, contact, material):
                                          penetration)
 
 
-def _ccg(h, m, p, u, op, compliance, load, cell, tol, max_iter, single):
+#: the share of the contact set that may join in one step and keep the conjugate direction
+#: (the joined cells start with none): a set that grows by a few cells at its rim each
+#: step would otherwise restart the iteration as steepest descent every step
+JOIN_RESTART = 0.01
+
+
+def _ccg(h, m, p, u, op, compliance, load, cell, tol, max_iter, single, structure=None):
     """Preconditioned constrained conjugate gradients (Polonsky & Keer 1999) from p, u.
 
     Works on the flattened grid with S, the cells in contact (p > 0), and J, the material
@@ -466,6 +490,8 @@ def _ccg(h, m, p, u, op, compliance, load, cell, tol, max_iter, single):
     Polonsky & Keer's p = -tau·gap is a pressure only for the unpreconditioned step (with
     the preconditioner tau is a pure number, and -tau·gap a length), and their step is 0/0
     when S holds one cell (e = 0 on S), where ours is a steepest-descent step over S ∪ J.
+    A `structure` operator (see solve_contact) adds its displacement to the half-space's
+    in every product; the preconditioner stays the half-space's.
     Returns p and the steps taken (max_iter unless the error fell below tol). Raises
     RuntimeError when the step breaks down (t·K·t not a number > 0: no descent left while the
     error is above tol)."""
@@ -482,6 +508,10 @@ def _ccg(h, m, p, u, op, compliance, load, cell, tol, max_iter, single):
         buffer[where] = values
         return buffer.reshape(shape)
 
+    def displacement(q):
+        out = op(q, single).ravel() * compliance
+        return out if structure is None else out + structure(q).ravel()
+
     for step in range(max_iter + 1):
         g = hf + uf
         approach, e, join, error = _state(g, idx, mf)
@@ -494,13 +524,16 @@ def _ccg(h, m, p, u, op, compliance, load, cell, tol, max_iter, single):
         if join.size:
             work = np.concatenate([idx, join])
             e = np.concatenate([e, g[join] - approach])
-            conjugate = False
+            if join.size > JOIN_RESTART * idx.size:
+                conjugate = False
+            else:
+                t = np.concatenate([t, np.zeros(join.size)])
         z = op.approximate_inverse(on_grid(e, work), single).ravel()[work]
         z -= z.mean()
         G = _dot(e, z)
         t = z + (G / G_old) * t if conjugate else z
         G_old = G
-        r = op(on_grid(t, work), single).ravel() * compliance
+        r = displacement(on_grid(t, work))
         denom = _dot(r[work], t)
         if not (math.isfinite(denom) and denom > 0):
             raise RuntimeError(
@@ -513,7 +546,7 @@ def _ccg(h, m, p, u, op, compliance, load, cell, tol, max_iter, single):
         cut = pw < 0.0
         pf[work] = np.where(cut, 0.0, pw)
         if cut.any():
-            uf += op(on_grid(-pw[cut], work[cut]), single).ravel() * compliance
+            uf += displacement(on_grid(-pw[cut], work[cut]))
             work, t = work[~cut], t[~cut]
             t -= t.mean()
         idx = work
@@ -526,7 +559,8 @@ def _ccg(h, m, p, u, op, compliance, load, cell, tol, max_iter, single):
 
 def solve_contact(gap_mm, dx_mm: float, dy_mm: float, load_N: float, E_star_MPa: float,
                   mask=None, *, tol: float = 1e-8, max_iter: int = 500,
-                  warm_start: bool = True, start=None, dtype=np.float64) -> ContactSolution:
+                  warm_start: bool = True, start=None, dtype=np.float64,
+                  structure=None, reference: tuple = ()) -> ContactSolution:
     """Pressure between two elastic bodies with initial gap `gap_mm` (mm; x along axis 0 in
     steps dx_mm, y along axis 1 in steps dy_mm) under the normal load `load_N` (N), composite
     modulus `E_star_MPa` (1/E* = (1-ν1²)/E1 + (1-ν2²)/E2, MPa).
@@ -543,6 +577,12 @@ def solve_contact(gap_mm, dx_mm: float, dy_mm: float, load_N: float, E_star_MPa:
     dtype: np.float64, or np.float32 for the transforms inside the iteration (faster); the
         start and the final check are float64 either way, and the iteration is continued
         from a fresh float64 displacement until the check meets tol.
+    structure: a further linear displacement of the bodies under the pressure, p (MPa, the
+        gap's shape) -> u (mm), symmetric and positive semi-definite (the teeth's bending,
+        contact.compliance.StructureOperator); the approach then includes it.
+    reference: ((depth mm, E MPa, nu) per body, see InfluenceOperator): the depth in each
+        body the contact's compression is measured to (where a tooth's bending starts);
+        () for half-spaces (relative to infinity).
 
     Raises ValueError for a load, E*, dx or dy that is not a finite number > 0, a mask of
     another shape or without material, a gap that is not finite on material, or a contact
@@ -556,7 +596,9 @@ def solve_contact(gap_mm, dx_mm: float, dy_mm: float, load_N: float, E_star_MPa:
     if np.dtype(dtype) not in (np.dtype(np.float64), np.dtype(np.float32)):
         raise ValueError(f"dtype: {dtype!r} must be numpy.float64 or numpy.float32")
     single = np.dtype(dtype) == np.dtype(np.float32)
-    op = influence_operator(tuple(int(k) for k in h.shape), dx, dy)
+    reference = tuple(reference)
+    op = influence_operator(tuple(int(k) for k in h.shape), dx, dy, reference,
+                            E_star if reference else 1.0)
     compliance, cell = 1.0 / E_star, dx * dy
 
     p = None
@@ -574,13 +616,16 @@ def solve_contact(gap_mm, dx_mm: float, dy_mm: float, load_N: float, E_star_MPa:
     iterations = 0
     while True:
         u = op(p) * compliance                   # float64, afresh
+        if structure is not None:
+            u = u + structure(p)
         error, approach, separation = _error(h, u, p, m)
         if error < tol:
             break
         if iterations >= max_iter:
             raise RuntimeError(f"solve_contact: relative gap error {error:.3g} after "
                                f"{iterations} iterations, above tol = {tol:g}")
-        p, steps = _ccg(h, m, p, u, op, compliance, W, cell, tol, max_iter - iterations, single)
+        p, steps = _ccg(h, m, p, u, op, compliance, W, cell, tol, max_iter - iterations, single,
+                        structure)
         iterations += steps
 
     S = p > 0.0

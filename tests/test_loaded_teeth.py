@@ -1,0 +1,86 @@
+"""The loaded contact with the teeth's bending along the face (contact.compliance) against
+ISO 6336-1: the mesh stiffness of standard pairs (c', c_γα) and the face load factor K_Hβ
+of an uncrowned pair under a slope."""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+import pytest
+
+from toothcontact.analyses import analyse
+from toothcontact.analytic.stiffness import face_load_factor
+from toothcontact.case import parse_case
+
+
+def spur(teeth, module, face, helix=0.0, slope=0.0, line_load=300.0, positions=9):
+    """An uncrowned steel pair at line_load N/mm of tangential load."""
+    return analyse(parse_case({
+        "kind": "spur", "title": "stiffness check", "teeth": list(teeth),
+        "module": f"{module} mm", "pressure_angle": "20 deg", "helix_angle": f"{helix} deg",
+        "face_width": f"{face} mm", "misalignment": {"slope": f"{slope}"},
+        "load": {"tangential_load": f"{line_load * face} N"},
+        "analysis": {"positions": positions, "interference": False}}))
+
+
+@pytest.fixture(scope="module")
+def aligned():
+    return spur((20, 60), 3, 20)
+
+
+@pytest.mark.parametrize("teeth, module, face, helix", [
+    ((20, 60), 3, 20, 0.0), ((17, 80), 4, 30, 0.0), ((25, 75), 3, 20, 15.0)])
+def test_the_mesh_stiffness_of_standard_pairs_is_isos(teeth, module, face, helix, aligned):
+    """The model's mean mesh stiffness against ISO 6336-1's c_γα and its single-pair
+    stiffness against c' (Method B, solid blanks): measured -11 % to +6 % and -9 % to
+    -12 % on these and two more pairs (see the issue 14 note); asserted within ±15 %."""
+    result = aligned if (teeth, face, helix) == ((20, 60), 20, 0.0) else spur(teeth, module, face, helix)
+    s = result.sections["summary"]
+    assert s["mesh_stiffness_N_per_mm_um"] == pytest.approx(s["iso_mesh_stiffness_N_per_mm_um"],
+                                                            rel=0.15)
+    if s["single_stiffness_N_per_mm_um"] is not None:       # a helical pair never has one
+        assert s["single_stiffness_N_per_mm_um"] == pytest.approx(
+            s["iso_single_stiffness_N_per_mm_um"], rel=0.15)
+
+
+def test_an_aligned_uncrowned_pair_loads_its_face_evenly(aligned):
+    """No slope, no crown: inside the end strips the line load of every position is its
+    mean W/b within 4 % (measured: 3.8 % where a second pair enters with 2.7 µm of
+    separation, elsewhere within 1.5 %)."""
+    section = aligned.sections["load_distribution"]
+    width = 20.0
+    for line, roll in zip(section["line_load_N_per_mm"], section["roll_deg"]):
+        inner = np.asarray(line)[2:-2]
+        load = sum(r["bem_load_N"] for r in aligned.sections["positions"] if r["roll_deg"] == roll)
+        assert np.allclose(inner, load / width, rtol=0.04)
+
+
+def test_a_slope_loads_the_face_as_isos_linear_misalignment(aligned):
+    """An uncrowned 20/60 pair under a slope of 0.5 mrad (F_βy = 10 µm over b = 20 mm):
+    the single-pair positions' line load, fitted by a line inside the end strips and taken
+    to the face ends, gives K_Hβ within 10 % of ISO 6336-1's 1 + F_βy·c_γβ/(2·F_m/b) with
+    the model's own c_γβ = 0.85·c_γα (measured 4 % above). The face ends depart from the
+    line: the unloaded end A is softer than its neighbours (end softening: below the line),
+    the loaded end B carries the half-space contact's edge peak (above it)."""
+    slope, width, line_load = 0.0005, 20.0, 300.0
+    tilted = spur((20, 60), 3, width, slope=slope, line_load=line_load)
+    section = tilted.sections["load_distribution"]
+    face = np.asarray(section["face_mm"])
+    rows = tilted.sections["positions"]
+    single = [i for i, roll in enumerate(section["roll_deg"])
+              if sum(r["roll_deg"] == roll for r in rows) == 1]
+    assert single
+    stiffness = aligned.sections["summary"]["mesh_stiffness_N_per_mm_um"]
+    iso = face_load_factor(slope * width * 1e3, 0.85 * stiffness, line_load)
+    for i in single:
+        line = np.asarray(section["line_load_N_per_mm"][i])
+        mean = next(r["bem_load_N"] for r in rows if r["roll_deg"] == section["roll_deg"][i]) / width
+        gradient, level = np.polyfit(face[2:-2], line[2:-2], 1)
+        trend = (level + gradient * 0.5 * width) / mean
+        assert trend == pytest.approx(iso, rel=0.10)
+        assert line[0] < level + gradient * face[0]          # end A: softer
+        assert line[-1] > level + gradient * face[-1]        # end B: the edge peak
+        assert section["K_H_beta"][i] == pytest.approx(line.max() / mean)
+    assert tilted.sections["summary"]["K_H_beta"] == max(section["K_H_beta"])
+    assert math.isfinite(tilted.sections["summary"]["iso_K_H_beta_linear"])
