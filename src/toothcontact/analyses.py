@@ -455,6 +455,8 @@ def _spur_contact(case: schema.SpurCase, pair, result: Result) -> None:
     except (ValueError, RuntimeError) as exc:
         raise CaseError(f"misalignment / load: no contact could be found: {exc}") from None
     _contact_sections(cycle, {"tangential_load_N": wt, "normal_load_N": normal_load}, result)
+    if pair.shafts:
+        _shaft_sections(pair, result)
     from .contact.compliance import PairCompliance, ToothCompliance
 
     teeth = PairCompliance(ToothCompliance(pair.pinion, case.material.E, case.material.nu),
@@ -466,6 +468,27 @@ def _spur_contact(case: schema.SpurCase, pair, result: Result) -> None:
     _load_distribution(case, pair, result)
     if case.analysis.interference:
         _spur_interference(mesh, pair, cycle, result)
+
+
+def _shaft_sections(pair, result: Result) -> None:
+    """The shafts' deflections over the face (shaft.py; already in the pinion's deflection
+    the contact used): per member the displacement of its flank toward the mate from
+    bending and from torsion, relative to mid-face, and in the summary their slopes summed
+    over the members (positive closing end B, like misalignment.slope)."""
+    result.sections["shaft"] = {
+        name: {"face_mm": s.face.round(4).tolist(),
+               "bending_um": (s.bending * 1e3).round(4).tolist(),
+               "torsion_um": (s.torsion * 1e3).round(4).tolist(),
+               "bending_slope_rad": s.bending_slope, "torsion_slope_rad": s.torsion_slope}
+        for name, s in pair.shafts.items()}
+    result.sections["summary"].update(
+        shaft_bending_slope_rad=sum(s.bending_slope for s in pair.shafts.values()),
+        shaft_torsion_slope_rad=sum(s.torsion_slope for s in pair.shafts.values()),
+        shaft_note="the shafts' bending between their bearings and the bodies' twist over the "
+                   "face under the mesh force spread evenly over the face, toward the mate "
+                   "along the line of action, relative to mid-face; added to the pinion's "
+                   "deflection before the contact is searched (not iterated with the loaded "
+                   "line load)")
 
 
 #: a collision point counts as interference when it lies this close (mm) to a member's tip
@@ -697,13 +720,15 @@ def _load_distribution(case: schema.SpurCase, pair, result: Result) -> None:
                                   pair.gear.profile_shift, case.helix_angle)
     iso_mesh = mesh_stiffness(iso_single, pair.transverse_mesh().contact_ratio)
     model_mesh = float(np.mean(stiffness)) if stiffness else None
+    slope = (case.misalignment.slope + summary.get("shaft_bending_slope_rad", 0.0)
+             + summary.get("shaft_torsion_slope_rad", 0.0))
     summary.update(
         K_H_beta=max(factors),
         mesh_stiffness_N_per_mm_um=model_mesh,
         single_stiffness_N_per_mm_um=max(single) if single else None,
         iso_single_stiffness_N_per_mm_um=iso_single,
         iso_mesh_stiffness_N_per_mm_um=iso_mesh,
-        iso_K_H_beta_linear=(face_load_factor(abs(case.misalignment.slope) * width * 1e3,
+        iso_K_H_beta_linear=(face_load_factor(abs(slope) * width * 1e3,
                                               0.85 * model_mesh,
                                               summary["tangential_load_N"] / width)
                              if model_mesh else None),
@@ -711,9 +736,9 @@ def _load_distribution(case: schema.SpurCase, pair, result: Result) -> None:
                        "the cycle per mm of face (ISO's c_γα counterpart), "
                        "single_stiffness_N_per_mm_um its largest with one pair in contact "
                        "(c'); iso_* are ISO 6336-1 Method B for solid blanks; "
-                       "iso_K_H_beta_linear is ISO 6336-1 Method C for the case's slope as a "
-                       "linear mesh misalignment over b with c_γβ = 0.85 of the model's mesh "
-                       "stiffness, and ignores crowns and running-in")
+                       "iso_K_H_beta_linear is ISO 6336-1 Method C for the case's slope (plus "
+                       "the shafts' slopes) as a linear mesh misalignment over b with c_γβ = "
+                       "0.85 of the model's mesh stiffness, and ignores crowns and running-in")
 
 
 def _contact_sections(cycle, loads: dict, result: Result) -> None:

@@ -235,6 +235,34 @@ class EndReliefSpec(Model):
     shape: Literal["linear", "parabolic"] = "linear"
 
 
+class ShaftSpec(Model):
+    """The member's shaft (shaft.py): bearings and diameters, positions along the axis from
+    mid-face toward end B; the mesh force bends it and the body twists over the face."""
+
+    bearings: tuple[quantity("length"), quantity("length")] = Field(
+        description="the two bearing positions from mid-face, e.g. ['-80 mm', '40 mm']")
+    diameter: Length | None = Field(None, description="one diameter everywhere, e.g. '40 mm'")
+    sections: list[tuple[quantity("length"), quantity("length"), Length]] = Field(
+        [], description="a stepped shaft: [[from, to, diameter], ...] covering the bearings "
+                        "and the face (the gear body a section of its own)")
+    E: Modulus | None = Field(None, description="default: the member's material")
+    nu: Poisson | None = None
+    torque_side: Literal["A", "B"] = Field(
+        "A", description="the face end the torque comes in (or goes out) at")
+
+    @model_validator(mode="after")
+    def _layout(self):
+        if (self.diameter is None) == (not self.sections):
+            raise ValueError("give either diameter or sections (not both, not neither)")
+        if self.bearings[0] == self.bearings[1]:
+            raise ValueError(f"bearings: {self.bearings[0]} mm twice: two distinct positions")
+        for start, end, _ in self.sections:
+            if not end > start:
+                raise ValueError(f"sections: [{start}, {end}] mm must run from a smaller "
+                                 "position to a larger one")
+        return self
+
+
 class Member(Model):
     """One gear of the pair: its shift, face width and flank modifications (both flanks)."""
 
@@ -244,6 +272,7 @@ class Member(Model):
     profile_crown: ProfileCrownSpec | None = None
     tip_relief: TipReliefSpec | None = None
     end_relief: EndReliefSpec | None = None
+    shaft: ShaftSpec | None = None
 
 
 class ExportSpec(Model):

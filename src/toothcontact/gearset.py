@@ -9,7 +9,9 @@ a = (r2 ± r1)·cos(alpha_t)/cos(alpha_wt) and the overlap ratio b·sin(beta)/(�
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass, replace
+from dataclasses import dataclass, field, replace
+
+import numpy as np
 
 from scipy.optimize import brentq
 
@@ -31,6 +33,9 @@ class GearPair:
     center_distance: float
     working_pressure_angle: float
     pinion_deflection: Deflection | None = None
+    #: the members' shafts' deflections over the face (shaft.ShaftDeflection by member
+    #: name), already in pinion_deflection
+    shafts: dict = field(default_factory=dict)
 
     @property
     def internal(self) -> bool:
@@ -186,8 +191,11 @@ def gear_pair(case: SpurCase) -> GearPair:
     check_proportions(pinion, gear, center if case.center_distance is None else None)
     d = case.deflection
     deflection = None if d is None else Deflection(d.slope, d.bending, tuple(d.table))
+    shafts = _shafts(case, pinion, gear, center, alpha_w)
+    if shafts:
+        deflection = _with_shafts(deflection, shafts, pinion.face_width)
     pair = GearPair(pinion, gear, modifications(case.pinion, pinion, "pinion"),
-                    modifications(case.gear, gear, "gear"), center, alpha_w, deflection)
+                    modifications(case.gear, gear, "gear"), center, alpha_w, deflection, shafts)
     check_mesh(pair, "center_distance" if case.center_distance is not None else
                "teeth / pinion.profile_shift / gear.profile_shift / rack.addendum")
     return pair
@@ -253,6 +261,67 @@ def tip_thickness(gear: CylindricalGear) -> float:
     sign = -1.0 if gear.internal else 1.0
     return 2 * ra * (half + sign * (inv(gear.transverse_pressure_angle)
                                     - inv(math.acos(rb / ra))))
+
+
+def _shafts(case, pinion: CylindricalGear, gear: CylindricalGear, center: float,
+            alpha_w: float) -> dict:
+    """The shaft deflection (shaft.ShaftDeflection) of each member with a [member.shaft],
+    under the case's load (none without a load): the normal force at the operating pitch
+    point, on the pinion against its working flank's normal (the line of action, toward the
+    gear, and the helix's axial part), on the gear the opposite; each read along its own
+    flank's normal toward the mate."""
+    from .shaft import Shaft, shaft_deflection
+
+    specs = {name: getattr(case, name).shaft for name in ("pinion", "gear")}
+    if case.load is None or not any(specs.values()):
+        return {}
+    material = {"pinion": case.material, "gear": case.gear_material or case.material}
+    r_w1 = center / (gear.teeth / pinion.teeth + (-1.0 if gear.internal else 1.0))
+    F_t = case.load.tangential_load or case.load.torque / r_w1
+    F_bt = F_t / math.cos(alpha_w)
+    line = np.array([math.sin(alpha_w), math.cos(alpha_w), 0.0])     # ParallelMesh's
+    (u0, _), _ = pinion.flank(1).domain
+    n_z = float(pinion.flank(1).unit_normal(np.array([u0]), np.array([0.0]))[2][0])
+    force = -F_bt * (line + np.array([0.0, 0.0, n_z / math.cos(pinion.base_helix_angle)]))
+    out = {}
+    for name, spec in specs.items():
+        if spec is None:
+            continue
+        member = pinion if name == "pinion" else gear
+        if member.internal:
+            raise ValueError(f"{name}.shaft: a ring gear has no shaft here (its rim is held "
+                             "by its housing)")
+        sections = (tuple(spec.sections) if spec.sections else
+                    ((min(*spec.bearings, -member.face_width), max(*spec.bearings,
+                                                                   member.face_width),
+                      spec.diameter),))
+        shaft = Shaft(tuple(spec.bearings), sections, spec.E or material[name].E,
+                      spec.nu if spec.nu is not None else material[name].nu, spec.torque_side)
+        half = 0.5 * member.face_width
+        span = np.linspace(min(*spec.bearings, -half), max(*spec.bearings, half), 201)
+        if np.isnan(shaft.diameter(span)).any():
+            gap = float(span[np.isnan(shaft.diameter(span))][0])
+            raise ValueError(f"{name}.shaft.sections: no section holds z = {gap:.4g} mm; "
+                             "they must cover the bearings and the face")
+        sign = 1.0 if name == "pinion" else -1.0
+        r_w = r_w1 if name == "pinion" else r_w1 * gear.teeth / pinion.teeth
+        to_pitch = np.array([sign * r_w, 0.0])
+        out[name] = shaft_deflection(shaft, member.face_width, to_pitch, sign * force,
+                                     sign * line, member.base_radius, F_t * r_w)
+    return out
+
+
+def _with_shafts(deflection: Deflection | None, shafts: dict, face_width: float) -> Deflection:
+    """The pinion's deflection with the shafts' displacements toward the mate added (the
+    gear's read on the pinion's face positions: parallel axes, mid-faces together)."""
+    face = np.linspace(-0.5 * face_width, 0.5 * face_width, 41)
+    total = sum(np.interp(face, s.face, s.total) for s in shafts.values())
+    if deflection is not None and deflection.table:
+        positions, values = np.array(deflection.table, float).T
+        order = np.argsort(positions)
+        total = total + np.interp(face, positions[order], values[order])
+    base = deflection or Deflection()
+    return Deflection(base.slope, base.bending, tuple(zip(face.tolist(), total.tolist())))
 
 
 def check_proportions(pinion: CylindricalGear, gear: CylindricalGear,

@@ -1,0 +1,127 @@
+"""Shaft deflection (shaft.py) against closed-form beam and torsion results, and its way
+into a gear pair's analysis."""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+import pytest
+
+from toothcontact.analyses import analyse
+from toothcontact.case import CaseError, parse_case
+from toothcontact.shaft import Shaft, beam_deflection, twist
+
+E, NU, D = 206000.0, 0.3, 30.0
+EI = E * math.pi * D ** 4 / 64
+
+
+def grid(lo, hi, n=8001):
+    return np.linspace(lo, hi, n)
+
+
+def point(z, at, value, axis=0):
+    loads = np.zeros((z.size, 2))
+    loads[int(np.argmin(np.abs(z - at))), axis] = value
+    return loads
+
+
+def test_a_point_load_between_the_bearings():
+    """P at a from the left bearing of a span L (b = L - a): deflection under the load
+    P·a²·b²/(3·E·I·L) along the load, in both planes (0.1 %)."""
+    L, a, P = 120.0, 40.0, 5000.0
+    shaft = Shaft((0.0, L), ((0.0, L, D),), E, NU)
+    z = grid(0.0, L)
+    for axis in (0, 1):
+        u = beam_deflection(shaft, z, point(z, a, P, axis), np.zeros((z.size, 2)))
+        expected = P * a ** 2 * (L - a) ** 2 / (3 * EI * L)
+        assert np.interp(a, z, u[:, axis]) == pytest.approx(expected, rel=1e-3)
+        assert np.allclose(u[:, 1 - axis], 0.0, atol=1e-12)
+
+
+def test_a_uniform_load_over_the_span_and_an_overhung_load():
+    """Uniform q over the span: 5qL⁴/(384EI) at mid-span; P on an overhang c beyond the
+    right bearing: P·c²·(L + c)/(3EI) at its end (0.1 %)."""
+    L, q = 120.0, 50.0
+    shaft = Shaft((0.0, L), ((0.0, L, D),), E, NU)
+    z = grid(0.0, L)
+    loads = np.zeros((z.size, 2))
+    loads[:, 0] = q * L / z.size
+    u = beam_deflection(shaft, z, loads, np.zeros((z.size, 2)))
+    assert np.interp(L / 2, z, u[:, 0]) == pytest.approx(5 * q * L ** 4 / (384 * EI), rel=1e-3)
+    c, P = 40.0, 3000.0
+    shaft = Shaft((0.0, L), ((0.0, L + c, D),), E, NU)
+    z = grid(0.0, L + c)
+    u = beam_deflection(shaft, z, point(z, L + c, P), np.zeros((z.size, 2)))
+    assert u[-1, 0] == pytest.approx(P * c ** 2 * (L + c) / (3 * EI), rel=1e-3)
+
+
+def test_a_couple_is_a_pair_of_forces():
+    """A couple M about y at z0 deflects the shaft as two opposite forces ±M/e in x a
+    distance e apart do (1 %), and a couple at a bearing turns that end by M·L/(3EI)."""
+    L, M, z0, e = 120.0, 2.0e5, 50.0, 1.0
+    shaft = Shaft((0.0, L), ((0.0, L, D),), E, NU)
+    z = grid(0.0, L)
+    couple = np.zeros((z.size, 2))
+    couple[int(np.argmin(np.abs(z - z0))), 1] = M
+    by_couple = beam_deflection(shaft, z, np.zeros((z.size, 2)), couple)
+    pair = point(z, z0 + e / 2, M / e) + point(z, z0 - e / 2, -M / e)
+    by_forces = beam_deflection(shaft, z, pair, np.zeros((z.size, 2)))
+    assert np.max(np.abs(by_couple[:, 0] - by_forces[:, 0])) < 0.01 * np.max(np.abs(by_forces))
+    couple[:] = 0.0
+    couple[0, 1] = M
+    u = beam_deflection(shaft, z, np.zeros((z.size, 2)), couple)
+    slope = (u[1, 0] - u[0, 0]) / (z[1] - z[0])
+    assert abs(slope) == pytest.approx(M * L / (3 * EI), rel=2e-3)
+
+
+def test_the_body_twists_by_half_the_torque_over_the_face():
+    """A torque handed evenly to the mesh along the face: the twist across the face is
+    T·b/(2·G·J) (0.1 %), growing away from the torque's side."""
+    b, T = 30.0, 2.4e5
+    G, J = E / (2 * (1 + NU)), math.pi * D ** 4 / 32
+    for side, sign in (("A", 1.0), ("B", -1.0)):
+        shaft = Shaft((-60.0, 60.0), ((-60.0, 60.0, D),), E, NU, side)
+        phi = twist(shaft, np.array([-b / 2, b / 2]), b, T)
+        assert sign * (phi[1] - phi[0]) == pytest.approx(T * b / (2 * G * J), rel=1e-3)
+
+
+def case(shaft: dict, **extra):
+    return {"kind": "spur", "teeth": [20, 60], "module": "3 mm", "pressure_angle": "20 deg",
+            "face_width": "30 mm", "pinion": {"crown": {"radius": "4000 mm"}, "shaft": shaft},
+            "load": {"tangential_load": "8000 N"},
+            "analysis": {"positions": 3, "interference": False, "pressure_grid": 48}, **extra}
+
+
+def test_a_pinion_shaft_enters_the_analysis_as_its_deflection():
+    """A symmetric layout bends the pinion symmetrically (no bending slope; the face ends
+    closer to the gear than mid-face, by the closed form of a beam under the face's load
+    spread evenly, 2 %), and the torque coming in at end A twists end B away: the torsion
+    slope T·b/(2GJ)·r_b over b, as a least-squares slope of the quadratic twist (5 %)."""
+    result = analyse(parse_case(case({"bearings": ["-60 mm", "60 mm"], "diameter": "30 mm"})))
+    section, summary = result.sections["shaft"]["pinion"], result.sections["summary"]
+    assert abs(summary["shaft_bending_slope_rad"]) < 1e-12
+    F = 8000.0 / math.cos(math.radians(20))
+    L, b, q = 120.0, 30.0, F / 30.0
+    # mid-span minus 15 mm from it, for a load q over the middle b of a span L
+    x = np.linspace(0.0, L, 12001)
+    loads = np.where(np.abs(x - L / 2) <= b / 2, q * (x[1] - x[0]), 0.0)
+    u = beam_deflection(Shaft((0.0, L), ((0.0, L, 30.0),), E, NU), x,
+                        np.column_stack([loads, np.zeros_like(x)]), np.zeros((x.size, 2)))[:, 0]
+    expected = np.interp(L / 2, x, u) - np.interp(L / 2 + b / 2, x, u)
+    assert section["bending_um"][-1] * 1e-3 == pytest.approx(expected, rel=0.02)
+    G, J = E / (2 * (1 + NU)), math.pi * 30.0 ** 4 / 32
+    r_b = 30.0 * math.cos(math.radians(20))
+    across = 8000.0 * 30.0 * b / (2 * G * J) * r_b
+    assert summary["shaft_torsion_slope_rad"] < 0
+    assert -summary["shaft_torsion_slope_rad"] * b == pytest.approx(across, rel=0.05)
+
+
+@pytest.mark.parametrize("shaft, field", [
+    ({"bearings": ["-60 mm", "60 mm"]}, "diameter"),
+    ({"bearings": ["-60 mm", "-60 mm"], "diameter": "30 mm"}, "bearings"),
+    ({"bearings": ["-60 mm", "60 mm"], "sections": [["-60 mm", "0 mm", "30 mm"]]}, "sections"),
+])
+def test_a_shaft_that_cannot_be_built_is_refused(shaft, field):
+    with pytest.raises(CaseError, match=field):
+        analyse(parse_case(case(shaft)))
