@@ -56,31 +56,47 @@ def test_an_aligned_uncrowned_pair_loads_its_face_evenly(aligned):
         assert np.allclose(inner, load / width, rtol=0.04)
 
 
+def position_stiffness(result, width):
+    """Each position's mesh stiffness (N/(mm·µm), spur): its load over the approach that
+    closes its first-touching pair (the lead pair's separation plus approach less the least
+    separation), per mm of face."""
+    rows = result.sections["positions"]
+    out = {}
+    for roll in {r["roll_deg"] for r in rows}:
+        pairs = [r for r in rows if r["roll_deg"] == roll]
+        lead = max(pairs, key=lambda r: r["bem_load_N"])
+        closing = (lead["separation_mm"] + lead["bem_approach_mm"]
+                   - min(r["separation_mm"] for r in pairs))
+        out[roll] = sum(r["bem_load_N"] for r in pairs) / closing / width * 1e-3
+    return out
+
+
 def test_a_slope_loads_the_face_as_isos_linear_misalignment(aligned):
     """An uncrowned 20/60 pair under a slope of 0.5 mrad (F_βy = 10 µm over b = 20 mm):
-    the single-pair positions' line load, fitted by a line inside the end strips and taken
-    to the face ends, gives K_Hβ within 10 % of ISO 6336-1's 1 + F_βy·c_γβ/(2·F_m/b) with
-    the model's own c_γβ = 0.85·c_γα (measured 4 % above). The face ends depart from the
-    line: the unloaded end A is softer than its neighbours (end softening: below the line),
-    the loaded end B carries the half-space contact's edge peak (above it)."""
+    at every position the line load, fitted by a line inside the end strips and taken to
+    the face ends, gives K_Hβ within 5 % of ISO 6336-1's 1 + F_βy·c/(2·F_m/b) with the same
+    stiffness c, the position's own from the aligned pair (measured -2.9 % to -0.1 %; at
+    1 mrad -1.8 % to +2.3 %): one pair (c ≈ 12.3) gives 1.17, two (c ≈ 21) 1.32. The face
+    ends depart from the line: the unloaded end A is softer than its neighbours (end
+    softening: measured 5.7 % below the line), the loaded end B carries the half-space
+    contact's edge peak (5 % above it)."""
     slope, width, line_load = 0.0005, 20.0, 300.0
     tilted = spur((20, 60), 3, width, slope=slope, line_load=line_load)
+    stiffness = position_stiffness(aligned, width)
     section = tilted.sections["load_distribution"]
     face = np.asarray(section["face_mm"])
     rows = tilted.sections["positions"]
-    single = [i for i, roll in enumerate(section["roll_deg"])
-              if sum(r["roll_deg"] == roll for r in rows) == 1]
-    assert single
-    stiffness = aligned.sections["summary"]["mesh_stiffness_N_per_mm_um"]
-    iso = face_load_factor(slope * width * 1e3, 0.85 * stiffness, line_load)
-    for i in single:
+    assert set(section["roll_deg"]) == set(stiffness)
+    for i, roll in enumerate(section["roll_deg"]):
         line = np.asarray(section["line_load_N_per_mm"][i])
-        mean = next(r["bem_load_N"] for r in rows if r["roll_deg"] == section["roll_deg"][i]) / width
+        mean = sum(r["bem_load_N"] for r in rows if r["roll_deg"] == roll) / width
         gradient, level = np.polyfit(face[2:-2], line[2:-2], 1)
         trend = (level + gradient * 0.5 * width) / mean
-        assert trend == pytest.approx(iso, rel=0.10)
-        assert line[0] < level + gradient * face[0]          # end A: softer
-        assert line[-1] > level + gradient * face[-1]        # end B: the edge peak
+        iso = face_load_factor(slope * width * 1e3, stiffness[roll], line_load)
+        assert trend == pytest.approx(iso, rel=0.05)
         assert section["K_H_beta"][i] == pytest.approx(line.max() / mean)
+        if sum(r["roll_deg"] == roll for r in rows) == 1:
+            assert line[0] < level + gradient * face[0]          # end A: softer
+            assert line[-1] > level + gradient * face[-1]        # end B: the edge peak
     assert tilted.sections["summary"]["K_H_beta"] == max(section["K_H_beta"])
     assert math.isfinite(tilted.sections["summary"]["iso_K_H_beta_linear"])

@@ -463,8 +463,11 @@ def _spur_contact(case: schema.SpurCase, pair, result: Result) -> None:
                            ToothCompliance(pair.gear, gear_material.E, gear_material.nu))
     _loaded_sections(cycle, C_E, a.pressure_grid, teeth,
                      "tooth bending from each member's exact transverse slices (bending, shear, "
-                     "axial and gear body compliance) coupled along the face as a Pasternak "
-                     "line (contact.compliance), solved with the contact in one system", result)
+                     "axial and gear body compliance, solid blanks with a bore of half the root "
+                     "diameter" + ("; the ring gear's body as an external gear's of its root "
+                                   "circle" if pair.gear.internal else "") + ") coupled along "
+                     "the face as a Pasternak line (contact.compliance), solved with the "
+                     "contact in one system", result)
     _load_distribution(case, pair, result)
     if case.analysis.interference:
         _spur_interference(mesh, pair, cycle, result)

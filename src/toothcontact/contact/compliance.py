@@ -109,7 +109,9 @@ class ToothCompliance:
     tabulated over the load radius from the form circle to the tip: the exact transverse
     outline at mid-face (surfaces.outline), the load along the involute's normal.
     bore_radius (mm): the rim's inner radius for the gear body term; None: half the root
-    radius (a solid blank on a shaft of half its root diameter)."""
+    radius (a solid blank on a shaft of half its root diameter). A ring gear takes the body
+    term of an external gear of its root circle (h_fi = 2): Sainsot's fit has no rim held
+    from outside (an assumption, stated in the result's load_sharing)."""
 
     def __init__(self, gear, E: float, nu: float, bore_radius: float | None = None):
         from ..surfaces.outline import ToothOutline

@@ -46,9 +46,9 @@ SHARE_TOLERANCE = 0.005
 #: the field (4 times fewer cells), and only the final split on the full grid
 COARSE_STEP = 2
 #: the relative gap error each contact is solved to (pressure.solve_contact), on the full
-#: grid and in the load sharing's coarse rounds: on a 30 µm approach, 0.3 nm and 3 nm;
-#: pressures to 1e-5, the split to 1e-4
-GAP_TOLERANCE, COARSE_TOLERANCE = 1e-5, 1e-4
+#: grid and in the load sharing's coarse rounds: on a 30 µm approach, 0.3 nm and 30 nm;
+#: the pressures to 1e-5, the split to about 0.2 % of the load (SHARE_TOLERANCE is 0.5 %)
+GAP_TOLERANCE, COARSE_TOLERANCE = 1e-5, 1e-3
 
 
 #: the result keys of a loaded contact (LoadedContact.summary); a row without a solution
