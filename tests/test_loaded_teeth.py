@@ -94,7 +94,7 @@ def test_a_slope_loads_the_face_as_isos_linear_misalignment(aligned):
         trend = (level + gradient * 0.5 * width) / mean
         iso = face_load_factor(slope * width * 1e3, stiffness[roll], line_load)
         assert trend == pytest.approx(iso, rel=0.05)
-        assert section["K_H_beta"][i] == pytest.approx(line.max() / mean)
+        assert section["K_H_beta"][i] == pytest.approx(line.max() / mean, rel=1e-4)
         if sum(r["roll_deg"] == roll for r in rows) == 1:
             assert line[0] < level + gradient * face[0]          # end A: softer
             assert line[-1] > level + gradient * face[-1]        # end B: the edge peak
