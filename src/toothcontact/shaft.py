@@ -24,6 +24,7 @@ import math
 from dataclasses import dataclass
 
 import numpy as np
+from scipy.integrate import cumulative_trapezoid
 
 #: points of the beam's grid
 POINTS = 4001
@@ -103,18 +104,12 @@ def beam_deflection(shaft: Shaft, z: np.ndarray, force: np.ndarray, couple: np.n
     M_x = -arm[:, 1] + shift(beyond_couple)[:, 0]
     inertia = math.pi * shaft.diameter(z) ** 4 / 64.0
     curvature = np.stack([M_y, -M_x], axis=-1) / (shaft.E * inertia)[:, None]
-    slope = _cumulative(curvature, z)
-    u = _cumulative(slope, z)
+    slope = cumulative_trapezoid(curvature, z, initial=0.0, axis=0)
+    u = cumulative_trapezoid(slope, z, initial=0.0, axis=0)
     # a rigid line through the bearings: u(z1) = u(z2) = 0
     at = np.array([[np.interp(b, z, u[:, axis]) for axis in (0, 1)] for b in (z1, z2)])
     gradient = (at[1] - at[0]) / (z2 - z1)
     return u - at[0] - np.outer(z - z1, gradient)
-
-
-def _cumulative(f: np.ndarray, z: np.ndarray) -> np.ndarray:
-    """∫ f dz from the first point (trapezoid rule), per column."""
-    steps = 0.5 * (f[1:] + f[:-1]) * np.diff(z)[:, None]
-    return np.concatenate([np.zeros((1, f.shape[1])), np.cumsum(steps, axis=0)])
 
 
 def twist(shaft: Shaft, z: np.ndarray, face_width: float, torque: float) -> np.ndarray:
@@ -129,7 +124,7 @@ def twist(shaft: Shaft, z: np.ndarray, face_width: float, torque: float) -> np.n
     J = math.pi * shaft.diameter(s) ** 4 / 32.0
     rate = carried / (G * J)
     order = np.argsort(from_side)
-    angle = _cumulative(rate[order][:, None], from_side[order])[:, 0]
+    angle = cumulative_trapezoid(rate[order], from_side[order], initial=0.0)
     return np.interp(half + np.asarray(z) if shaft.torque_side == "A" else half - np.asarray(z),
                      from_side[order], angle)
 

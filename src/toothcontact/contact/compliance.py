@@ -42,6 +42,7 @@ import math
 from dataclasses import dataclass
 
 import numpy as np
+from scipy.integrate import cumulative_trapezoid
 
 from ..analytic.stiffness import foundation_compliance
 
@@ -89,19 +90,14 @@ def cantilever(s: np.ndarray, half: np.ndarray, load_s: float, load_y: float,
     axial = np.trapezoid(np.where(loaded, d_s ** 2 / (E_plane * area), 0.0), s)
     # the slice's deflection shape: w'' = M/(E'I), w(0) = w'(0) = 0
     curvature = moment / (E_plane * inertia)
-    slope = _cumulative(curvature, s)
-    deflection = _cumulative(slope, s)
+    slope = cumulative_trapezoid(curvature, s, initial=0.0)
+    deflection = cumulative_trapezoid(slope, s, initial=0.0)
     at_load = np.interp(load_s, s, deflection)
     phi, dphi, ddphi = deflection / at_load, slope / at_load, curvature / at_load
     D = E_plane * inertia
     k = np.trapezoid(D * ddphi ** 2, s)
     G_p = np.trapezoid(D * (2.0 * (1.0 - nu) * dphi ** 2 - 2.0 * nu * phi * ddphi), s)
     return float(bending), float(shear), float(axial), math.sqrt(max(G_p, 0.0) / k)
-
-
-def _cumulative(f: np.ndarray, s: np.ndarray) -> np.ndarray:
-    """∫_0^s f by the trapezoid rule, 0 at the first point."""
-    return np.concatenate([[0.0], np.cumsum(0.5 * (f[1:] + f[:-1]) * np.diff(s))])
 
 
 class ToothCompliance:
