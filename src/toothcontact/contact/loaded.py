@@ -10,9 +10,10 @@ Pairs in contact at one position share one rigid rotation of the gear: each clos
 same approach D (its approach measured from its own gap, which includes its separation at
 first touch); the loads sum to the normal load. The split is found by modelling each pair as
 delta_k(W) = s_k + c_k·W^n_k (n_k = 2/3 and c_k from the rigid analysis's Hertz approach at
-first; then c_k calibrated from its last solve and n_k fitted through its last two, since a
-line contact's approach, and a bending tooth's, grows nearly linearly), solving the model
-for D, solving each loaded pair again, until the loads settle.
+first; then c_k calibrated from its last solve and n_k fitted through its last two: a
+line contact's approach, and a bending tooth's, grows nearly linearly, a pair that barely
+touches steeply), solving the model for D, solving each loaded pair again, until the
+loads settle.
 
 The pressure at a sharp face end is singular: the raw peak grows as the grid is refined. The
 edge is therefore reported as the pressure averaged over a strip `EDGE_STRIP` wide at the
@@ -258,9 +259,9 @@ def _share(pairs: list[_Pair], load: float) -> list[ContactSolution | None]:
     each pair's approach modelled as s_k + c_k·W^n_k, n_k = 2/3 and c_k from the rigid
     analysis's Hertz approach at first (a pair without one, a line or an area, is first
     solved at the equal split to calibrate it), then c_k from its last solution and n_k
-    fitted through its last two (a line contact's approach grows nearly linearly); the model
-    solved for the split, the loaded pairs solved there (on the coarse grid where the teeth
-    bend, see _Pair.solve), until the split settles; the solutions returned are those at
+    fitted through its last two (0.5 to 3: a line contact grows nearly linearly, a pair that
+    barely touches steeply); the model solved for the split, the loaded pairs solved there
+    (on the coarse grid where the teeth bend, see _Pair.solve), until the split settles; the solutions returned are those at
     the final split on the full grid. A pair the model leaves unloaded is not solved."""
     if len(pairs) == 1:
         if pairs[0].structure is not None:
@@ -290,7 +291,9 @@ def _share(pairs: list[_Pair], load: float) -> list[ContactSolution | None]:
             if before is not None and abs(math.log(new[k] / before_at)) > 0.01:
                 fitted = (math.log(rise / max(before.approach_mm - s[k], 1e-12))
                           / math.log(new[k] / before_at))
-                exponent[k] = min(max(fitted, 0.5), 1.0)
+                # the interpolant through its last two solves: a pair that barely touches
+                # stiffens fast (fitted up to 2-3); held to 1 it flips the split between two
+                exponent[k] = min(max(fitted, 0.5), 3.0)
             c[k] = rise / new[k] ** exponent[k]
     return [pair.solve(w) if w > 1e-6 * load else None for pair, w in zip(pairs, split)]
 
