@@ -148,7 +148,10 @@ def test_spur_case_reports_positions_and_summary(tmp_path):
             "edge_margin_mm", "edge_contact", "transmission_error_urad"}
     assert all(keys <= set(r) for r in rows)
     assert len({r["roll_deg"] for r in rows}) == 21
-    assert all(r["face_position_mm"] == pytest.approx(3.2, rel=0.01) for r in rows)
+    # the pairs in contact (pairs kept beyond the approach for the loaded contact least
+    # apart elsewhere, at a tip corner)
+    assert all(r["face_position_mm"] == pytest.approx(3.2, rel=0.01) for r in rows
+               if r["rigid_contact"])
     summary = doc["summary"]
     assert summary["worst_face_edge_margin_mm"] > 0
     assert summary["worst_profile_edge"] == "pinion_tip"

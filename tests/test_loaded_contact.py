@@ -41,7 +41,10 @@ def half_space(aligned):
 
 
 def single_pair(rows):
-    return [r for r in rows if sum(q["roll_deg"] == r["roll_deg"] for q in rows) == 1]
+    """The rows that carry their position's whole load (the others kept beyond the approach
+    carry none)."""
+    return [r for r in rows if r["bem_load_N"] > 0 and sum(
+        q["roll_deg"] == r["roll_deg"] and q["bem_load_N"] > 0 for q in rows) == 1]
 
 
 def test_whole_ellipses_carry_hertz_pressure(half_space):
@@ -49,7 +52,7 @@ def test_whole_ellipses_carry_hertz_pressure(half_space):
     the gap field (128², the exact surfaces) gives Hertz's peak within 1 %, its approach
     within 2 % and its area πab within 3 %."""
     single = single_pair(half_space)
-    assert len(single) >= 2
+    assert len(single) >= 1     # the mid single-pair position (its neighbours load a tip corner)
     for r in single:
         assert not r["edge_loaded"]
         assert r["bem_p_max_MPa"] == pytest.approx(r["p_max_MPa"], rel=0.01)
@@ -66,21 +69,22 @@ def test_the_teeths_bending_spreads_a_crowned_contact_along_the_face(aligned):
 
 
 def test_pairs_share_the_load_by_one_rigid_rotation(aligned, half_space):
-    """Two pairs in contact: their loads sum to the normal load, and they satisfy one rigid
-    approach, s_k + delta_k equal for both (delta_k their solutions' approach: with the
-    teeth, contact compression and bending together) to 0.5 % of it; on half-spaces the
+    """Two pairs carrying load: their loads sum to the normal load, and they satisfy one
+    rigid approach D: their solutions' approaches (each measured on its own gap field, which
+    holds the pair's separation s_k; D - s_k its contact compression and, with the teeth,
+    its bending) equal to 0.5 %; on half-spaces the
     split agrees within 2 % with the one Hertz's law gives (delta_k = Hertz approach for the
     pair's A, B and load) for pairs that are not edge-loaded."""
     checked = 0
     for rows in (aligned.sections["positions"], half_space):
         for roll in sorted({r["roll_deg"] for r in rows}):
-            pair = [r for r in rows if r["roll_deg"] == roll]
+            total = sum(r["normal_load_N"] for r in rows if r["roll_deg"] == roll)
+            pair = [r for r in rows if r["roll_deg"] == roll and r["bem_load_N"] > 0]
             if len(pair) != 2:
                 continue
-            total = sum(r["normal_load_N"] for r in pair)
             assert sum(r["bem_load_N"] for r in pair) == pytest.approx(total, rel=1e-6)
-            reach = [r["separation_mm"] + r["bem_approach_mm"] for r in pair]
-            assert reach[0] == pytest.approx(reach[1], rel=0.005)
+            # each approach is measured on the pair's own gap field, which holds its separation
+            assert pair[0]["bem_approach_mm"] == pytest.approx(pair[1]["bem_approach_mm"], rel=0.005)
             if rows is not half_space or any(r["edge_loaded"] for r in pair):
                 continue
 
@@ -98,8 +102,8 @@ def test_pairs_share_the_load_by_one_rigid_rotation(aligned, half_space):
 
 def test_loaded_transmission_error_adds_the_common_approach_over_the_base_radius(aligned):
     """The gear lags under load by D/r_b2 (spur, beta_b = 0): at every position the loaded
-    TE is the unloaded one plus 1e6·(s_k + delta_k)/r_b2 for each loaded pair k (delta_k
-    its contact compression and its teeth's bending; r_b2 = 0.5·60·3·cos 20°, closed form;
+    TE is the unloaded one plus 1e6·D/r_b2 for each loaded pair k (D = s_k + delta_k, its
+    approach on its gap field: delta_k its contact compression and its teeth's bending; r_b2 = 0.5·60·3·cos 20°, closed form;
     the cycle's turn slope is its own finite difference), to 0.5 % of the addition; the
     single-pair positions lag most (their one pair carries the whole load), and the summary
     holds its peak to peak."""
@@ -108,11 +112,13 @@ def test_loaded_transmission_error_adds_the_common_approach_over_the_base_radius
     r_b2 = 0.5 * 60 * 3.0 * math.cos(math.radians(20.0))
     assert aligned.cycle.turn_slope == pytest.approx(r_b2, rel=1e-6)
     for r in rows:
-        added = 1e6 * (r["separation_mm"] + r["bem_approach_mm"]) / r_b2
-        assert r["loaded_transmission_error_urad"] - r["transmission_error_urad"] == \
-            pytest.approx(added, rel=0.005)
+        if r["bem_load_N"] > 0:     # D, measured on the pair's gap field (s_k included)
+            added = 1e6 * r["bem_approach_mm"] / r_b2
+            assert r["loaded_transmission_error_urad"] - r["transmission_error_urad"] == \
+                pytest.approx(added, rel=0.005)
     by_roll = {r["roll_deg"]: r["loaded_transmission_error_urad"] for r in rows}
-    single = [roll for roll in by_roll if sum(r["roll_deg"] == roll for r in rows) == 1]
+    single = [roll for roll in by_roll
+              if sum(r["roll_deg"] == roll and r["bem_load_N"] > 0 for r in rows) == 1]
     double = [roll for roll in by_roll if roll not in single]
     assert single and double
     assert min(by_roll[k] for k in single) > max(by_roll[k] for k in double)
@@ -147,7 +153,7 @@ def test_designed_crown_has_no_edge_load_and_a_flatter_one_has(slope):
         result = analyse(parse_case(spur({"radius": f"{radius * scale} mm", "center": f"{centre} mm"},
                                          slope, positions=5, grid=256)))
         k, row = next((k, r) for k, r in enumerate(result.sections["positions"])
-                      if r["roll_deg"] == pytest.approx(-4.5))
+                      if r["roll_deg"] == pytest.approx(-4.5) and r["rigid_contact"])
         assert row["contact_radius_pinion_mm"] == pytest.approx(30.0, abs=0.01)
         solved, _ = loaded_cycle(result.cycle, STEEL, 256)
         found[scale], bending[scale] = {**row, **solved[k].summary()}, row

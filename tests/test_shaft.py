@@ -10,7 +10,8 @@ import pytest
 
 from toothcontact.analyses import analyse
 from toothcontact.case import CaseError, parse_case
-from toothcontact.shaft import Shaft, beam_deflection, twist
+from toothcontact.gearset import gear_pair
+from toothcontact.shaft import Shaft, beam_deflection, shaft_deflection, twist
 
 E, NU, D = 206000.0, 0.3, 30.0
 EI = E * math.pi * D ** 4 / 64
@@ -93,14 +94,15 @@ def case(shaft: dict, **extra):
             "analysis": {"positions": 3, "interference": False, "pressure_grid": 48}, **extra}
 
 
-def test_a_pinion_shaft_enters_the_analysis_as_its_deflection():
-    """A symmetric layout bends the pinion symmetrically (no bending slope; the face ends
-    closer to the gear than mid-face, by the closed form of a beam under the face's load
-    spread evenly, 2 %), and the torque coming in at end A twists end B away: the torsion
-    slope T·b/(2GJ)·r_b over b, as a least-squares slope of the quadratic twist (5 %)."""
-    result = analyse(parse_case(case({"bearings": ["-60 mm", "60 mm"], "diameter": "30 mm"})))
-    section, summary = result.sections["shaft"]["pinion"], result.sections["summary"]
-    assert abs(summary["shaft_bending_slope_rad"]) < 1e-12
+def test_a_pinion_shaft_under_an_even_load():
+    """The pair's first estimate (the mesh force spread evenly over the face): a symmetric
+    layout bends the pinion symmetrically (no bending slope; the face ends closer to the
+    gear than mid-face, by the closed form of a beam under the face's load spread evenly,
+    2 %), and the torque coming in at end A twists end B away: the torsion slope
+    T·b/(2GJ)·r_b over b, as a least-squares slope of the quadratic twist (5 %)."""
+    shaft = gear_pair(parse_case(case({"bearings": ["-60 mm", "60 mm"],
+                                       "diameter": "30 mm"}))).shafts["pinion"]
+    assert abs(shaft.bending_slope) < 1e-12
     F = 8000.0 / math.cos(math.radians(20))
     L, b, q = 120.0, 30.0, F / 30.0
     # mid-span minus 15 mm from it, for a load q over the middle b of a span L
@@ -109,12 +111,22 @@ def test_a_pinion_shaft_enters_the_analysis_as_its_deflection():
     u = beam_deflection(Shaft((0.0, L), ((0.0, L, 30.0),), E, NU), x,
                         np.column_stack([loads, np.zeros_like(x)]), np.zeros((x.size, 2)))[:, 0]
     expected = np.interp(L / 2, x, u) - np.interp(L / 2 + b / 2, x, u)
-    assert section["bending_um"][-1] * 1e-3 == pytest.approx(expected, rel=0.02)
+    assert shaft.bending[-1] == pytest.approx(expected, rel=0.02)
     G, J = E / (2 * (1 + NU)), math.pi * 30.0 ** 4 / 32
     r_b = 30.0 * math.cos(math.radians(20))
     across = 8000.0 * 30.0 * b / (2 * G * J) * r_b
-    assert summary["shaft_torsion_slope_rad"] < 0
-    assert -summary["shaft_torsion_slope_rad"] * b == pytest.approx(across, rel=0.05)
+    assert shaft.torsion_slope < 0
+    assert -shaft.torsion_slope * b == pytest.approx(across, rel=0.05)
+
+
+def test_a_pinion_shaft_enters_the_analysis_as_its_deflection():
+    """The analysis adds the shaft's deflection (under its final line load) to the pinion's
+    and reports it: the summary's slopes are the section's."""
+    result = analyse(parse_case(case({"bearings": ["-60 mm", "60 mm"], "diameter": "30 mm"})))
+    section, summary = result.sections["shaft"]["pinion"], result.sections["summary"]
+    assert summary["shaft_bending_slope_rad"] == section["bending_slope_rad"]
+    assert summary["shaft_torsion_slope_rad"] == section["torsion_slope_rad"]
+    assert section["bending_um"][-1] > 0 and section["bending_um"][0] > 0   # the ends closer
 
 
 @pytest.mark.parametrize("shaft, field", [
@@ -125,3 +137,40 @@ def test_a_pinion_shaft_enters_the_analysis_as_its_deflection():
 def test_a_shaft_that_cannot_be_built_is_refused(shaft, field):
     with pytest.raises(CaseError, match=field):
         analyse(parse_case(case(shaft)))
+
+
+def test_a_line_load_rising_along_the_face():
+    """Bearings at the face ends, the line load rising linearly from 0 at end A to q0 at
+    end B (shaft_deflection with line_load): the deflection relative to mid-face follows
+    the closed form y(x) = q0·x·(7L⁴ - 10L²x² + 3x⁴)/(360·E·I·L) (x from end A), to 0.5 % of
+    its largest; the torque coming in at end A is taken as ζ² (ζ the distance from A over
+    b), so the face twists by T·b·(2/3)/(G·J) (0.1 %)."""
+    L, q0, T = 60.0, 400.0, 2.4e5
+    shaft = Shaft((-L / 2, L / 2), ((-L / 2, L / 2, D),), E, NU, "A")
+    face = np.linspace(-L / 2, L / 2, 13)
+    line_load = (face, q0 * (face + L / 2) / L)
+    force = np.array([q0 * L / 2, 0.0, 0.0])
+    found = shaft_deflection(shaft, L, np.zeros(2), force, np.array([1.0, 0.0, 0.0]), 1.0,
+                             T, points=61, line_load=line_load)
+    x = found.face + L / 2
+    y = q0 * x * (7 * L ** 4 - 10 * L ** 2 * x ** 2 + 3 * x ** 4) / (360 * EI * L)
+    expected = y - y[len(y) // 2]
+    assert np.max(np.abs(found.bending - expected)) < 5e-3 * np.max(np.abs(expected))
+    G, J = E / (2 * (1 + NU)), math.pi * D ** 4 / 32
+    phi = twist(shaft, np.array([-L / 2, L / 2]), L, T, line_load)
+    assert phi[1] - phi[0] == pytest.approx(T * L * (2 / 3) / (G * J), rel=1e-3)
+
+
+def test_the_shaft_settles_under_the_loaded_line_load():
+    """A slender overhung pinion shaft under an uncrowned pair: the load piles up at one
+    end, so the shaft's deflection under the loaded contact's line load differs from the
+    even spread's by more than the tolerance; the analysis repeats until it settles (within
+    0.5 µm) and says how many passes it took."""
+    raw = case({"bearings": ["-120 mm", "20 mm"], "diameter": "24 mm"})
+    del raw["pinion"]["crown"]
+    result = analyse(parse_case(raw))
+    section = result.sections["shaft"]
+    assert section["passes"] >= 2
+    assert section["changes_um"][0] > 0.5 >= section["changes_um"][-1]
+    check = next(c for c in result.checks if c.name.startswith("shaft deflection settled"))
+    assert check.ok

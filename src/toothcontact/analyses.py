@@ -432,8 +432,47 @@ def _cycle_settings(a: schema.AnalysisSpec, **kind_settings):
     return CycleSettings(a.positions, a.grid, a.approach, field_grid=a.field_grid, **kind_settings)
 
 
+#: with a shaft the contact is analysed again, the shafts loaded by the loaded contact's
+#: line load, until their deflection changes by less than SHAFT_TOLERANCE (mm) anywhere on
+#: the face: at most SHAFT_PASSES analyses in all
+SHAFT_TOLERANCE, SHAFT_PASSES = 0.5e-3, 3
+
+
 def _spur_contact(case: schema.SpurCase, pair, result: Result) -> None:
-    """Contact by surface separation over the mesh cycle (contact.cycle)."""
+    """Contact by surface separation over the mesh cycle (contact.cycle) and the loaded
+    contact; with a [member.shaft], repeated with the shafts carrying the loaded contact's
+    line load (its mean over the cycle) instead of an even one until the shafts' deflection
+    settles (SHAFT_TOLERANCE): each pass starts from the geometry's sections and checks."""
+    from .gearset import gear_pair
+
+    checks, sections = list(result.checks), dict(result.sections)
+    changes = []
+    for attempt in range(SHAFT_PASSES):
+        result.checks, result.sections = list(checks), dict(sections)
+        _contact_pass(case, pair, result)
+        distribution = result.sections.get("load_distribution")
+        if not pair.shafts or distribution is None:
+            return
+        line_load = (np.asarray(distribution["face_mm"]),
+                     np.mean(distribution["line_load_N_per_mm"], axis=0))
+        updated = gear_pair(case, line_load)
+        changes.append(max(float(np.max(np.abs(updated.shafts[name].total - shaft.total)))
+                           for name, shaft in pair.shafts.items()))
+        if changes[-1] <= SHAFT_TOLERANCE or attempt == SHAFT_PASSES - 1:
+            break
+        pair = updated
+    result.sections["shaft"]["passes"] = len(changes)
+    result.sections["shaft"]["changes_um"] = [1e3 * c for c in changes]
+    result.checks.append(Check(
+        "shaft deflection settled with the loaded line load", changes[-1] <= SHAFT_TOLERANCE,
+        f"{len(changes)} pass(es); the shafts' deflection under the loaded line load differs "
+        f"by {1e3 * changes[-1]:.2f} µm from the one analysed (settled below "
+        f"{1e3 * SHAFT_TOLERANCE:g} µm)"))
+
+
+def _contact_pass(case: schema.SpurCase, pair, result: Result) -> None:
+    """One analysis of the contact (cycle, loaded contact, load distribution, interference)
+    with the pair's deflection as it stands."""
     from .assembly import Misalignment, ParallelMesh
     from .contact.cycle import parallel_cycle
     from .gearset import working_flank
@@ -449,9 +488,11 @@ def _spur_contact(case: schema.SpurCase, pair, result: Result) -> None:
     gear_material = case.gear_material or case.material
     C_E = hertz.compliance(case.material.E, case.material.nu, gear_material.E, gear_material.nu)
     a = case.analysis
+    reach = (_loaded_reach(pair, normal_load, case.material.E, gear_material.E)
+             if a.pressure_grid else 0.0)
     try:
         cycle = parallel_cycle(mesh, pinion, gear, normal_load, C_E,
-                              _cycle_settings(a))
+                              _cycle_settings(a, reach=reach))
     except (ValueError, RuntimeError) as exc:
         raise CaseError(f"misalignment / load: no contact could be found: {exc}") from None
     _contact_sections(cycle, {"tangential_load_N": wt, "normal_load_N": normal_load}, result)
@@ -473,6 +514,26 @@ def _spur_contact(case: schema.SpurCase, pair, result: Result) -> None:
         _spur_interference(mesh, pair, cycle, result)
 
 
+#: the separation (as a multiple of ISO's single-pair approach under the whole load) up
+#: to which a pair is kept for the loaded contact: the tooth pairs a loaded mesh may bring in
+LOADED_REACH = 3.0
+
+
+def _loaded_reach(pair, normal_load: float, E_pinion: float, E_gear: float) -> float:
+    """The separation (mm) within which tooth pairs are candidates for the loaded contact:
+    LOADED_REACH times the normal approach of one pair carrying the whole normal load with
+    ISO 6336-1's single stiffness c' (Method B, scaled by E/E_steel as ISO does):
+    F_n·cos²β_b/(b·c')."""
+    from .analytic.stiffness import E_STEEL
+
+    c = single_stiffness(pair.pinion.teeth, -pair.gear.teeth if pair.gear.internal
+                         else pair.gear.teeth, pair.pinion.profile_shift,
+                         pair.gear.profile_shift, pair.pinion.helix_angle)
+    c *= 2.0 * E_pinion * E_gear / (E_pinion + E_gear) / E_STEEL
+    width = min(pair.pinion.face_width, pair.gear.face_width)
+    return LOADED_REACH * normal_load * math.cos(pair.pinion.base_helix_angle) ** 2 / (width * c) * 1e-3
+
+
 def _shaft_sections(pair, result: Result) -> None:
     """The shafts' deflections over the face (shaft.py; already in the pinion's deflection
     the contact used): per member the displacement of its flank toward the mate from
@@ -488,10 +549,13 @@ def _shaft_sections(pair, result: Result) -> None:
         shaft_bending_slope_rad=sum(s.bending_slope for s in pair.shafts.values()),
         shaft_torsion_slope_rad=sum(s.torsion_slope for s in pair.shafts.values()),
         shaft_note="the shafts' bending between their bearings and the bodies' twist over the "
-                   "face under the mesh force spread evenly over the face, toward the mate "
-                   "along the line of action, relative to mid-face; added to the pinion's "
-                   "deflection before the contact is searched (not iterated with the loaded "
-                   "line load)")
+                   "face under the mesh force, toward the mate along the line of action, "
+                   "relative to mid-face; added to the pinion's deflection before the contact "
+                   "is searched: first with the force spread evenly over the face, then "
+                   "(passes) as the loaded contact's mean line load over the cycle spreads it, "
+                   "until the deflection changes by less than "
+                   f"{1e3 * SHAFT_TOLERANCE:g} µm (changes_um: after each pass, the "
+                   "largest change the loaded line load makes)")
 
 
 #: a collision point counts as interference when it lies this close (mm) to a member's tip
@@ -622,6 +686,7 @@ def _loaded_sections(cycle, C_E: float, grid: int, teeth, bending: str,
                      f"from its half-space solution; {bending}",
         bem_failed_contacts=len(failed))
     _loaded_transmission_error(cycle, summary)
+    _reach_check(cycle, result)
     result.checks.append(Check(
         "loaded contact solved at every contact", not failed,
         f"{len(failed)} of {len(rows)} contacts not solved"
@@ -656,6 +721,28 @@ def _loaded_sections(cycle, C_E: float, grid: int, teeth, bending: str,
         f"contact's peak {worst['bem_p_max_MPa']:.0f} MPa, at roll {worst['roll_deg']:.2f} deg "
         f"pair {worst['pair']}; {100 * worst['edge_load_fraction']:.2f} % of its load in the "
         f"strip; edge-loaded above {EDGE_LOAD_RATIO:g}"))
+
+
+def _reach_check(cycle, result: Result) -> None:
+    """Where pairs were kept beyond the approach for the loaded contact (the cycle's reach),
+    a check that no position's loaded approach D reaches a pair the cycle left out (its
+    least separation on the search grid): that pair's share would be missing."""
+    if not cycle.settings.reach:
+        return
+    rolls = sorted({r["roll_deg"] for r in cycle.rows})
+    short = []
+    for roll, unkept in zip(rolls, cycle.unkept_separation):
+        approach = max((r["bem_approach_mm"] for r in cycle.rows
+                        if r["roll_deg"] == roll and r["bem_status"] == "solved"), default=0.0)
+        if approach >= unkept:
+            short.append((roll, approach, unkept))
+    reach_um = 1e3 * cycle.settings.reach
+    result.checks.append(Check(
+        "loaded contact: every tooth pair the load brings in was considered", not short,
+        f"pairs within {reach_um:.1f} µm of contact were considered"
+        + (f"; at roll {short[0][0]:.2f} deg the loaded approach {1e3 * short[0][1]:.1f} µm "
+           f"reaches a pair {1e3 * short[0][2]:.1f} µm apart that was not: its share is "
+           "missing" if short else "")))
 
 
 #: strips across the face the line loads of a position are summed on: the load
@@ -760,8 +847,11 @@ def _contact_sections(cycle, loads: dict, result: Result) -> None:
                                for s in line] for line in ease.separation],
             "approach_um": cycle.settings.approach * 1e3,
             "member": cycle.settings.ease_off_member}
-    te = [r["transmission_error_urad"] for r in rows]
     result.sections["positions"] = rows
+    # the rigid analysis's figures: pairs kept beyond the approach for the loaded contact
+    # (rigid_contact false) touch nowhere
+    rows = [r for r in rows if r.get("rigid_contact", True)]
+    te = [r["transmission_error_urad"] for r in rows]
     summary = {**loads, "max_p_max_MPa": max(r["p_max_MPa"] for r in rows),
                "transmission_error_peak_to_peak_urad": max(te) - min(te),
                "face_position_range_mm": [min(r["face_position_mm"] for r in rows),

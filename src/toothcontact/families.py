@@ -229,7 +229,8 @@ def spline_designs(count: int, seed: int, analysis: dict | None = None) -> list[
 
 def check(case: dict, document: dict) -> list[str]:
     """What the result `document` of `case` breaks of the invariants every design keeps:
-    strict JSON (no NaN, no infinity, no "nan" text), positive semi-axes, the loads of a
+    strict JSON (no NaN, no infinity, no "nan" text), positive semi-axes (none, and no
+    load, on a pair kept beyond the approach for the loaded contact), the loads of a
     position summing to the normal load (Hertz split and loaded solution), the contact
     moving toward the end the slope closes, and an uncrowned pair under slope in edge
     contact at that end and not at the other."""
@@ -241,7 +242,12 @@ def check(case: dict, document: dict) -> list[str]:
     by_position: dict[float, list[dict]] = {}
     for r in rows:
         by_position.setdefault(r["roll_deg"], []).append(r)
-        if not (r["a_mm"] > 0 and r["b_mm"] > 0):
+        if not r.get("rigid_contact", True):    # kept for the loaded contact only: no Hertz
+            if r["a_mm"] or r["b_mm"] or r["normal_load_N"]:
+                problems.append(f"roll {r['roll_deg']:.3f} pair {r['pair']}: not in contact "
+                                f"but a = {r['a_mm']}, b = {r['b_mm']}, "
+                                f"{r['normal_load_N']} N")
+        elif not (r["a_mm"] > 0 and r["b_mm"] > 0):
             problems.append(f"roll {r['roll_deg']:.3f} pair {r['pair']}: a = {r['a_mm']}, "
                             f"b = {r['b_mm']} must be > 0")
     for roll, group in by_position.items():
@@ -255,13 +261,14 @@ def check(case: dict, document: dict) -> list[str]:
                 if not math.isclose(carried, normal, rel_tol=0.02):
                     problems.append(f"roll {roll:.3f}: loaded solutions carry {carried:.6g} N, "
                                     f"not {normal:.6g} N")
-    if case["kind"] == "spur" and rows:
-        problems.extend(_slope_invariants(case, rows))
+    touching = [r for r in rows if r.get("rigid_contact", True)]
+    if case["kind"] == "spur" and touching:
+        problems.extend(_slope_invariants(case, touching))
     return problems
 
 
 def _slope_invariants(case: dict, rows: list[dict]) -> list[str]:
-    """A slope moves a crowned pair's contact toward the end it closes (by about R·theta:
+    """(rows: the pairs in contact) A slope moves a crowned pair's contact toward the end it closes (by about R·theta:
     checked where that is over 1 mm) and puts an uncrowned pair's touching contacts in edge
     contact there and not at the other end."""
     slope = float(case.get("misalignment", {}).get("slope", "0"))

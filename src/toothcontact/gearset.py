@@ -154,7 +154,10 @@ def rack_root_radius(case: SpurCase) -> float:
     return rack.root_radius
 
 
-def gear_pair(case: SpurCase) -> GearPair:
+def gear_pair(case: SpurCase, line_load=None) -> GearPair:
+    """The case's pair: members, modifications, centre distance, and the pinion's deflection
+    with the shafts' (their mesh force spread evenly over the face, or as `line_load`
+    ((face positions mm, N/mm)) gives it: the loaded contact's, see analyses)."""
     z1, z2 = case.teeth
     internal = z2 < 0
     common = dict(normal_module=case.module_mm, pressure_angle=case.pressure_angle,
@@ -191,7 +194,7 @@ def gear_pair(case: SpurCase) -> GearPair:
     check_proportions(pinion, gear, center if case.center_distance is None else None)
     d = case.deflection
     deflection = None if d is None else Deflection(d.slope, d.bending, tuple(d.table))
-    shafts = _shafts(case, pinion, gear, center, alpha_w)
+    shafts = _shafts(case, pinion, gear, center, alpha_w, line_load)
     if shafts:
         deflection = _with_shafts(deflection, shafts, pinion.face_width)
     pair = GearPair(pinion, gear, modifications(case.pinion, pinion, "pinion"),
@@ -264,12 +267,13 @@ def tip_thickness(gear: CylindricalGear) -> float:
 
 
 def _shafts(case, pinion: CylindricalGear, gear: CylindricalGear, center: float,
-            alpha_w: float) -> dict:
+            alpha_w: float, line_load=None) -> dict:
     """The shaft deflection (shaft.ShaftDeflection) of each member with a [member.shaft],
     under the case's load (none without a load): the normal force at the operating pitch
     point, on the pinion against its working flank's normal (the line of action, toward the
-    gear, and the helix's axial part), on the gear the opposite; each read along its own
-    flank's normal toward the mate."""
+    gear, and the helix's axial part), on the gear the opposite, spread evenly over the face
+    or as `line_load` ((face positions mm on the pinion, N/mm)) gives it; each read along
+    its own flank's normal toward the mate."""
     from .shaft import Shaft, shaft_deflection
 
     specs = {name: getattr(case, name).shaft for name in ("pinion", "gear")}
@@ -307,7 +311,8 @@ def _shafts(case, pinion: CylindricalGear, gear: CylindricalGear, center: float,
         r_w = r_w1 if name == "pinion" else r_w1 * gear.teeth / pinion.teeth
         to_pitch = np.array([sign * r_w, 0.0])
         out[name] = shaft_deflection(shaft, member.face_width, to_pitch, sign * force,
-                                     sign * line, member.base_radius, F_t * r_w)
+                                     sign * line, member.base_radius, F_t * r_w,
+                                     line_load=line_load)
     return out
 
 

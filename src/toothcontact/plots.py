@@ -143,6 +143,9 @@ def mesh_cycle(result: dict, path: str | Path) -> Path:
     roll, pair = _column(rows, "roll_deg"), _column(rows, "pair")
     te, p_max = _column(rows, "transmission_error_urad"), _column(rows, "p_max_MPa")
     a, b, margin = _column(rows, "a_mm"), _column(rows, "b_mm"), _column(rows, "edge_margin_mm")
+    # a pair kept only for the loaded contact (rigid_contact false) has no Hertz contact
+    touching = np.array([r.get("rigid_contact", True) for r in rows], bool)
+    p_max, a, b = (np.where(touching, column, np.nan) for column in (p_max, a, b))
     edge = np.array([bool(r.get("edge_contact")) for r in rows])
     line = np.array([r.get("contact_model") in ("line", "area") for r in rows])
 
@@ -177,7 +180,8 @@ def mesh_cycle(result: dict, path: str | Path) -> Path:
               ylabel="transmission error (µrad)")
     _least_span(ax_te, np.concatenate(shown), TE_LEAST_SPAN)
     _plain_axis(ax_te.yaxis)
-    loaded_p = _column(rows, "bem_p_max_MPa")
+    loaded_p = np.where(touching | (_column(rows, "bem_load_N") > 0),
+                        _column(rows, "bem_p_max_MPa"), np.nan)
     has_loaded = np.isfinite(loaded_p).any()
 
     handles = []

@@ -828,7 +828,8 @@ def pattern_scene(result, case=None, name: str = "", view: str = "head-on",
 
     # the ellipses: every edge contact's, and of the others every n-th (at most MAX_OUTLINES)
     edge_rows = np.array([bool(r["edge_contact"]) for r in cycle.rows])
-    near = _near_patch(patch, outlines)
+    near = _near_patch(patch, outlines) & np.array([r.get("rigid_contact", True)
+                                                    for r in cycle.rows])
     plain, cut = np.flatnonzero(~edge_rows & near), np.flatnonzero(edge_rows & near)
     every = max(1, math.ceil(len(plain) / MAX_OUTLINES), math.ceil(len(cut) / MAX_OUTLINES))
     outlined, cut_outlined = np.zeros(len(cycle.rows), bool), np.zeros(len(cycle.rows), bool)
@@ -846,13 +847,14 @@ def pattern_scene(result, case=None, name: str = "", view: str = "head-on",
                              lighting=False)
 
     positions = len({r["roll_deg"] for r in cycle.rows})
+    touching = sum(r.get("rigid_contact", True) for r in cycle.rows)
     what = (f"contact pattern on the {owner}'s flank: "
             + ("looking at it head-on" if view == "head-on" else "perspective"))
     legend = [f"paint: the flank's least separation from the {mate} over the mesh cycle "
               f"({positions} positions)",
-              (f"outlines: the Hertz ellipse of each of the {len(cycle.rows)} contacts"
+              (f"outlines: the Hertz ellipse of each of the {touching} contacts"
                if every == 1 else f"outlines: the Hertz ellipse of every {_ordinal(every)} of "
-               f"the {len(cycle.rows)} contacts (edge contacts in red, the deepest cut always)")]
+               f"the {touching} contacts (edge contacts in red, the deepest cut always)")]
     if patch.cropped:
         legend.append("the part of the flank near the pattern")
     if stretch > 1.05:
@@ -999,6 +1001,8 @@ def pair_scene(result, case, name: str = "", position: int | None = None,
     cycle = result.cycle
     bodies = bodies or members(pv, case)
     index, ks = position_rows(cycle.rows, position)
+    # the pairs in contact (pairs kept only for the loaded contact have no ellipse)
+    ks = [j for j in ks if cycle.rows[j].get("rigid_contact", True)]
     k = max(ks, key=lambda j: cycle.rows[j]["p_max_MPa"])
     row = cycle.rows[k]
     plotter = _plotter(pv)
@@ -1173,7 +1177,7 @@ def pressure_scene(result, case=None, name: str = "", patch: Patch | None = None
     names = MEMBER_NAMES.get(getattr(case, "kind", ""), ("pinion", "gear"))
     owner = names[0] if patch.member == "pinion" else names[1]
     solved = sum(item is not None for item in result.loaded or [])
-    peak = max((r.get("bem_raw_peak_MPa", 0.0) for r in cycle.rows), default=0.0)
+    peak = max((r.get("bem_raw_peak_MPa") or 0.0 for r in cycle.rows), default=0.0)
     legend = [f"the largest pressure at each point over the {solved} loaded contacts of the "
               f"cycle; design peak {top:.0f} MPa"]
     if stretch > 1.05:

@@ -3,13 +3,13 @@ the face, as a displacement of its flank toward the mate along the face.
 
 The shaft is an Euler-Bernoulli beam along the member's axis z (mm from mid-face, + toward
 end B) on two simple supports (the bearings; a pinion may overhang them), of one diameter
-or of stepped sections, the gear body being one of them. The mesh force is spread evenly
-over the face at the operating pitch point: its transverse part bends the shaft along
+or of stepped sections, the gear body being one of them. The mesh force is spread over the
+face at the operating pitch point, evenly or as the loaded contact's line load gives it: its transverse part bends the shaft along
 itself, its axial part (a helix) at the pitch radius adds a bending couple. With the
 internal moment M(z) (the moment of everything beyond z, reactions included) the beam
 obeys E·I·u_x'' = M_y and E·I·u_y'' = -M_x (I = π d⁴/64), u = 0 at both bearings: the
 bending of a statically determinate beam, integrated twice on a fine grid. The torque enters
-(or leaves) the body at one face end and is handed to the mesh evenly along the face, so
+(or leaves) the body at one face end and is handed to the mesh along the face, so
 the body twists by φ(z) = ∫ T(ζ)/(G·J) dζ (J = π d⁴/32, G = E/2(1+ν)): the face end away
 from the torque's side turns back against the load, its flank away from the mate by
 r_b·φ. Both are read along the flank's transverse normal at the pitch point (the line of
@@ -112,18 +112,34 @@ def beam_deflection(shaft: Shaft, z: np.ndarray, force: np.ndarray, couple: np.n
     return u - at[0] - np.outer(z - z1, gradient)
 
 
-def twist(shaft: Shaft, z: np.ndarray, face_width: float, torque: float) -> np.ndarray:
+def face_share(z: np.ndarray, face_width: float,
+               line_load: tuple[np.ndarray, np.ndarray] | None = None) -> np.ndarray:
+    """Each grid point's share ((z.size,), summing to 1) of the mesh force along the face:
+    even over the face, or as `line_load` (face positions mm, N/mm) gives it, interpolated
+    (held beyond its ends)."""
+    half = 0.5 * face_width
+    on_face = ((z >= -half) & (z <= half)).astype(float)
+    if line_load is not None:
+        on_face *= np.interp(z, *line_load)
+    return on_face / on_face.sum()
+
+
+def twist(shaft: Shaft, z: np.ndarray, face_width: float, torque: float,
+          line_load: tuple[np.ndarray, np.ndarray] | None = None) -> np.ndarray:
     """The body's twist (rad) at face positions z (mm), from the face end at the torque's
-    side, under `torque` (N·mm) handed evenly to the mesh along the face: the torque still
-    carried at ζ falls linearly from `torque` at that end to 0 at the other."""
+    side, under `torque` (N·mm) handed to the mesh along the face evenly or as `line_load`
+    (see face_share): the torque still carried at ζ falls from `torque` at that end to 0 at
+    the other as the mesh takes it."""
     half = 0.5 * face_width
     s = np.linspace(-half, half, POINTS)
     from_side = (s + half) if shaft.torque_side == "A" else (half - s)
-    carried = torque * (1.0 - from_side / face_width)
+    order = np.argsort(from_side)
+    taken = np.empty(POINTS)
+    taken[order] = np.cumsum(face_share(s, face_width, line_load)[order])
+    carried = torque * (1.0 - taken)
     G = shaft.E / (2.0 * (1.0 + shaft.nu))
     J = math.pi * shaft.diameter(s) ** 4 / 32.0
     rate = carried / (G * J)
-    order = np.argsort(from_side)
     angle = cumulative_trapezoid(rate[order], from_side[order], initial=0.0)
     return np.interp(half + np.asarray(z) if shaft.torque_side == "A" else half - np.asarray(z),
                      from_side[order], angle)
@@ -131,18 +147,19 @@ def twist(shaft: Shaft, z: np.ndarray, face_width: float, torque: float) -> np.n
 
 def shaft_deflection(shaft: Shaft, face_width: float, axis_to_pitch: np.ndarray,
                      force: np.ndarray, line_of_action: np.ndarray, base_radius: float,
-                     torque: float, points: int = 41) -> ShaftDeflection:
+                     torque: float, points: int = 41,
+                     line_load: tuple[np.ndarray, np.ndarray] | None = None) -> ShaftDeflection:
     """The flank's displacement toward the mate over the face (`points` positions) of a
     member whose shaft carries the mesh force `force` (N, 3-vector on this member, spread
-    evenly over the face at the pitch point, `axis_to_pitch` (2,) mm from its axis),
-    `line_of_action`: the unit transverse normal of its working flank there (pointing to
-    the mate), base radius (mm) and transmitted torque (N·mm)."""
+    over the face at the pitch point, `axis_to_pitch` (2,) mm from its axis, evenly or as
+    `line_load` gives it: see face_share), `line_of_action`: the unit transverse normal of
+    its working flank there (pointing to the mate), base radius (mm) and transmitted torque
+    (N·mm)."""
     half = 0.5 * face_width
     z1, z2 = shaft.bearings
     lo, hi = min(z1, z2, -half), max(z1, z2, half)
     z = np.linspace(lo, hi, POINTS)
-    on_face = (z >= -half) & (z <= half)
-    share = on_face / on_face.sum()
+    share = face_share(z, face_width, line_load)
     loads = np.outer(share, force[:2])
     rx, ry = axis_to_pitch
     moment = np.array([ry * force[2], -rx * force[2]])        # (r × F_z ẑ) about x and y
@@ -150,7 +167,7 @@ def shaft_deflection(shaft: Shaft, face_width: float, axis_to_pitch: np.ndarray,
     u = beam_deflection(shaft, z, loads, couple)
     face = np.linspace(-half, half, points | 1)        # odd: a point at mid-face
     toward = np.array([np.interp(face, z, u[:, axis]) for axis in (0, 1)]).T @ line_of_action[:2]
-    phi = twist(shaft, face, face_width, torque)
+    phi = twist(shaft, face, face_width, torque, line_load)
     # relative to mid-face: the shaft's displacement there moves the whole member (the
     # centre distance, the lag), the rest bends and twists its flank along the face
     middle = len(face) // 2

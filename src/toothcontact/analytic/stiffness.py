@@ -9,7 +9,8 @@ tooth numbers, negative for an internal gear); the single stiffness is
 c' = c'_th · C_M · C_R · C_B · cos β with C_M = 0.8 (the standard's correction of the
 theoretical value), C_R = 1 (solid gear blanks) and C_B = 1 (basic rack per ISO 53:
 h_fP = 1.25 m, h_aP = 1.0 m). Units: N/(mm·µm) per mm of face; the pair's stiffness is
-c'·b (N/µm).
+c'·b (N/µm). For other materials ISO scales c' by E/E_st (§9.2, E = 2E1E2/(E1+E2),
+E_st = 206 000 N/mm²).
 """
 
 from __future__ import annotations
@@ -20,6 +21,8 @@ import math
 C = (0.04723, 0.15551, 0.25791, -0.00635, -0.11654, -0.00193, -0.24188, 0.00529, 0.00182)
 #: ISO 6336-1:2006 §9.3.2: the correction factor of the theoretical single stiffness
 C_M = 0.8
+#: ISO 6336-1:2006 §9.2: the steel modulus (MPa) c' is given for
+E_STEEL = 206000.0
 
 
 def single_stiffness(z1: int, z2: int, x1: float = 0.0, x2: float = 0.0,

@@ -2,7 +2,10 @@
 
 At each pinion roll angle over one angular pitch, the gear's lag (transmission error) is
 solved so that the least separation over the tooth pairs is zero; every pair whose least
-separation is within the approach is in contact. For each of those: the contact point, the
+separation is within the approach is in contact (`rigid_contact`). Pairs farther apart but
+within the settings' `reach` are kept too, unloaded (a tooth under load bends by more than
+the approach, and a relieved tip or an entering pair then takes its share: the loaded
+contact solves them); their load-dependent keys are zero. For each pair kept: the contact point, the
 gap fitted in the common tangent plane (and the same from the flanks' curvatures), the
 contact model under its share of the load - the Hertz ellipse where the gap is a bowl and
 the ellipse fits the face, else the contact line (contact.line) with Hertz's line contact
@@ -28,12 +31,20 @@ from .line import contact_lines
 from .local import TangentPlanes, analytic_gaps, face_length, fit_gaps, planes_at, tangent_planes
 from .search import ContactPoints, lowest, refine_minima, separation, solve_transmission_error
 
-LOAD_SHARING_RULE = "equal split of the normal load among the tooth pairs in contact"
+LOAD_SHARING_RULE = ("equal split of the normal load among the tooth pairs in contact "
+                     "(rigid_contact)")
 #: allowance (mm) for a pair's grid minimum lying above its true minimum
 CELL_GAP = 0.02
 #: gap (mm) up to which the fit patch reaches: about half the default approach, where the
 #: quartic fit recovers A and B to better than 0.1 % even where the profile curvature varies fast
 FIT_GAP = 0.003
+
+
+#: the load-dependent keys of a row kept beyond the approach: no load, no Hertz contact, no
+#: pattern, no edge reached
+UNTOUCHED = {"normal_load_N": 0.0, "a_mm": 0.0, "b_mm": 0.0, "p_max_MPa": 0.0,
+             "approach_mm": None, "contact_length_mm": 0.0, "edge_margin_mm": None,
+             "edge_contact": False, "edge_contact_at": None, "edge_margins_mm": {}}
 
 
 @dataclass(frozen=True)
@@ -48,6 +59,9 @@ class CycleSettings:
     #: member: a worm wheel's, where a worm gear's pattern is judged)
     ease_off_member: str = "pinion"
     field_grid: int = 201     # points per side of each contact's separation field; 0 = none
+    #: separation (mm) up to which a pair is kept, unloaded, beyond the approach: the
+    #: loaded contact's candidates (0: the pairs in contact only)
+    reach: float = 0.0
 
 
 @dataclass(frozen=True)
@@ -77,6 +91,15 @@ class ContactCycle:
     #: base radius r_b2·cos(beta_b) on a parallel pair): an approach D under load adds
     #: D/turn_slope to the lag
     turn_slope: np.ndarray
+
+    #: per row, the semi-axes (mm, along the A axis and across) of the pattern the row's
+    #: pair would make under its position's equal share: the rows' Hertz ellipse or contact
+    #: line, also for a pair kept beyond the approach (which carries none); the loaded
+    #: contact's fields are sized on them
+    pattern_semi_axes: np.ndarray
+    #: per position (as phis), the least separation (mm) of the facing pairs not kept (inf
+    #: where none): a loaded approach beyond it would bring in a pair the cycle left out
+    unkept_separation: np.ndarray
 
     def contact_uv(self, member: str, k: int) -> tuple[np.ndarray, np.ndarray]:
         """Row k's contact point parameters on "pinion" or "gear", as arrays of one."""
@@ -131,7 +154,11 @@ def parallel_cycle(mesh, pinion: Flank, gear: Flank, normal_load: float,
     delta, s_grid = solve_transmission_error(least, delta)
     # refine the pairs that may be in contact: the grid minimum can overstate a pair's
     # least separation by about the gap across one grid cell
-    near = pair_least(delta) - s_grid[P] <= settings.approach + CELL_GAP
+    reach = max(settings.approach, settings.reach)
+    grid_gaps = pair_least(delta) - s_grid[P]
+    near = grid_gaps <= reach + CELL_GAP
+    unkept = np.full(len(phis), np.inf)
+    np.minimum.at(unkept, P[~near], grid_gaps[~near])
     P, J = P[near], J[near]
     near_pairs = (P, J)
     contacts = refine_minima(pinion, gear, pinion_frames[P, J], gear_frames(P, J, delta[P]),
@@ -143,20 +170,28 @@ def parallel_cycle(mesh, pinion: Flank, gear: Flank, normal_load: float,
     delta -= s_min / slope
     gaps = contacts.s - s_min[P]
     keep = np.lexsort((pairs[J], P))
-    keep = keep[gaps[keep] <= settings.approach]
+    np.minimum.at(unkept, P[keep[gaps[keep] > reach]], gaps[keep[gaps[keep] > reach]])
+    keep = keep[gaps[keep] <= reach]
     P, J = P[keep], J[keep]
-    share = normal_load / np.bincount(P, minlength=len(phis))[P]
+    touching = gaps[keep] <= settings.approach
+    share = normal_load / np.bincount(P[touching], minlength=len(phis))[P]
     pf, gf, contacts = pinion_frames[P, J], gear_frames(P, J, delta[P]), _take(contacts, keep)
     with np.errstate(all="ignore"):
         # the transmission error as a lag: positive where the gear trails its conjugate place
         lag = -np.sign(slope[P]) * delta[P]
         rows, planes, angle, centre = _pair_results(pinion, gear, pf, gf, np.degrees(phis[P]), pairs[J],
                                             lag, contacts, gaps[keep], share, C_E, settings)
+        semi_axes = np.array([[r["a_mm"] + math.hypot(*c), r["b_mm"]]
+                              for r, c in zip(rows, centre)])
+        for row, rigid in zip(rows, touching):
+            row["rigid_contact"] = bool(rigid)
+            if not rigid:
+                row.update(UNTOUCHED)
         ease = (_ease_off(mesh, pinion, gear, phis, pairs, pinion_frames, gear_frames, delta,
                           *near_pairs, settings.ease_off_grid)
                 if settings.ease_off_member == "pinion" else None)
     cycle = ContactCycle(rows, pinion, gear, pf, gf, contacts, planes, angle, centre, ease,
-                         settings, delta[P], np.abs(slope[P]))
+                         settings, delta[P], np.abs(slope[P]), semi_axes, unkept)
     if ease is None:       # the driven member's, from the cycle's own placements
         cycle = replace(cycle, ease_off=_driven_ease_off(cycle, settings.ease_off_grid))
     if settings.field_grid:

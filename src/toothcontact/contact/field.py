@@ -334,11 +334,9 @@ def square_cells(half: np.ndarray, n: int, largest: float | None = None) -> np.n
 def pattern_semi_axes(cycle, rows) -> np.ndarray:
     """Semi-axes ((K, 2), mm, along the A axis and across) of the given rows' patterns
     about their contacts: the Hertz ellipse, or a contact line's half-length reaching to
-    the far end of its part in contact (which may lie to one side of the contact)."""
-    rows = np.atleast_1d(np.asarray(rows, int))
-    reach = np.hypot(*np.asarray(cycle.pattern_centre, float)[rows].T)
-    return np.array([[cycle.rows[k]["a_mm"] + r, cycle.rows[k]["b_mm"]]
-                     for k, r in zip(rows, reach)])
+    the far end of its part in contact (which may lie to one side of the contact), at the
+    position's equal share (cycle.ContactCycle.pattern_semi_axes)."""
+    return np.asarray(cycle.pattern_semi_axes, float)[np.atleast_1d(np.asarray(rows, int))]
 
 
 def contact_field(cycle, k: int, shape, margin: float = 1.3,
@@ -365,7 +363,8 @@ def rigid_patterns(cycle, points: int, margin: float = 1.25, growths: int = 3) -
     """The rigid pattern of every row of a contact cycle, each on a `points` × `points`
     separation field over the box of its rigid ellipse (the A axis capped at the face
     length) enlarged by `margin`; a field the pattern reaches the side of is enlarged 1.6
-    times, up to `growths` times. All rows' fields are solved in one batch."""
+    times, up to `growths` times. All rows' fields are solved in one batch. A row kept
+    beyond the approach (rigid_contact false) has no pattern (zero)."""
     from scipy.ndimage import binary_dilation
 
     rows, approach = cycle.rows, cycle.settings.approach
@@ -374,8 +373,9 @@ def rigid_patterns(cycle, points: int, margin: float = 1.25, growths: int = 3) -
     semi_axes = np.array([[f if r["contact_model"] != "ellipse" else min(r["rigid_a_mm"], f),
                            r["rigid_b_mm"]] for r, f in zip(rows, face)])
     margins = np.full(len(rows), float(margin))
-    out: list[RigidPattern | None] = [None] * len(rows)
-    todo = np.arange(len(rows))
+    out: list[RigidPattern | None] = [None if r.get("rigid_contact", True)
+                                      else RigidPattern(0.0, 0.0, 0.0, False) for r in rows]
+    todo = np.array([k for k in range(len(rows)) if out[k] is None], int)
     for attempt in range(growths + 1):
         solved = contact_fields(cycle, todo, (points, points), margins[todo], semi_axes[todo])
         for k, field in zip(todo, solved):
