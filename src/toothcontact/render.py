@@ -548,6 +548,8 @@ def _texts(plotter, title: str, legend: list[str] = (), warnings: list[str] = ()
     backed(plotter.add_text(title, position="upper_left", font_size=12, color=INK))
     y = WINDOW[1] - 10 - 24 * (title.count("\n") + 1) - 10
     for lines, color in ((list(legend), INK), (list(warnings), WARNING)):
+        # a long line wrapped to the window's width at this font size
+        lines = [part for text in lines for part in (textwrap.wrap(text, 112) or [text])]
         if not lines:
             continue
         y -= line * len(lines)

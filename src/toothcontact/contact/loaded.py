@@ -155,11 +155,12 @@ def loaded_cycle(cycle, C_E: float, points: int = 128, teeth: PairCompliance | N
         positions.setdefault(row["roll_deg"], []).append(k)
     fields = contact_fields(cycle, range(len(rows)), points, _Pair.MARGIN,   # one batch
                             largest_cell=CELL)
+    models: dict[int, tuple[float, float]] = {}     # each tooth pair's last approach model
     for ks in positions.values():
         load = sum(rows[k]["normal_load_N"] for k in ks)
         try:
             pairs = [_Pair(cycle, k, points, 1.0 / C_E, fields[k], teeth) for k in ks]
-            solutions = _share(pairs, load)
+            solutions = _share(pairs, load, models)
         except (ValueError, RuntimeError) as exc:
             failed.update({k: str(exc) for k in ks})
             continue
@@ -254,18 +255,22 @@ class _Pair:
         return self.last
 
 
-def _share(pairs: list[_Pair], load: float) -> list[ContactSolution | None]:
+def _share(pairs: list[_Pair], load: float,
+           models: dict[int, tuple[float, float]] | None = None) -> list[ContactSolution | None]:
     """Solutions of the pairs of one position under their shares of `load` (see module):
     each pair's approach modelled as s_k + c_k·W^n_k, n_k = 2/3 and c_k from the rigid
-    analysis's Hertz approach at first (a pair without one, a line or an area, is first
-    solved at the equal split to calibrate it), then c_k from its last solution and n_k
+    analysis's Hertz approach at first (a pair in contact without one, a line or an area, is
+    first solved at the equal split among the pairs in contact to calibrate it; a pair kept
+    beyond the approach takes the stiffest of their models), then c_k from its last solution and n_k
     fitted through its last two (0.5 to 3: a line contact grows nearly linearly, a pair that
     barely touches steeply); the model solved for the split, the loaded pairs solved there
     (on the coarse grid where the teeth bend, see _Pair.solve), until the split settles; the
     solutions returned are those at the final split on the full grid, the split corrected
     (up to twice) by the difference of the full grid's approaches from the coarse ones where
     they differ by more than SHARE_TOLERANCE. A pair the model leaves unloaded is not
-    solved."""
+    solved. `models` (tooth pair -> (c, n)): the pairs' models calibrated at the previous
+    position, the first guess where there is one (closer than Hertz's: it holds the teeth's
+    bending), updated with this position's."""
     if len(pairs) == 1:
         if pairs[0].structure is not None:
             pairs[0].solve(load, coarse=True)       # the full grid's start
@@ -274,12 +279,23 @@ def _share(pairs: list[_Pair], load: float) -> list[ContactSolution | None]:
     s = np.array([p.separation for p in pairs])
     exponent = np.full(count, 2.0 / 3.0)
     c = np.array([p.hertz_coefficient() for p in pairs])
+    models = {} if models is None else models
+    keys = [p.cycle.rows[p.k]["pair"] for p in pairs]
+    for i, key in enumerate(keys):
+        if key in models:
+            c[i], exponent[i] = models[key]
     at = np.full(count, np.nan)                     # the load of each pair's last solution
     solutions: list[ContactSolution | None] = [None] * count
-    for k in np.flatnonzero(~np.isfinite(c)):
-        at[k] = load / count
+    touching = np.array([p.cycle.rows[p.k].get("rigid_contact", True) for p in pairs])
+    for k in np.flatnonzero(~np.isfinite(c) & touching):
+        at[k] = load / touching.sum()
         solutions[k] = pairs[k].solve(at[k], coarse=True)
         c[k] = max(solutions[k].approach_mm - s[k], 1e-12) / at[k] ** exponent[k]
+    # a pair kept beyond the approach borrows the stiffest model of the pairs in contact: the
+    # split loads it only once the position's approach reaches its separation (whatever its
+    # own stiffness), and it is then solved and calibrated like the others
+    stiffest = np.flatnonzero(touching)[np.argmin((c * load ** exponent)[touching])]
+    c[~touching], exponent[~touching] = c[stiffest], exponent[stiffest]
     split = None
     for _ in range(20):
         new = _split(c, exponent, s, load)
@@ -298,6 +314,7 @@ def _share(pairs: list[_Pair], load: float) -> list[ContactSolution | None]:
                 # stiffens fast (fitted up to 2-3); held to 1 it flips the split between two
                 exponent[k] = min(max(fitted, 0.5), 3.0)
             c[k] = rise / new[k] ** exponent[k]
+    models.update({key: (c[i], exponent[i]) for i, key in enumerate(keys) if np.isfinite(at[i])})
     final = [pair.solve(w) if w > 1e-6 * load else None for pair, w in zip(pairs, split)]
     if pairs[0].structure is None:
         return final
