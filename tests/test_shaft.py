@@ -164,8 +164,9 @@ def test_a_line_load_rising_along_the_face():
 def test_the_shaft_settles_under_the_loaded_line_load():
     """A slender overhung pinion shaft under an uncrowned pair: the load piles up at one
     end, so the shaft's deflection under the loaded contact's line load differs from the
-    even spread's by more than the tolerance; the analysis repeats until it settles (within
-    0.5 µm) and says how many passes it took."""
+    even spread's by more than the tolerance; the analysis repeats, half a step at a time,
+    until it settles (within 0.5 µm; measured 3.3, 2.6, 0.62, 0.31 µm over 4 passes) and
+    says how many passes it took."""
     raw = case({"bearings": ["-120 mm", "20 mm"], "diameter": "24 mm"})
     del raw["pinion"]["crown"]
     result = analyse(parse_case(raw))

@@ -433,34 +433,40 @@ def _cycle_settings(a: schema.AnalysisSpec, **kind_settings):
 
 
 #: with a shaft the contact is analysed again, the shafts loaded by the loaded contact's
-#: line load, until their deflection changes by less than SHAFT_TOLERANCE (mm) anywhere on
-#: the face: at most SHAFT_PASSES analyses in all
-SHAFT_TOLERANCE, SHAFT_PASSES = 0.5e-3, 3
+#: line load, until their deflection under it differs by less than SHAFT_TOLERANCE (mm)
+#: anywhere on the face from the one analysed: at most SHAFT_PASSES analyses in all; each
+#: new pass applies SHAFT_RELAXATION of the step toward the line load found (a stiff mesh
+#: answers a micrometre of deflection with a large shift of its load, and the full step can
+#: swing between the face ends)
+SHAFT_TOLERANCE, SHAFT_PASSES, SHAFT_RELAXATION = 0.5e-3, 4, 0.5
 
 
 def _spur_contact(case: schema.SpurCase, pair, result: Result) -> None:
     """Contact by surface separation over the mesh cycle (contact.cycle) and the loaded
     contact; with a [member.shaft], repeated with the shafts carrying the loaded contact's
-    line load (its mean over the cycle) instead of an even one until the shafts' deflection
-    settles (SHAFT_TOLERANCE): each pass starts from the geometry's sections and checks."""
+    line load (its mean over the cycle; the first pass spreads it evenly) until the shafts'
+    deflection settles (SHAFT_TOLERANCE, SHAFT_RELAXATION): each pass starts from the
+    geometry's sections and checks."""
     from .gearset import gear_pair
 
     checks, sections = list(result.checks), dict(result.sections)
-    changes = []
+    changes, applied = [], None
     for attempt in range(SHAFT_PASSES):
         result.checks, result.sections = list(checks), dict(sections)
         _contact_pass(case, pair, result)
         distribution = result.sections.get("load_distribution")
         if not pair.shafts or distribution is None:
             return
-        line_load = (np.asarray(distribution["face_mm"]),
-                     np.mean(distribution["line_load_N_per_mm"], axis=0))
-        updated = gear_pair(case, line_load)
-        changes.append(max(float(np.max(np.abs(updated.shafts[name].total - shaft.total)))
+        face = np.asarray(distribution["face_mm"])
+        found = np.mean(distribution["line_load_N_per_mm"], axis=0)
+        loaded = gear_pair(case, (face, found))
+        changes.append(max(float(np.max(np.abs(loaded.shafts[name].total - shaft.total)))
                            for name, shaft in pair.shafts.items()))
         if changes[-1] <= SHAFT_TOLERANCE or attempt == SHAFT_PASSES - 1:
             break
-        pair = updated
+        before = np.full(face.shape, found.mean()) if applied is None else applied
+        applied = before + SHAFT_RELAXATION * (found - before)
+        pair = gear_pair(case, (face, applied))
     result.sections["shaft"]["passes"] = len(changes)
     result.sections["shaft"]["changes_um"] = [1e3 * c for c in changes]
     result.checks.append(Check(
