@@ -537,7 +537,8 @@ def _loaded_reach(pair, normal_load: float, E_pinion: float, E_gear: float) -> f
                          pair.gear.profile_shift, pair.pinion.helix_angle)
     c *= 2.0 * E_pinion * E_gear / (E_pinion + E_gear) / E_STEEL
     width = min(pair.pinion.face_width, pair.gear.face_width)
-    return LOADED_REACH * normal_load * math.cos(pair.pinion.base_helix_angle) ** 2 / (width * c) * 1e-3
+    approach_um = normal_load * math.cos(pair.pinion.base_helix_angle) ** 2 / (width * c)
+    return LOADED_REACH * approach_um * 1e-3
 
 
 def _shaft_sections(pair, result: Result) -> None:

@@ -170,7 +170,8 @@ def parallel_cycle(mesh, pinion: Flank, gear: Flank, normal_load: float,
     delta -= s_min / slope
     gaps = contacts.s - s_min[P]
     keep = np.lexsort((pairs[J], P))
-    np.minimum.at(unkept, P[keep[gaps[keep] > reach]], gaps[keep[gaps[keep] > reach]])
+    far = keep[gaps[keep] > reach]
+    np.minimum.at(unkept, P[far], gaps[far])
     keep = keep[gaps[keep] <= reach]
     P, J = P[keep], J[keep]
     touching = gaps[keep] <= settings.approach
