@@ -4,8 +4,9 @@ the face, as a displacement of its flank toward the mate along the face.
 The shaft is an Euler-Bernoulli beam along the member's axis z (mm from mid-face, + toward
 end B) on two simple supports (the bearings; a pinion may overhang them), of one diameter
 or of stepped sections, the gear body being one of them. The mesh force is spread over the
-face at the operating pitch point, evenly or as the loaded contact's line load gives it: its transverse part bends the shaft along
-itself, its axial part (a helix) at the pitch radius adds a bending couple. With the
+face at the operating pitch point, evenly or as the loaded contact's line load gives it:
+its transverse part bends the shaft along itself, its axial part (a helix) at the pitch
+radius adds a bending couple. With the
 internal moment M(z) (the moment of everything beyond z, reactions included) the beam
 obeys E·I·u_x'' = M_y and E·I·u_y'' = -M_x (I = π d⁴/64), u = 0 at both bearings: the
 bending of a statically determinate beam, integrated twice on a fine grid. The torque enters

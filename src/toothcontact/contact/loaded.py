@@ -182,6 +182,9 @@ class _Pair:
         self.cycle, self.k, self.points, self.E_star = cycle, k, points, E_star
         self.teeth = teeth
         self.separation = cycle.rows[k]["separation_mm"]
+        #: the tooth pair (its index in the cycle) and whether it touches without load
+        self.tooth_pair = cycle.rows[k]["pair"]
+        self.rigid_contact = cycle.rows[k].get("rigid_contact", True)
         self.semi_axes = self.MARGIN * pattern_semi_axes(cycle, [k])[0]
         self.growth = (np.array([1.6, 1.6]) if cycle.rows[k]["contact_model"] == "ellipse"
                        else np.array([2.5, 1.3]))
@@ -261,8 +264,8 @@ def _share(pairs: list[_Pair], load: float,
     each pair's approach modelled as s_k + c_k·W^n_k, n_k = 2/3 and c_k from the rigid
     analysis's Hertz approach at first (a pair in contact without one, a line or an area, is
     first solved at the equal split among the pairs in contact to calibrate it; a pair kept
-    beyond the approach takes the stiffest of their models), then c_k from its last solution and n_k
-    fitted through its last two (0.5 to 3: a line contact grows nearly linearly, a pair that
+    beyond the approach takes the stiffest of their models), then c_k from its last solution
+    and n_k fitted through its last two (0.5 to 3: a line contact grows nearly linearly, a pair that
     barely touches steeply); the model solved for the split, the loaded pairs solved there
     (on the coarse grid where the teeth bend, see _Pair.solve), until the split settles; the
     solutions returned are those at the final split on the full grid, the split corrected
@@ -280,13 +283,13 @@ def _share(pairs: list[_Pair], load: float,
     exponent = np.full(count, 2.0 / 3.0)
     c = np.array([p.hertz_coefficient() for p in pairs])
     models = {} if models is None else models
-    keys = [p.cycle.rows[p.k]["pair"] for p in pairs]
+    keys = [p.tooth_pair for p in pairs]
     for i, key in enumerate(keys):
         if key in models:
             c[i], exponent[i] = models[key]
     at = np.full(count, np.nan)                     # the load of each pair's last solution
     solutions: list[ContactSolution | None] = [None] * count
-    touching = np.array([p.cycle.rows[p.k].get("rigid_contact", True) for p in pairs])
+    touching = np.array([p.rigid_contact for p in pairs])
     for k in np.flatnonzero(~np.isfinite(c) & touching):
         at[k] = load / touching.sum()
         solutions[k] = pairs[k].solve(at[k], coarse=True)
@@ -315,7 +318,11 @@ def _share(pairs: list[_Pair], load: float,
                 exponent[k] = min(max(fitted, 0.5), 3.0)
             c[k] = rise / new[k] ** exponent[k]
     models.update({key: (c[i], exponent[i]) for i, key in enumerate(keys) if np.isfinite(at[i])})
-    final = [pair.solve(w) if w > 1e-6 * load else None for pair, w in zip(pairs, split)]
+
+    def on_full_grid(split):
+        return [pair.solve(w) if w > 1e-6 * load else None for pair, w in zip(pairs, split)]
+
+    final = on_full_grid(split)
     if pairs[0].structure is None:
         return final
     # the full grid's approach differs a little from the coarse one the split was found on
@@ -328,7 +335,7 @@ def _share(pairs: list[_Pair], load: float,
             break
         s[loaded] += full - (s[loaded] + c[loaded] * split[loaded] ** exponent[loaded])
         split = _split(c, exponent, s, load)
-        final = [pair.solve(w) if w > 1e-6 * load else None for pair, w in zip(pairs, split)]
+        final = on_full_grid(split)
     return final
 
 
