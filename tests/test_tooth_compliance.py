@@ -23,13 +23,39 @@ def test_a_uniform_plate_loaded_at_its_free_edge_matches_its_closed_forms():
     2001 points)."""
     H, t = 7.0, 5.0
     s = np.linspace(0.0, H, 2001)
-    bending, shear, axial, length = cantilever(s, np.full_like(s, t / 2), H, t / 2,
-                                               (0.0, -1.0), E, NU)
+    plate = cantilever(s, np.full_like(s, t / 2), H, t / 2, (0.0, -1.0), E, NU)
     E_plane, G = E / (1 - NU ** 2), E / (2 * (1 + NU))
-    assert bending == pytest.approx(4 * H ** 3 / (E_plane * t ** 3), rel=1e-3)
-    assert shear == pytest.approx(1.2 * H / (G * t), rel=1e-3)
-    assert axial == 0.0
-    assert length == pytest.approx(H * math.sqrt((2.4 - 3 * NU) / 3), rel=1e-3)
+    assert plate.bending[0, 0] == pytest.approx(4 * H ** 3 / (E_plane * t ** 3), rel=1e-3)
+    assert plate.shear[0, 0] == pytest.approx(1.2 * H / (G * t), rel=1e-3)
+    assert plate.axial[0, 0] == 0.0
+    assert plate.coupling_length[0] == pytest.approx(H * math.sqrt((2.4 - 3 * NU) / 3),
+                                                     rel=1e-3)
+
+
+def test_a_uniform_plate_under_loads_along_it_deflects_as_the_beam_does():
+    """Cross compliance (the profile direction) of a uniform plate, by Maxwell-Betti against
+    the beam's closed forms within 0.2 %: loads at s1 = H/2 and s2 = H give
+    s1²(3 s2 - s1)/(6E'I) + 1.2 s1/(Gt) both ways; a uniform line load q over the whole
+    height (40 loads, the midpoint rule) moves the free edge by qH⁴/(8E'I) + 1.2 qH²/(2Gt),
+    I = t³/12 per unit width."""
+    H, t, q = 7.0, 5.0, 1.0
+    s = np.linspace(0.0, H, 4001)
+    E_plane, G, inertia = E / (1 - NU ** 2), E / (2 * (1 + NU)), t ** 3 / 12
+    loads = np.array([H / 2, H])
+    plate = cantilever(s, np.full_like(s, t / 2), loads, np.full(2, t / 2),
+                       np.tile([0.0, -1.0], (2, 1)), E, NU)
+    total = plate.bending + plate.shear + plate.axial
+    cross = (H / 2) ** 2 * (3 * H - H / 2) / (6 * E_plane * inertia) + 1.2 * (H / 2) / (G * t)
+    assert total[0, 1] == pytest.approx(cross, rel=2e-3)
+    assert total[1, 0] == pytest.approx(total[0, 1], rel=1e-12)
+    n = 40
+    spots = (np.arange(n) + 0.5) * H / n
+    at = np.append(spots, H)
+    plate = cantilever(s, np.full_like(s, t / 2), at, np.full(n + 1, t / 2),
+                       np.tile([0.0, -1.0], (n + 1, 1)), E, NU)
+    edge = ((plate.bending + plate.shear)[-1, :n] * q * H / n).sum()
+    exact = q * H ** 4 / (8 * E_plane * inertia) + 1.2 * q * H ** 2 / (2 * G * t)
+    assert edge == pytest.approx(exact, rel=2e-3)
 
 
 def test_a_load_inside_the_plate_bends_only_the_part_below_it():
@@ -37,13 +63,13 @@ def test_a_load_inside_the_plate_bends_only_the_part_below_it():
     load carries no moment); the coupling length grows with the unloaded part's slope."""
     H, t = 7.0, 5.0
     s = np.linspace(0.0, H, 4001)
-    bending, *_, length_inside = cantilever(s, np.full_like(s, t / 2), H / 2, t / 2,
-                                            (0.0, -1.0), E, NU)
+    inside = cantilever(s, np.full_like(s, t / 2), H / 2, t / 2, (0.0, -1.0), E, NU)
     E_plane = E / (1 - NU ** 2)
-    assert bending == pytest.approx(4 * (H / 2) ** 3 / (E_plane * t ** 3), rel=1e-3)
-    *_, length_at_edge = cantilever(s[s <= H / 2], np.full(int((s <= H / 2).sum()), t / 2),
-                                    H / 2, t / 2, (0.0, -1.0), E, NU)
-    assert length_inside > length_at_edge
+    assert inside.bending[0, 0] == pytest.approx(4 * (H / 2) ** 3 / (E_plane * t ** 3),
+                                                 rel=1e-3)
+    at_edge = cantilever(s[s <= H / 2], np.full(int((s <= H / 2).sum()), t / 2), H / 2,
+                         t / 2, (0.0, -1.0), E, NU)
+    assert inside.coupling_length[0] > at_edge.coupling_length[0]
 
 
 def green(z, z0, length, face):
@@ -113,6 +139,26 @@ def test_a_spur_tooth_is_stiffest_at_its_root_and_its_parts_are_all_positive():
     assert np.all(np.diff(totals) > 0)
     height = gear.tip_radius - gear.root_radius_value
     assert all(0.2 * height < c.coupling_length < height for c in teeth.table)
+
+
+def test_the_profile_compliance_is_a_symmetric_positive_definite_gram_matrix():
+    """The exact tooth's cross compliance over the profile (z = 20, m = 3, and a ring of
+    60): symmetric, positive definite, its diagonal the slices' totals, and each coupling
+    below the geometric mean of the two own compliances (Cauchy-Schwarz: two loads at
+    different heights bend the tooth in different shapes, which the single-shape rank-one
+    coupling sqrt(c_i c_j) overstates)."""
+    for gear in (CylindricalGear(20, 3.0, math.radians(20), 20.0),
+                 CylindricalGear(60, 3.0, math.radians(20), 20.0, internal=True)):
+        teeth = ToothCompliance(gear, E, NU)
+        C = teeth.matrix
+        assert np.allclose(C, C.T, rtol=1e-12, atol=0.0)
+        assert np.linalg.eigvalsh(C).min() > 0
+        assert np.allclose(np.diag(C), [c.total for c in teeth.table], rtol=1e-12)
+        geometric = np.sqrt(np.outer(np.diag(C), np.diag(C)))
+        off = ~np.eye(len(C), dtype=bool)
+        assert np.all(C[off] < geometric[off])
+        # far apart (form circle and tip) the difference is clear
+        assert C[0, -1] < 0.95 * geometric[0, -1]
 
 
 def test_iso_mesh_stiffness_and_face_load_factor():

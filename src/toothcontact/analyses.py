@@ -939,8 +939,17 @@ def _spline_contact(case: schema.SplineCase, pair, result: Result) -> None:
     except (ValueError, RuntimeError) as exc:
         raise CaseError(f"misalignment / torque: no contact could be found: {exc}") from None
     _contact_sections(cycle, {"tangential_load_N": wt, "normal_load_N": normal_load}, result)
-    _loaded_sections(cycle, C_E, a.pressure_grid, None,
-                     "tooth bending left out: the teeth share by their contact approaches", result)
+    from .contact.compliance import PairCompliance, ToothCompliance
+
+    teeth = PairCompliance(ToothCompliance(pair.hub, case.material.E, case.material.nu),
+                           ToothCompliance(pair.sleeve, case.material.E, case.material.nu))
+    _loaded_sections(cycle, C_E, a.pressure_grid, teeth,
+                     "tooth bending from the hub's and sleeve's exact transverse slices "
+                     "(bending, shear, axial and body compliance across the working depth: a "
+                     "load at one height bends the whole tooth; the hub a solid shaft with a "
+                     "bore of half its root diameter, the sleeve's body as an external gear's "
+                     "of its root circle) coupled along the engaged length as a Pasternak "
+                     "line (contact.compliance), solved with the contact in one system", result)
     per_position = {}
     for r in cycle.rows:
         per_position.setdefault(r["roll_deg"], []).append(r["pair"])

@@ -17,6 +17,8 @@ from __future__ import annotations
 
 import math
 
+import numpy as np
+
 #: ISO 6336-1:2006 Table 9, constants of the flexibility q'
 C = (0.04723, 0.15551, 0.25791, -0.00635, -0.11654, -0.00193, -0.24188, 0.00529, 0.00182)
 #: ISO 6336-1:2006 §9.3.2: the correction factor of the theoretical single stiffness
@@ -61,8 +63,8 @@ FOUNDATION = {"L": (-5.574e-5, -1.9986e-3, -2.3015e-4, 4.7702e-3, 0.0271, 6.8045
               "Q": (-6.2042e-5, 9.0889e-3, -4.0964e-4, 7.8297e-3, -0.1472, 0.6904)}
 
 
-def foundation_compliance(u_f: float, S_f: float, theta_f: float, h_fi: float,
-                          load_angle: float, E: float) -> float:
+def foundation_compliance(u_f, S_f: float, theta_f: float, h_fi: float, load_angle,
+                          E: float):
     """Compliance (mm²/N per unit face width) of the gear body under a tooth (the fillet
     foundation): Sainsot, Velex & Duverger, "Contribution of gear body to tooth deflections
     - a new bidimensional analytical formula", J. Mech. Des. 126 (2004) 748-752, as used by
@@ -71,13 +73,24 @@ def foundation_compliance(u_f: float, S_f: float, theta_f: float, h_fi: float,
     u_f (mm): from the root circle along the tooth's centre line to where the load line
     crosses it; S_f (mm): the tooth's chord on the root circle; theta_f (rad): half the
     angle that chord subtends; h_fi: root radius over bore radius; load_angle α_m (rad):
-    the load's angle to the perpendicular of the centre line; E (MPa)."""
+    the load's angle to the perpendicular of the centre line; E (MPa).
+
+    With arrays u_f and load_angle (n loads on one tooth) it gives the (n × n) cross
+    compliance: the body's displacement along load i under load j, the fit's bracket as the
+    symmetric bilinear form it is the square of (the body takes the tooth's root moment,
+    its force across and its force along the centre line):
+    cos α_i cos α_j/E · [L* x_i x_j + M*(x_i + x_j)/2 + P*(1 + Q* tan α_i tan α_j)],
+    x = u_f/S_f; its diagonal is the fit."""
     def star(name):
         A, B, C, D, E_, F = FOUNDATION[name]
         return (A / theta_f ** 2 + B * h_fi ** 2 + C * h_fi / theta_f + D / theta_f
                 + E_ * h_fi + F)
 
-    ratio = u_f / S_f
-    return (math.cos(load_angle) ** 2 / E
-            * (star("L") * ratio ** 2 + star("M") * ratio
-               + star("P") * (1.0 + star("Q") * math.tan(load_angle) ** 2)))
+    x = np.asarray(u_f, float) / S_f
+    angle = np.asarray(load_angle, float)
+    outer = np.multiply.outer
+    cos, tan = np.cos(angle), np.tan(angle)
+    form = (outer(cos, cos) / E
+            * (star("L") * outer(x, x) + 0.5 * star("M") * np.add.outer(x, x)
+               + star("P") * (1.0 + star("Q") * outer(tan, tan))))
+    return float(form) if np.ndim(u_f) == 0 else form

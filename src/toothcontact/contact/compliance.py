@@ -29,6 +29,16 @@ exp(-|Δz|/λ)/(2λ) in mid-face; a free end reflects it (the moment-image metho
 & Seireg, J. Eng. Ind. 82 (1960) 213-222), so a load at the end of a long face deflects the
 tooth twice as far as the same load in mid-face: the end softening that misalignment loads.
 
+Across the profile a load at one height bends the whole slice: the cross compliance
+C[i, j], the deflection along the normal at radius r_i under a unit line load at r_j, is by
+the unit-load method (Maxwell-Betti) ∫ M_i M_j/(E'I) + 1.2 V_i V_j/(GA) + N_i N_j/(E'A)
+over the sections below both loads, plus the gear body's bilinear form of Sainsot's fit
+(analytic.stiffness.foundation_compliance); its diagonal is the slice compliance above.
+A gear's narrow contact band barely needs it; a spline's contact covers the working depth,
+where the tooth's rotation under the load is the point. Along the face the plate is taken
+as separable: a cell's load goes to (radius × face) nodes by hat functions, which deflect
+by C·Q·G (G the Pasternak line's flexibility, per unit slice compliance).
+
 On a grid of contact cells the two members' slices give one symmetric operator u = B·F
 (StructureOperator: F the cells' loads, u their deflections along the contact normal),
 which the half-space solver adds to its own (pressure.solve_contact, `structure`): rigid
@@ -51,7 +61,7 @@ SHEAR_FACTOR = 1.2
 #: integration points along a slice, root to tip
 SLICE_POINTS = 400
 #: load radii at which a member's slice compliance is tabulated, form circle to tip
-TABLE_RADII = 24
+TABLE_RADII = 64
 
 
 @dataclass(frozen=True)
@@ -70,40 +80,62 @@ class SliceCompliance:
         return self.bending + self.shear + self.axial + self.foundation
 
 
-def cantilever(s: np.ndarray, half: np.ndarray, load_s: float, load_y: float,
-               direction: tuple[float, float], E: float, nu: float
-               ) -> tuple[float, float, float, float]:
-    """Bending, shear and axial compliance (mm²/N per unit width) and the Vlasov coupling
-    length (mm) of a plane cantilever slice: s (n,) the distance from the root section
-    along the tooth's centre line (mm, increasing to the tip), half (n,) the half-thickness
-    there (mm); a unit load at (load_s, load_y) (load_y its distance from the centre line
-    on the loaded side, > 0) along the unit `direction` (d_s, d_y) (d_y < 0: into the
-    tooth); E (MPa), nu. See the module for the formulas."""
+@dataclass(frozen=True)
+class CantileverCompliance:
+    """A plane cantilever slice under n unit loads: the (n × n) cross compliances per unit
+    width by part (mm²/N; [i, j] the deflection along load i under load j) and each load's
+    Vlasov coupling length (n,) (mm)."""
+
+    bending: np.ndarray
+    shear: np.ndarray
+    axial: np.ndarray
+    coupling_length: np.ndarray
+
+
+def cantilever(s: np.ndarray, half: np.ndarray, load_s, load_y, direction,
+               E: float, nu: float) -> CantileverCompliance:
+    """Cross compliances and Vlasov coupling lengths of a plane cantilever slice: s (m,) the
+    distance from the root section along the tooth's centre line (mm, increasing to the
+    tip), half (m,) the half-thickness there (mm); n unit loads at (load_s, load_y) (n,)
+    (load_y the distance from the centre line on the loaded side, > 0) along the unit
+    directions (n, 2) (d_s, d_y) (d_y < 0: into the tooth); E (MPa), nu. By the unit-load
+    method (Maxwell-Betti): [i, j] = ∫ M_i M_j/(E'I) + 1.2 V_i V_j/(GA) + N_i N_j/(E'A)
+    over the sections below both loads; the diagonal is Chaari et al.'s eqs (2)-(4). See
+    the module for the coupling length."""
     s, half = np.asarray(s, float), np.asarray(half, float)
+    load_s, load_y = np.atleast_1d(load_s).astype(float), np.atleast_1d(load_y).astype(float)
+    d_s, d_y = np.atleast_2d(np.asarray(direction, float)).T
     E_plane, G = E / (1.0 - nu ** 2), E / (2.0 * (1.0 + nu))
-    d_s, d_y = direction
-    loaded = s <= load_s
-    moment = np.where(loaded, (load_s - s) * d_y - load_y * d_s, 0.0)
+    loaded = s[None, :] <= load_s[:, None]                          # (n loads, m sections)
+    moment = np.where(loaded, (load_s[:, None] - s) * d_y[:, None]
+                      - (load_y * d_s)[:, None], 0.0)
     area, inertia = 2.0 * half, (2.0 * half) ** 3 / 12.0
-    bending = np.trapezoid(np.where(loaded, moment ** 2 / (E_plane * inertia), 0.0), s)
-    shear = np.trapezoid(np.where(loaded, SHEAR_FACTOR * d_y ** 2 / (G * area), 0.0), s)
-    axial = np.trapezoid(np.where(loaded, d_s ** 2 / (E_plane * area), 0.0), s)
-    # the slice's deflection shape: w'' = M/(E'I), w(0) = w'(0) = 0
+    shear_force, normal_force = loaded * d_y[:, None], loaded * d_s[:, None]
+
+    def cross(f, g, stiffness):
+        return np.trapezoid(f[:, None, :] * g[None, :, :] / stiffness, s, axis=-1)
+
+    bending = cross(moment, moment, E_plane * inertia)
+    shear = cross(shear_force, shear_force, G * area / SHEAR_FACTOR)
+    axial = cross(normal_force, normal_force, E_plane * area)
+    # each load's deflection shape: w'' = M/(E'I), w(0) = w'(0) = 0
     curvature = moment / (E_plane * inertia)
-    slope = cumulative_trapezoid(curvature, s, initial=0.0)
-    deflection = cumulative_trapezoid(slope, s, initial=0.0)
-    at_load = np.interp(load_s, s, deflection)
+    slope = cumulative_trapezoid(curvature, s, initial=0.0, axis=-1)
+    deflection = cumulative_trapezoid(slope, s, initial=0.0, axis=-1)
+    at_load = np.array([np.interp(si, s, w) for si, w in zip(load_s, deflection)])[:, None]
     phi, dphi, ddphi = deflection / at_load, slope / at_load, curvature / at_load
     D = E_plane * inertia
-    k = np.trapezoid(D * ddphi ** 2, s)
-    G_p = np.trapezoid(D * (2.0 * (1.0 - nu) * dphi ** 2 - 2.0 * nu * phi * ddphi), s)
-    return float(bending), float(shear), float(axial), math.sqrt(max(G_p, 0.0) / k)
+    k = np.trapezoid(D * ddphi ** 2, s, axis=-1)
+    G_p = np.trapezoid(D * (2.0 * (1.0 - nu) * dphi ** 2 - 2.0 * nu * phi * ddphi), s, axis=-1)
+    return CantileverCompliance(bending, shear, axial, np.sqrt(np.maximum(G_p, 0.0) / k))
 
 
 class ToothCompliance:
     """The slice compliance of one member's teeth (a cylindrical gear, external or ring),
     tabulated over the load radius from the form circle to the tip: the exact transverse
-    outline at mid-face (surfaces.outline), the load along the involute's normal.
+    outline at mid-face (surfaces.outline), the loads along the involute's normal.
+    `matrix` [i, j] (mm²/N per unit face width): the deflection along the normal at
+    radii[i] under a unit line load at radii[j]; `table` its diagonal by part.
     bore_radius (mm): the rim's inner radius for the gear body term; None: half the root
     radius (a solid blank on a shaft of half its root diameter). A ring gear takes the body
     term of an external gear of its root circle (h_fi = 2): Sainsot's fit has no rim held
@@ -137,31 +169,35 @@ class ToothCompliance:
         order = np.argsort(radii)
         self._flank = (radii[order], flank[order])
         self.radii = np.linspace(float(radii.min()), float(radii.max()), TABLE_RADII)
-        self.table = [self.slice(r) for r in self.radii]
+        parts = self.slices(self.radii)
+        self.matrix = sum(parts[:4])
+        self.table = [SliceCompliance(*(float(p[i, i]) for p in parts[:4]), float(length))
+                      for i, length in enumerate(parts[4])]
 
-    def slice(self, radius: float) -> SliceCompliance:
-        """The slice under a unit line load on the flank at `radius` (mm), along the
-        flank's transverse normal into the tooth."""
+    def slices(self, radius) -> tuple[np.ndarray, ...]:
+        """Bending, shear, axial and gear body cross compliance (n × n, mm²/N per unit
+        width) of unit line loads on the flank at the n radii `radius` (mm), each along the
+        flank's transverse normal into the tooth, and their coupling lengths (n,) (mm)."""
         radii, points = self._flank
-        k = int(np.clip(np.searchsorted(radii, radius), 1, len(radii) - 1))
-        x, y = (float(np.interp(radius, radii, points[:, i])) for i in (0, 1))
+        radius = np.atleast_1d(np.asarray(radius, float))
+        k = np.clip(np.searchsorted(radii, radius), 1, len(radii) - 1)
+        x, y = (np.interp(radius, radii, points[:, i]) for i in (0, 1))
         tangent = points[k] - points[k - 1]
-        normal = np.array([-tangent[1], tangent[0]]) / math.hypot(*tangent)
-        if normal[1] > 0:                  # into the tooth: toward its centre line
-            normal = -normal
-        d_s, d_y = self._inward * normal[0], normal[1]
+        normal = np.column_stack([-tangent[:, 1], tangent[:, 0]])
+        normal /= np.hypot(*normal.T)[:, None]
+        normal[normal[:, 1] > 0] *= -1.0          # into the tooth: toward its centre line
+        d_s, d_y = self._inward * normal[:, 0], normal[:, 1]
         load_s = self._inward * (x - self._root_x)
         s_profile, half_profile = self._profile
         s = np.linspace(0.0, float(s_profile[-1]), SLICE_POINTS)
         half = np.interp(s, s_profile, half_profile)
-        bending, shear, axial, length = cantilever(s, half, load_s, y, (d_s, d_y),
-                                                   self.E, self.nu)
+        beam = cantilever(s, half, load_s, y, np.column_stack([d_s, d_y]), self.E, self.nu)
         crossing = load_s + d_s * (y / -d_y)          # the load line meets the centre line
         root_thickness = 2.0 * self.root_radius * math.sin(self.root_half_angle)
         foundation = foundation_compliance(crossing, root_thickness, self.root_half_angle,
                                            self.root_radius / self.bore_radius,
-                                           math.atan2(abs(d_s), abs(d_y)), self.E)
-        return SliceCompliance(bending, shear, axial, foundation, length)
+                                           np.arctan2(np.abs(d_s), np.abs(d_y)), self.E)
+        return beam.bending, beam.shear, beam.axial, foundation, beam.coupling_length
 
     def half_thickness(self, radius: float) -> float:
         """The tooth's half-thickness (mm) at `radius` on its flank: the depth to its centre
@@ -198,21 +234,16 @@ class FaceCoupling:
         K[0, 0] = K[-1, -1] = -1.0
         self.flexibility = np.linalg.inv(np.diag(widths) - coupling_length ** 2 / step * K)
 
-    def weights(self, z: np.ndarray):
-        """(nodes × len(z)) sparse hat-function weights of points at face positions z (mm):
-        a load at z goes to its two nearest nodes in proportion; a deflection at z is read
-        back with the transpose. Points beyond the face go to its end nodes."""
-        from scipy.sparse import csr_matrix
 
-        n = len(self.nodes)
-        t = np.clip((np.asarray(z, float) - self.nodes[0])
-                    / (self.nodes[-1] - self.nodes[0]) * (n - 1), 0.0, n - 1)
-        left = np.minimum(np.floor(t).astype(int), n - 2)
-        share = t - left
-        cols = np.arange(len(t))
-        return csr_matrix((np.concatenate([1.0 - share, share]),
-                           (np.concatenate([left, left + 1]), np.concatenate([cols, cols]))),
-                          shape=(n, len(t)))
+def hats(nodes: np.ndarray, values: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """The hat functions on the increasing, equally spaced `nodes` at `values`: each value's
+    left node (int) and the share (0..1) its right neighbour takes; the left one takes the
+    rest. Values beyond the nodes go to the end nodes."""
+    n = len(nodes)
+    t = np.clip((np.asarray(values, float) - nodes[0]) / (nodes[-1] - nodes[0]) * (n - 1),
+                0.0, n - 1)
+    left = np.minimum(np.floor(t).astype(int), n - 2)
+    return left, t - left
 
 
 #: nodes per coupling length along the face, and their fewest and most
@@ -221,20 +252,38 @@ NODES_PER_LENGTH, FEWEST_NODES, MOST_NODES = 4.0, 21, 241
 
 class MemberLoading:
     """One member's side of a contact grid: the cells' face positions z (mm, along its axis)
-    and the length of face a cell spans (`extent`, mm), their slice compliance c along the
-    contact normal (mm²/N per unit width: the transverse compliance times the normal's
-    transverse part squared) and the member's face coupling."""
+    and load radii (mm), the length of face a cell spans (`extent`, mm), the member's
+    profile compliance (`radii` (mm) and `matrix` (mm²/N per unit width) of its
+    ToothCompliance, along the contact normal: times the normal's transverse part squared)
+    and its face coupling. A cell's load goes to the (radius × face) nodes by hat weights;
+    the nodes deflect by matrix·Q·G (profile compliance across, face coupling along), read
+    back at the cells with the same weights."""
 
-    def __init__(self, z: np.ndarray, extent: float, compliance: np.ndarray,
-                 coupling: FaceCoupling):
-        self.z, self.extent, self.compliance, self.coupling = z, extent, compliance, coupling
-        self.weights = coupling.weights(z)
-        self._scaled = self.weights.multiply(np.sqrt(compliance)[None, :]).tocsr()
-        self._scaled_t = self._scaled.T.tocsr()
+    def __init__(self, z: np.ndarray, radius: np.ndarray, extent: float, radii: np.ndarray,
+                 matrix: np.ndarray, coupling: FaceCoupling):
+        self.z, self.radius, self.extent = z, radius, extent
+        self.radii, self.matrix, self.coupling = radii, matrix, coupling
+        across, across_share = hats(radii, radius)
+        along, along_share = hats(coupling.nodes, z)
+        used = np.unique(np.concatenate([across, across + 1]))
+        self._profile = matrix[np.ix_(used, used)]
+        self._shape = (len(used), len(coupling.nodes))
+        # each cell's four nodes (row-major in the shape) and its weights on them
+        across = np.searchsorted(used, across)
+        self._nodes = np.concatenate([(a * self._shape[1] + k)
+                                      for a in (across, across + 1)
+                                      for k in (along, along + 1)])
+        self._weights = np.concatenate([wa * wk
+                                        for wa in (1.0 - across_share, across_share)
+                                        for wk in (1.0 - along_share, along_share)])
+        self._cells = np.tile(np.arange(len(z)), 4)
 
     def deflection(self, loads: np.ndarray) -> np.ndarray:
         """Deflections (mm) of the cells along the normal under their loads (N)."""
-        return self._scaled_t @ (self.coupling.flexibility @ (self._scaled @ loads))
+        nodes = np.bincount(self._nodes, self._weights * loads[self._cells],
+                            minlength=self._shape[0] * self._shape[1]).reshape(self._shape)
+        at_nodes = (self._profile @ nodes @ self.coupling.flexibility).ravel()
+        return (at_nodes[self._nodes] * self._weights).reshape(4, -1).sum(axis=0)
 
 
 class StructureOperator:
@@ -268,8 +317,8 @@ class StructureOperator:
         shape = (len(range(0, n0, step)), len(range(0, n1, step)))
         active = np.zeros(self.shape, bool).ravel()
         active[self.active[keep]] = True
-        members = [MemberLoading(m.z[keep], step * m.extent, m.compliance[keep], m.coupling)
-                   for m in self.members]
+        members = [MemberLoading(m.z[keep], m.radius[keep], step * m.extent, m.radii,
+                                 m.matrix, m.coupling) for m in self.members]
         return StructureOperator(members, shape, self.cell * step * step,
                                  active.reshape(self.shape)[::step, ::step], self.reference)
 
@@ -305,7 +354,7 @@ class PairCompliance:
             v = field.parameters[f"{name}_v"][material]
             x, y, z = (np.broadcast_to(c, u.shape) for c in flank.point(u, v))
             radius = np.hypot(x, y)
-            compliance, length = teeth.at(radius)
+            _, length = teeth.at(radius)
             # an involute helicoid's normal leans by the base helix angle out of the
             # transverse plane: only its transverse part bends the slices
             transverse = math.cos(teeth.gear.base_helix_angle) ** 2
@@ -315,7 +364,8 @@ class PairCompliance:
                      int(np.clip(math.ceil(2 * half / coupling_length * NODES_PER_LENGTH) + 1,
                                  FEWEST_NODES, MOST_NODES)))
             z = np.asarray(z, float)
-            members.append(MemberLoading(z, _extent(field, z), compliance * transverse,
+            members.append(MemberLoading(z, radius, _extent(field, z), teeth.radii,
+                                         teeth.matrix * transverse,
                                          FaceCoupling(-half, half, coupling_length, nodes)))
             depth = teeth.half_thickness(float(np.median(radius)))
             reference.append((round(depth, 3), teeth.E, teeth.nu))

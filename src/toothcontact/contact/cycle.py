@@ -284,9 +284,9 @@ def _pair_results(pinion, gear, pf, gf, roll_deg, pairs, delta, cp: ContactPoint
     # flanks: a spline's hub and sleeve share their base circle), measured along the face
     ellipses = [hertz_point(A[k], B[k], loads[k], C_E) if A[k] > 0 else None
                 for k in range(len(A))]
-    line = np.array([e is None or e.a > 0.5 * f for e, f in zip(ellipses, face)], bool)
     height = np.minimum(_profile_height(pinion, p_uv), _profile_height(gear, g_uv))
-    area = line & (B <= settings.approach / (0.5 * height) ** 2)
+    area = B <= settings.approach / (0.5 * height) ** 2
+    line = area | np.array([e is None or e.a > 0.5 * f for e, f in zip(ellipses, face)], bool)
     point, along = np.flatnonzero(~line), np.flatnonzero(line)
     margins = [dict() for _ in range(len(A))]
     found = {}

@@ -30,6 +30,7 @@ import numpy as np
 
 from .compliance import PairCompliance, StructureOperator
 from .field import GapField, contact_fields, pattern_semi_axes
+from .local import face_length
 from .pressure import ContactSolution, solve_contact
 
 #: width (mm) of the strip at an edge over which the edge pressure is averaged
@@ -186,6 +187,10 @@ class _Pair:
         self.tooth_pair = cycle.rows[k]["pair"]
         self.rigid_contact = cycle.rows[k].get("rigid_contact", True)
         self.semi_axes = self.MARGIN * pattern_semi_axes(cycle, [k])[0]
+        #: the largest semi-axis a field needs: the flanks' length along the face, a box
+        #: that covers them whole about any point of them
+        self.largest = max(float(face_length(getattr(cycle, m), cycle.contact_uv(m, k))[0])
+                           for m in ("pinion", "gear"))
         self.growth = (np.array([1.6, 1.6]) if cycle.rows[k]["contact_model"] == "ellipse"
                        else np.array([2.5, 1.3]))
         self._use(field)
@@ -219,7 +224,10 @@ class _Pair:
             except ValueError as exc:
                 if "reaches the grid's edge" not in str(exc):
                     raise
-            self.semi_axes = self.semi_axes * self.growth
+            grown = np.minimum(self.semi_axes * self.growth, self.largest)
+            if np.array_equal(grown, self.semi_axes):
+                break
+            self.semi_axes = grown
             self._use(contact_fields(self.cycle, [self.k], self.points, 1.0,
                                      self.semi_axes[None], CELL)[0])
         raise ValueError(f"the loaded contact at roll {self.cycle.rows[self.k]['roll_deg']:.3f} "
