@@ -40,6 +40,39 @@ def test_a_point_load_between_the_bearings():
         assert np.allclose(u[:, 1 - axis], 0.0, atol=1e-12)
 
 
+def test_yielding_bearings_move_the_shaft_by_their_reactions():
+    """Bearings of radial stiffness k1, k2 under P at a from the first of a span L: each
+    gives R_k/k_k along the load (R1 = P·b/L, R2 = P·a/L), so the deflection under the load
+    is the rigid-bearing one plus the line through those, P·a²·b²/(3EIL) + (R1/k1)·b/L +
+    (R2/k2)·a/L, and beyond the span the line carries on (0.1 %)."""
+    L, a, P, k1, k2 = 120.0, 40.0, 5000.0, 2.0e5, 5.0e5
+    b = L - a
+    z = grid(0.0, L + 30.0)
+    soft = Shaft((0.0, L), ((0.0, L + 30.0, D),), E, NU, "A", (k1, k2))
+    u = beam_deflection(soft, z, point(z, a, P), np.zeros((z.size, 2)))[:, 0]
+    R1, R2 = P * b / L, P * a / L
+    expected = P * a ** 2 * b ** 2 / (3 * EI * L) + R1 / k1 * b / L + R2 / k2 * a / L
+    assert np.interp(a, z, u) == pytest.approx(expected, rel=1e-3)
+    assert np.interp(0.0, z, u) == pytest.approx(R1 / k1, rel=1e-3)
+    assert np.interp(L, z, u) == pytest.approx(R2 / k2, rel=1e-3)
+    rigid = beam_deflection(Shaft((0.0, L), ((0.0, L + 30.0, D),), E, NU), z, point(z, a, P),
+                            np.zeros((z.size, 2)))[:, 0]
+    line = R1 / k1 + (z - 0.0) * (R2 / k2 - R1 / k1) / L
+    assert np.allclose(u - rigid, line, rtol=0.0, atol=1e-3 * np.abs(line).max())
+
+
+def test_the_case_takes_one_bearing_stiffness_for_both_or_one_each():
+    """`bearing_stiffness` in units: one value serves both bearings; three are refused."""
+    one = gear_pair(parse_case(case({"bearings": ["-60 mm", "60 mm"], "diameter": "30 mm",
+                                     "bearing_stiffness": ["400 N/um"]})))
+    both = gear_pair(parse_case(case({"bearings": ["-60 mm", "60 mm"], "diameter": "30 mm",
+                                      "bearing_stiffness": ["400 N/um", "400000 N/mm"]})))
+    assert one.shafts["pinion"].bending == pytest.approx(both.shafts["pinion"].bending)
+    with pytest.raises(CaseError, match="bearing_stiffness"):
+        parse_case(case({"bearings": ["-60 mm", "60 mm"], "diameter": "30 mm",
+                         "bearing_stiffness": ["1 N/um"] * 3}))
+
+
 def test_a_uniform_load_over_the_span_and_an_overhung_load():
     """Uniform q over the span: 5qL⁴/(384EI) at mid-span; P on an overhang c beyond the
     right bearing: P·c²·(L + c)/(3EI) at its end (0.1 %)."""

@@ -249,11 +249,17 @@ class ShaftSpec(Model):
     nu: Poisson | None = None
     torque_side: Literal["A", "B"] = Field(
         "A", description="the face end the torque comes in (or goes out) at")
+    bearing_stiffness: list[Stiffness] = Field(
+        [], description="the bearings' radial stiffness: one for both or one each, in the "
+                        "order of `bearings`, e.g. ['400 N/um']; none: rigid bearings")
 
     @model_validator(mode="after")
     def _layout(self):
         if (self.diameter is None) == (not self.sections):
             raise ValueError("give either diameter or sections (not both, not neither)")
+        if len(self.bearing_stiffness) > 2:
+            raise ValueError(f"bearing_stiffness: {len(self.bearing_stiffness)} values: give "
+                             "one for both bearings or one each")
         if self.bearings[0] == self.bearings[1]:
             raise ValueError(f"bearings: {self.bearings[0]} mm twice: two distinct positions")
         for start, end, _ in self.sections:

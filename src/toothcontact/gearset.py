@@ -299,8 +299,10 @@ def _shafts(case, pinion: CylindricalGear, gear: CylindricalGear, center: float,
                     ((min(*spec.bearings, -member.face_width), max(*spec.bearings,
                                                                    member.face_width),
                       spec.diameter),))
+        stiffness = spec.bearing_stiffness
         shaft = Shaft(tuple(spec.bearings), sections, spec.E or material[name].E,
-                      spec.nu if spec.nu is not None else material[name].nu, spec.torque_side)
+                      spec.nu if spec.nu is not None else material[name].nu, spec.torque_side,
+                      (tuple(stiffness) * 2)[:2] if stiffness else None)
         half = 0.5 * member.face_width
         span = np.linspace(min(*spec.bearings, -half), max(*spec.bearings, half), 201)
         if np.isnan(shaft.diameter(span)).any():

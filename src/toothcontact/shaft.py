@@ -34,14 +34,16 @@ POINTS = 4001
 @dataclass(frozen=True)
 class Shaft:
     """A shaft: `bearings` (two positions, mm from mid-face), `sections` ((start, end,
-    diameter) mm, covering the bearings and the face), E (MPa), nu, and the face end the
-    torque comes in or goes out at (`torque_side`, "A" or "B")."""
+    diameter) mm, covering the bearings and the face), E (MPa), nu, the face end the
+    torque comes in or goes out at (`torque_side`, "A" or "B") and the bearings' radial
+    stiffness (`bearing_stiffness`, N/mm each; None: rigid)."""
 
     bearings: tuple[float, float]
     sections: tuple[tuple[float, float, float], ...]
     E: float
     nu: float
     torque_side: str = "A"
+    bearing_stiffness: tuple[float, float] | None = None
 
     def diameter(self, z: np.ndarray) -> np.ndarray:
         """The diameter (mm) at axial positions z (the section that holds each; the later
@@ -107,8 +109,10 @@ def beam_deflection(shaft: Shaft, z: np.ndarray, force: np.ndarray, couple: np.n
     curvature = np.stack([M_y, -M_x], axis=-1) / (shaft.E * inertia)[:, None]
     slope = cumulative_trapezoid(curvature, z, initial=0.0, axis=0)
     u = cumulative_trapezoid(slope, z, initial=0.0, axis=0)
-    # a rigid line through the bearings: u(z1) = u(z2) = 0
-    at = np.array([[np.interp(b, z, u[:, axis]) for axis in (0, 1)] for b in (z1, z2)])
+    # a line through the bearings: u(z_k) = the bearing's own give, -R_k/k_k (0 if rigid)
+    give = (np.zeros((2, 2)) if shaft.bearing_stiffness is None else
+            -reactions / np.asarray(shaft.bearing_stiffness, float)[:, None])
+    at = np.array([[np.interp(b, z, u[:, axis]) for axis in (0, 1)] for b in (z1, z2)]) - give
     gradient = (at[1] - at[0]) / (z2 - z1)
     return u - at[0] - np.outer(z - z1, gradient)
 
