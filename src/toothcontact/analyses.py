@@ -1044,8 +1044,17 @@ def _worm_contact(case: schema.WormCase, parts, result: Result) -> None:
     except (ValueError, RuntimeError) as exc:
         raise CaseError(f"misalignment / load: no contact could be found: {exc}") from None
     _contact_sections(cycle, loads, result)
-    _loaded_sections(cycle, C_E, a.pressure_grid, None,
-                     "tooth bending left out: the teeth share by their contact approaches", result)
+    from .contact.compliance import PairCompliance, ThreadCompliance, WheelToothCompliance
+
+    teeth = PairCompliance(ThreadCompliance(worm, case.material.E, case.material.nu),
+                           WheelToothCompliance(wheel, wheel_material.E, wheel_material.nu))
+    _loaded_sections(cycle, C_E, a.pressure_grid, teeth,
+                     "tooth bending from the wheel tooth's mid-plane section (the enveloped "
+                     "flank, continued straight to the root circle; loads placed by their "
+                     "height from the throat circle, coupled along the face) and the worm "
+                     "thread's axial section in the worm's material (coupled along the "
+                     "thread, no end in reach); bending, shear, axial and body compliance "
+                     "(contact.compliance), solved with the contact in one system", result)
     _publish_names(result, PUBLISHED_NAMES["worm"])
 
 

@@ -39,6 +39,10 @@ where the tooth's rotation under the load is the point. Along the face the plate
 as separable: a cell's load goes to (radius × face) nodes by hat functions, which deflect
 by C·Q·G (G the Pasternak line's flexibility, per unit slice compliance).
 
+A worm set's members are sliced in their own planes: the wheel tooth in its mid-plane,
+its loads placed by their height from the throat circle (WheelToothCompliance), the worm
+thread in its axial section, coupled along the thread (ThreadCompliance).
+
 On a grid of contact cells the two members' slices give one symmetric operator u = B·F
 (StructureOperator: F the cells' loads, u their deflections along the contact normal),
 which the half-space solver adds to its own (pressure.solve_contact, `structure`): rigid
@@ -144,28 +148,38 @@ class ToothCompliance:
     def __init__(self, gear, E: float, nu: float, bore_radius: float | None = None):
         from ..surfaces.outline import ToothOutline
 
-        self.gear, self.E, self.nu = gear, E, nu
+        self.gear = gear
         outline = ToothOutline(gear)
         (u0, u1), _ = outline.flanks[1].domain
         section = outline.section(np.linspace(u0, u1, 200), 0.0)
-        # the side of tooth 0 (on +x at z = 0) that carries the load, in its centre-line
-        # frame: s from the root circle toward the tip, y across (the flank at y > 0)
-        self._inward = -1.0 if gear.internal else 1.0     # +s along +x, or -x on a ring
+        # the side of tooth 0 (on +x at z = 0) that carries the load: flank, then fillet
         side = np.concatenate([section.flank_plus, section.fillet_plus[1:]])[:, :2]
-        if side[:, 1].mean() < 0:
-            side = side * np.array([1.0, -1.0])
+        side = side * np.array([1.0, np.sign(side[:, 1].mean())])
         root = side[-1]
-        self.root_radius = float(np.hypot(*root))
-        self.root_half_angle = abs(math.atan2(root[1], self._inward * root[0]))
-        self._root_x = float(root[0])
-        s_side = self._inward * (side[:, 0] - self._root_x)
+        inward = -1.0 if gear.internal else 1.0     # the centre line along +x, or -x on a ring
+        self._tabulate(side, len(section.flank_plus), inward, np.hypot(*side.T),
+                       float(np.hypot(*root)), abs(math.atan2(root[1], inward * root[0])),
+                       bore_radius, E, nu)
+
+    def _tabulate(self, side: np.ndarray, flank_points: int, inward: float,
+                  radius: np.ndarray, root_radius: float, root_half_angle: float,
+                  bore_radius: float | None, E: float, nu: float) -> None:
+        """The table from the slice's loaded side: `side` (n, 2) mm from the tip (first) to
+        the root (last) in a plane whose x runs along the tooth's centre line (outward, or
+        inward on a ring: `inward` -1) and y across it (the flank at y > 0), its first
+        `flank_points` the flank, `radius` (n,) each point's load radius (mm); the root's
+        radius (mm) and the half angle its chord subtends (rad) for the body term."""
+        self.E, self.nu = E, nu
+        self._inward = inward
+        self.root_radius, self.root_half_angle = root_radius, root_half_angle
+        self._root_x = float(side[-1, 0])
+        s_side = inward * (side[:, 0] - self._root_x)
         order = np.argsort(s_side)
         s_sorted, half_sorted = s_side[order], side[order, 1]
         keep = np.concatenate([[True], np.diff(s_sorted) > 1e-9])
         self._profile = (s_sorted[keep], half_sorted[keep])
-        self.bore_radius = 0.5 * self.root_radius if bore_radius is None else bore_radius
-        flank = side[:len(section.flank_plus)]
-        radii = np.hypot(*flank.T)
+        self.bore_radius = 0.5 * root_radius if bore_radius is None else bore_radius
+        flank, radii = side[:flank_points], radius[:flank_points]
         order = np.argsort(radii)
         self._flank = (radii[order], flank[order])
         self.radii = np.linspace(float(radii.min()), float(radii.max()), TABLE_RADII)
@@ -173,6 +187,21 @@ class ToothCompliance:
         self.matrix = sum(parts[:4])
         self.table = [SliceCompliance(*(float(p[i, i]) for p in parts[:4]), float(length))
                       for i, length in enumerate(parts[4])]
+
+    def coordinates(self, flank, u: np.ndarray, v: np.ndarray
+                    ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+        """Where the flank points (u, v) load the teeth: the load radius on the slice (mm),
+        the position along the face (mm) and the share of a load along the flank's normal
+        that bends the slice (the normal's part in the slice's plane, squared): an involute
+        helicoid's normal leans by the base helix angle out of the transverse plane."""
+        x, y, z = (np.broadcast_to(c, np.shape(u)) for c in flank.point(u, v))
+        share = math.cos(self.gear.base_helix_angle) ** 2
+        return np.hypot(x, y), np.asarray(z, float), np.full(np.shape(u), share)
+
+    def face_span(self, face: np.ndarray, coupling_length: float) -> tuple[float, float]:
+        """The ends (mm) of the face the slices are coupled along: the gear's face."""
+        half = 0.5 * self.gear.face_width
+        return -half, half
 
     def slices(self, radius) -> tuple[np.ndarray, ...]:
         """Bending, shear, axial and gear body cross compliance (n × n, mm²/N per unit
@@ -214,6 +243,99 @@ class ToothCompliance:
         return np.interp(r, self.radii, total), np.interp(r, self.radii, length)
 
 
+class WheelToothCompliance(ToothCompliance):
+    """A worm wheel's teeth (surfaces.wheel.WormWheelFlank). The slice is the tooth's
+    mid-plane section (the enveloped flank at z2 = 0, tooth 0 centred on +x2), continued
+    along its last tangent from the hob tip's generated edge to the root circle (a
+    straight continuation, thinner than the generated fillet: a little softer). The
+    blank's tip and root are tori about the throat circle (radius a, the centre distance,
+    in the mid-plane), so a tooth's height is measured from that circle: a point at wheel
+    radius r and axial position z loads the slice at a - sqrt((a - r)² + z²); along the
+    face the slices couple along z over the face width. The body term is an external
+    gear's of the throat root circle (Sainsot), the bore half the root radius unless given."""
+
+    def __init__(self, wheel, E: float, nu: float, bore_radius: float | None = None):
+        self.wheel = wheel
+        u = np.linspace(0.0, 1.0, 200)
+        x, y, _ = wheel.point(u, np.zeros_like(u))           # tip (u = 0) to root edge
+        flank = np.column_stack([x, y])
+        flank = flank * np.array([1.0, np.sign(flank[:, 1].mean())])
+        root_radius = 0.5 * wheel.root_diameter
+        last, before = flank[-1], flank[-2]
+        direction = (last - before) / np.hypot(*(last - before))
+        # the nearer t > 0 with |last + t·direction| = root radius
+        b, c = float(last @ direction), float(last @ last) - root_radius ** 2
+        reach = -b - math.sqrt(max(b * b - c, 0.0))
+        fillet = last + np.linspace(0.0, reach, 12)[1:, None] * direction
+        side = np.concatenate([flank, fillet])
+        root = side[-1]
+        self._tabulate(side, len(flank), 1.0, np.hypot(*side.T), root_radius,
+                       abs(math.atan2(root[1], root[0])), bore_radius, E, nu)
+
+    def coordinates(self, flank, u, v):
+        """The load radius from the throat circle, the axial position and the normal's part
+        in the transverse plane squared (see ToothCompliance.coordinates)."""
+        sample = flank.evaluate(np.asarray(u, float), np.asarray(v, float), order=1)
+        x, y, z = np.moveaxis(sample.points, -1, 0)
+        a = self.wheel.centre_distance
+        radius = a - np.sqrt((a - np.hypot(x, y)) ** 2 + z ** 2)
+        return radius, z, 1.0 - sample.normals[..., 2] ** 2
+
+    def face_span(self, face, coupling_length):
+        half = 0.5 * self.wheel.face_width
+        return -half, half
+
+
+#: the part of a worm thread's depth above its root cylinder its table leaves out
+THREAD_CLEARANCE = 0.1
+#: how far (in coupling lengths) a worm thread's slices are coupled beyond a contact's
+#: cells on either side: the thread runs on for turns, so no free end is in reach
+THREAD_REACH = 8.0
+
+
+class ThreadCompliance(ToothCompliance):
+    """A worm's thread (surfaces.worm.WormFlank). The slice is its axial section: the
+    thread between its flanks in a plane through the worm axis (the flank's axial profile,
+    held below the form radius), a cantilever from the root cylinder to the tip, loaded at
+    its radius from the axis. Along the thread the slices couple as a Pasternak line with
+    no end in reach (THREAD_REACH coupling lengths beyond the contact), the position along
+    it being the arc of the thread at the reference radius, r1·θ/cos γ. The body term is
+    Sainsot's for a gear of the root radius whose root chord is the thread's axial root
+    thickness (the worm's core as the body), the bore half the root radius (a solid
+    worm) unless given."""
+
+    def __init__(self, worm, E: float, nu: float, bore_radius: float | None = None):
+        self.worm = worm
+        root_radius, tip_radius = 0.5 * worm.root_diameter, 0.5 * worm.tip_diameter
+        r = np.linspace(tip_radius, root_radius, 200)
+        half = np.abs(worm.axial_profile(np.maximum(r, worm.form_radius)))
+        side = np.column_stack([r, half])
+        # loads from the form radius, or from a tenth of the depth above the root (the
+        # mate's tip stays clear of the root cylinder; a load on the root bends nothing)
+        lowest = max(worm.form_radius, root_radius + THREAD_CLEARANCE * (tip_radius - root_radius))
+        on_flank = int(np.count_nonzero(r >= lowest))
+        self._tabulate(side, on_flank, 1.0, r, root_radius,
+                       math.asin(min(half[-1] / root_radius, 1.0)), bore_radius, E, nu)
+
+    def coordinates(self, flank, u, v):
+        """The radius from the worm axis, the arc along the thread and the normal's part in
+        the axial plane squared (see ToothCompliance.coordinates)."""
+        sample = flank.evaluate(np.asarray(u, float), np.asarray(v, float), order=1)
+        x, y, _ = np.moveaxis(sample.points, -1, 0)
+        theta = np.arctan2(y, x)
+        middle = float(np.median(theta))
+        theta = middle + (theta - middle + math.pi) % (2.0 * math.pi) - math.pi
+        normal = sample.normals
+        across = -np.sin(theta) * normal[..., 0] + np.cos(theta) * normal[..., 1]
+        worm = self.worm
+        return (np.hypot(x, y), worm.reference_radius * theta / math.cos(worm.lead_angle),
+                1.0 - across ** 2)
+
+    def face_span(self, face, coupling_length):
+        reach = THREAD_REACH * coupling_length
+        return float(np.min(face)) - reach, float(np.max(face)) + reach
+
+
 class FaceCoupling:
     """The Pasternak line along one member's face, [start, end] (mm, along its axis), on
     `nodes` equally spaced nodes (hat functions): the flexibility G (mm per N, per unit
@@ -251,17 +373,18 @@ NODES_PER_LENGTH, FEWEST_NODES, MOST_NODES = 4.0, 21, 241
 
 
 class MemberLoading:
-    """One member's side of a contact grid: the cells' face positions z (mm, along its axis)
-    and load radii (mm), the length of face a cell spans (`extent`, mm), the member's
-    profile compliance (`radii` (mm) and `matrix` (mm²/N per unit width) of its
-    ToothCompliance, along the contact normal: times the normal's transverse part squared)
-    and its face coupling. A cell's load goes to the (radius × face) nodes by hat weights;
-    the nodes deflect by matrix·Q·G (profile compliance across, face coupling along), read
-    back at the cells with the same weights."""
+    """One member's side of a contact grid: the cells' face positions z (mm, along its face)
+    and load radii (mm), the share of a load along the contact normal that bends the slices
+    (`share`, the normal's part in the slice's plane squared), the length of face a cell
+    spans (`extent`, mm), the member's profile compliance (`radii` (mm) and `matrix`
+    (mm²/N per unit width) of its ToothCompliance) and its face coupling. A cell's load
+    (times sqrt(share)) goes to the (radius × face) nodes by hat weights; the nodes deflect
+    by matrix·Q·G (profile compliance across, face coupling along), read back at the cells
+    with the same weights (times sqrt(share))."""
 
-    def __init__(self, z: np.ndarray, radius: np.ndarray, extent: float, radii: np.ndarray,
-                 matrix: np.ndarray, coupling: FaceCoupling):
-        self.z, self.radius, self.extent = z, radius, extent
+    def __init__(self, z: np.ndarray, radius: np.ndarray, share: np.ndarray, extent: float,
+                 radii: np.ndarray, matrix: np.ndarray, coupling: FaceCoupling):
+        self.z, self.radius, self.share, self.extent = z, radius, share, extent
         self.radii, self.matrix, self.coupling = radii, matrix, coupling
         across, across_share = hats(radii, radius)
         along, along_share = hats(coupling.nodes, z)
@@ -273,7 +396,8 @@ class MemberLoading:
         self._nodes = np.concatenate([(a * self._shape[1] + k)
                                       for a in (across, across + 1)
                                       for k in (along, along + 1)])
-        self._weights = np.concatenate([wa * wk
+        root = np.sqrt(share)
+        self._weights = np.concatenate([wa * wk * root
                                         for wa in (1.0 - across_share, across_share)
                                         for wk in (1.0 - along_share, along_share)])
         self._cells = np.tile(np.arange(len(z)), 4)
@@ -317,8 +441,8 @@ class StructureOperator:
         shape = (len(range(0, n0, step)), len(range(0, n1, step)))
         active = np.zeros(self.shape, bool).ravel()
         active[self.active[keep]] = True
-        members = [MemberLoading(m.z[keep], m.radius[keep], step * m.extent, m.radii,
-                                 m.matrix, m.coupling) for m in self.members]
+        members = [MemberLoading(m.z[keep], m.radius[keep], m.share[keep], step * m.extent,
+                                 m.radii, m.matrix, m.coupling) for m in self.members]
         return StructureOperator(members, shape, self.cell * step * step,
                                  active.reshape(self.shape)[::step, ::step], self.reference)
 
@@ -334,9 +458,11 @@ class StructureOperator:
 
 
 class PairCompliance:
-    """The tooth compliance of a pair of cylindrical members along their faces (pinion and
-    gear ToothCompliance), applied to a contact's gap field. coupled=False leaves the slices
-    independent (a Winkler bed of the same compliance: no coupling, no end softening)."""
+    """The tooth compliance of a pair of members along their faces (the driver's and the
+    driven member's ToothCompliance, or a worm's ThreadCompliance and its wheel's
+    WheelToothCompliance), applied to a contact's gap field. coupled=False leaves the
+    slices independent (a Winkler bed of the same compliance: no coupling, no end
+    softening)."""
 
     def __init__(self, pinion: ToothCompliance, gear: ToothCompliance, coupled: bool = True):
         self.members = {"pinion": pinion, "gear": gear}
@@ -344,29 +470,24 @@ class PairCompliance:
 
     def operator(self, cycle, field) -> StructureOperator:
         """The StructureOperator of a gap field (contact.field.GapField) of a contact
-        cycle: the cells on material, each member's face position and radius from the
-        field's flank parameters, the coupling length at the cells' mean radius."""
+        cycle: the cells on material, each member's face position, load radius and share
+        from the field's flank parameters, the coupling length at the cells' mean radius."""
         material = field.material
         members, reference = [], []
         for name, teeth in self.members.items():
             flank = getattr(cycle, name)
             u = field.parameters[f"{name}_u"][material]
             v = field.parameters[f"{name}_v"][material]
-            x, y, z = (np.broadcast_to(c, u.shape) for c in flank.point(u, v))
-            radius = np.hypot(x, y)
+            radius, face, share = teeth.coordinates(flank, u, v)
             _, length = teeth.at(radius)
-            # an involute helicoid's normal leans by the base helix angle out of the
-            # transverse plane: only its transverse part bends the slices
-            transverse = math.cos(teeth.gear.base_helix_angle) ** 2
-            half = 0.5 * teeth.gear.face_width
             coupling_length = float(np.mean(length)) if self.coupled else 0.0
+            start, end = teeth.face_span(face, float(np.mean(length)))
             nodes = (MOST_NODES if coupling_length == 0.0 else
-                     int(np.clip(math.ceil(2 * half / coupling_length * NODES_PER_LENGTH) + 1,
-                                 FEWEST_NODES, MOST_NODES)))
-            z = np.asarray(z, float)
-            members.append(MemberLoading(z, radius, _extent(field, z), teeth.radii,
-                                         teeth.matrix * transverse,
-                                         FaceCoupling(-half, half, coupling_length, nodes)))
+                     int(np.clip(math.ceil((end - start) / coupling_length * NODES_PER_LENGTH)
+                                 + 1, FEWEST_NODES, MOST_NODES)))
+            members.append(MemberLoading(face, radius, share, _extent(field, face),
+                                         teeth.radii, teeth.matrix,
+                                         FaceCoupling(start, end, coupling_length, nodes)))
             depth = teeth.half_thickness(float(np.median(radius)))
             reference.append((round(depth, 3), teeth.E, teeth.nu))
         dx, dy = field.spacing
