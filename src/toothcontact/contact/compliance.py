@@ -386,28 +386,30 @@ class MemberLoading:
                  radii: np.ndarray, matrix: np.ndarray, coupling: FaceCoupling):
         self.z, self.radius, self.share, self.extent = z, radius, share, extent
         self.radii, self.matrix, self.coupling = radii, matrix, coupling
+        from scipy.sparse import csr_matrix
+
         across, across_share = hats(radii, radius)
         along, along_share = hats(coupling.nodes, z)
-        used = np.unique(np.concatenate([across, across + 1]))
-        self._profile = matrix[np.ix_(used, used)]
-        self._shape = (len(used), len(coupling.nodes))
+        first = int(across.min())                   # the radial nodes in use: first, first + 1...
+        self._profile = matrix[first:int(across.max()) + 2, first:int(across.max()) + 2]
+        self._shape = (len(self._profile), len(coupling.nodes))
+        across -= first
         # each cell's four nodes (row-major in the shape) and its weights on them
-        across = np.searchsorted(used, across)
-        self._nodes = np.concatenate([(a * self._shape[1] + k)
-                                      for a in (across, across + 1)
-                                      for k in (along, along + 1)])
+        nodes = np.stack([a * self._shape[1] + k for a in (across, across + 1)
+                          for k in (along, along + 1)], axis=-1)
         root = np.sqrt(share)
-        self._weights = np.concatenate([wa * wk * root
-                                        for wa in (1.0 - across_share, across_share)
-                                        for wk in (1.0 - along_share, along_share)])
-        self._cells = np.tile(np.arange(len(z)), 4)
+        weights = np.stack([wa * wk * root for wa in (1.0 - across_share, across_share)
+                            for wk in (1.0 - along_share, along_share)], axis=-1)
+        #: cells × nodes (4 a row), and its transpose spreading the cells' loads to the nodes
+        self._gather = csr_matrix((weights.ravel(), nodes.ravel(),
+                                   np.arange(0, 4 * len(z) + 1, 4)),
+                                  shape=(len(z), self._shape[0] * self._shape[1]))
+        self._spread = self._gather.T
 
     def deflection(self, loads: np.ndarray) -> np.ndarray:
         """Deflections (mm) of the cells along the normal under their loads (N)."""
-        nodes = np.bincount(self._nodes, self._weights * loads[self._cells],
-                            minlength=self._shape[0] * self._shape[1]).reshape(self._shape)
-        at_nodes = (self._profile @ nodes @ self.coupling.flexibility).ravel()
-        return (at_nodes[self._nodes] * self._weights).reshape(4, -1).sum(axis=0)
+        nodes = (self._spread @ loads).reshape(self._shape)
+        return self._gather @ (self._profile @ nodes @ self.coupling.flexibility).ravel()
 
 
 class StructureOperator:

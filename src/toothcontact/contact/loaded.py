@@ -351,20 +351,10 @@ def _split(c: np.ndarray, n: np.ndarray, s: np.ndarray, load: float) -> np.ndarr
     """Loads W_k >= 0 with s_k + c_k W_k^n_k = D for the loaded pairs and sum W_k = load:
     bisection on D."""
 
-    def load_at(D):
-        w = np.zeros(len(c))
-        for k in range(len(c)):
-            if D <= s[k]:
-                continue
-            lo, hi = 0.0, load
-            for _ in range(60):   # the pair's load at approach D (monotone in W)
-                mid = 0.5 * (lo + hi)
-                if s[k] + c[k] * mid ** n[k] < D:
-                    lo = mid
-                else:
-                    hi = mid
-            w[k] = 0.5 * (lo + hi)
-        return w
+    def load_at(D):       # each pair's load at approach D, at most the whole load
+        with np.errstate(divide="ignore", over="ignore"):
+            w = (np.maximum(D - s, 0.0) / c) ** (1.0 / n)
+        return np.minimum(np.nan_to_num(w, nan=load, posinf=load), load)
 
     lo, hi = float(np.min(s)), float(np.max(s + c * load ** n))
     for _ in range(60):
