@@ -281,7 +281,8 @@ def _pair_results(pinion, gear, pf, gf, roll_deg, pairs, delta, cp: ContactPoint
     points = pinion.evaluate(p_uv[0], p_uv[1], order=1).points
     # an ellipse where the gap is a bowl and the loaded ellipse fits the face; else a line;
     # an area where even across the profile the rigid pattern outgrows the flank (conformal
-    # flanks: a spline's hub and sleeve share their base circle), measured along the face
+    # flanks: a spline's hub and sleeve share their base circle), crowned or not, measured
+    # along the face (a near-flat gap's ellipse axis is ill-conditioned)
     ellipses = [hertz_point(A[k], B[k], loads[k], C_E) if A[k] > 0 else None
                 for k in range(len(A))]
     height = np.minimum(_profile_height(pinion, p_uv), _profile_height(gear, g_uv))
