@@ -722,18 +722,42 @@ KINDS: dict[str, type[CaseInfo]] = {
 }
 
 
-def load_case(path: str | Path) -> tuple[CaseInfo, dict]:
-    """Read and validate a case file; returns the model and the raw table (units as given)."""
+def read_table(path: str | Path) -> dict:
+    """A TOML file's table; a CaseError names the file where it cannot be read."""
     path = Path(path)
     try:
-        raw = tomllib.loads(path.read_text(encoding="utf-8"))
+        return tomllib.loads(path.read_text(encoding="utf-8"))
     except FileNotFoundError:
         raise CaseError(f"{path}: no such case file") from None
     except (OSError, UnicodeDecodeError) as exc:
         raise CaseError(f"{path}: cannot read it ({exc})") from None
     except tomllib.TOMLDecodeError as exc:
         raise CaseError(f"{path}: not valid TOML ({exc})") from None
-    return parse_case(raw, source=str(path), base=path.parent), raw
+
+
+def load_case(path: str | Path) -> tuple[CaseInfo, dict]:
+    """Read and validate a case file; returns the model and the raw table (units as given)."""
+    raw = read_table(path)
+    return parse_case(raw, source=str(path), base=Path(path).parent), raw
+
+
+def load_sweep(path: str | Path):
+    """Read and validate a sweep file (sweep.spec): the spec, its base case's table (units
+    as given; the base validated as a case) and the base case's path. The base is a path
+    relative to the sweep file, or a bundled case's name."""
+    from .runner import case_path
+    from .sweep.spec import SweepSpec
+
+    path = Path(path)
+    raw = read_table(path)
+    try:
+        spec = SweepSpec.model_validate(raw)
+    except ValidationError as exc:
+        raise CaseError(f"{path}: {_describe(exc, SweepSpec)}") from None
+    relative = path.parent / spec.base
+    base_path = relative if relative.is_file() else case_path(spec.base)
+    _, base = load_case(base_path)
+    return spec, base, base_path
 
 
 def parse_case(raw: dict, source: str = "case", base: Path | None = None) -> CaseInfo:
