@@ -45,12 +45,12 @@ class _Progress:
     def __init__(self, total: int | None, label: str):
         from rich.console import Console
         from rich.progress import (BarColumn, MofNCompleteColumn, Progress, SpinnerColumn,
-                                   TextColumn, TimeElapsedColumn)
+                                   TextColumn, TimeElapsedColumn, TimeRemainingColumn)
 
         console = Console(stderr=True)
         columns = [SpinnerColumn(), TextColumn("{task.description}")]
         if total is not None:
-            columns += [BarColumn(), MofNCompleteColumn()]
+            columns += [BarColumn(), MofNCompleteColumn(), TimeRemainingColumn()]
         self._progress = Progress(*columns, TimeElapsedColumn(), console=console,
                                   transient=True, disable=not console.is_terminal)
         self._task = self._progress.add_task(label, total=total)
@@ -68,6 +68,10 @@ class _Progress:
 
     def advance(self) -> None:
         self._progress.advance(self._task)
+
+    def total(self, total: int) -> None:
+        """The amount of work, once it is known."""
+        self._progress.update(self._task, total=total)
 
 
 def _wrote(written) -> str:
@@ -114,6 +118,41 @@ def run(case: Path = typer.Argument(..., help="case file (TOML), or the name of 
             typer.echo(f"  note ({check['kind']}): {check['name']}: {check['detail']}")
     if failed:
         raise typer.Exit(EXIT_CHECK_FAILED)
+
+
+@app.command()
+def sweep(file: Path = typer.Argument(..., help="sweep file (TOML, kind = \"sweep\")"),
+          out: Optional[Path] = typer.Option(None, "--out", help="output folder [out/<sweep>]"),
+          scheduler: Optional[str] = typer.Option(
+              None, "--scheduler", help="an existing Dask scheduler, e.g. tcp://HOST:8786 "
+                                        "[a local cluster]"),
+          workers: Optional[int] = typer.Option(None, "--workers", min=1,
+                                                help="local workers [the machine's cores]"),
+          resume: bool = typer.Option(False, "--resume",
+                                      help="skip the samples an earlier run of OUT finished")):
+    """Run a sweep: every sample validated first, then analysed on Dask; writes
+    samples.parquet (a row per sample) and sweep.json (percentiles, edge-loading
+    probability, sensitivity), checkpointing each sample as it finishes.
+
+    Exit 0: done (failed samples are recorded in the table); 2: the sweep was refused."""
+    from . import runner
+
+    failures = []
+    with _Progress(0, file.stem) as progress:
+        def planned(total):
+            progress.total(total)
+
+        def done(record):
+            if record["status"] != "ok":
+                failures.append(record["sample"])
+            progress.stage(f"{len(failures)} failed" if failures else "running")
+            progress.advance()
+
+        stats, written = _guarded(lambda: runner.run_sweep(
+            file, out, scheduler=scheduler, workers=workers, resume=resume,
+            planned=planned, on_done=done))
+    typer.echo(f"{file.stem}: {stats['samples']} samples, {stats['ok']} answered, "
+               f"{stats['failed']} failed; wrote {_wrote(written)} -> {written[0].parent}")
 
 
 @app.command()

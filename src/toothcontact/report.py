@@ -31,7 +31,7 @@ def write_run(out_dir: Path, document: dict, images=()) -> list[Path]:
     report.md and embedded in report.html."""
     out_dir = Path(out_dir)
     images = [Path(p) for p in images]
-    texts = {"result.json": json.dumps(_finite(document), indent=2, allow_nan=False) + "\n",
+    texts = {"result.json": json_text(document),
              "report.md": markdown(document, [_relative(p, out_dir) for p in images]),
              "report.html": html(document, images)}
     out_dir.mkdir(parents=True, exist_ok=True)
@@ -133,6 +133,11 @@ def _alive(pid: int) -> bool:
 def write_text(target: Path, text: str) -> Path:
     """Write a text file whole or not at all (write_atomic)."""
     return write_atomic(target, lambda handle: handle.write(text))
+
+
+def json_text(document) -> str:
+    """A document as strict JSON text (a number that does not apply is null)."""
+    return json.dumps(_finite(document), indent=2, allow_nan=False) + "\n"
 
 
 def _finite(value):

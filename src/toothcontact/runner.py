@@ -125,6 +125,34 @@ def _stage(stages: dict, name: str, action: Callable[[], list[Path]]) -> list[Pa
     return files
 
 
+def run_sweep(path: str | Path, out_dir: str | Path | None = None, *,
+              scheduler: str | None = None, workers: int | None = None, resume: bool = False,
+              planned: Callable[[int], None] | None = None,
+              on_done: Callable[[dict], None] | None = None) -> tuple[dict, list[Path]]:
+    """Run a sweep file (sweep.spec) into OUT_DIR (default out/<sweep>): every sample
+    validated first, then analysed on Dask (sweep.run), checkpointed under OUT_DIR/parts;
+    then OUT_DIR/samples.parquet (one row per sample) and OUT_DIR/sweep.json (the sweep's
+    statistics, sweep.statistics). `planned(n)` hears the number of samples, `on_done` each
+    finished record. Returns the statistics and the files written."""
+    from .sweep import run as sweep_run, statistics, store
+    from .sweep.sampling import plan
+
+    path = Path(path)
+    spec, base, base_path = schema.load_sweep(path)
+    samples = plan(spec, base, base_path.parent, source=str(path))
+    if planned is not None:
+        planned(len(samples))
+    out = Path(out_dir) if out_dir is not None else Path("out") / path.stem
+    rows = sweep_run.run(samples, base_path.parent, out, scheduler=scheduler, workers=workers,
+                         resume=resume, on_done=on_done)
+    stats = {"sweep": str(path), "base": str(base_path), "seed": spec.seed,
+             "sampling": spec.sampling,
+             **statistics.summarise(rows, [t.field for t in spec.tolerance])}
+    table = store.write_table(out / "samples.parquet", rows)
+    summary = report.write_text(out / "sweep.json", report.json_text(stats))
+    return stats, [table, summary]
+
+
 def has_pictures(case) -> bool:
     """Whether a case gets 3D pictures: spur, spline and worm cases (with a load, the
     contact pattern; without, the pair in mesh)."""

@@ -21,7 +21,7 @@ class Vary(_Model):
     """A grid axis: the field's `values`, or `from` .. `to` in `steps` equal steps."""
 
     field: str = Field(description="a dotted field path of the base case, e.g. 'load.torque'")
-    values: list[str | float] = Field([], description="the values, with units")
+    values: list[str | bool | int | float] = Field([], description="the values, with units")
     start: str | float | None = Field(None, alias="from")
     to: str | float | None = None
     steps: int | None = Field(None, ge=2, le=1000, description="points from `from` to `to`")

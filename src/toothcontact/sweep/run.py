@@ -1,0 +1,93 @@
+"""A sweep's samples analysed on Dask (dask.distributed): a LocalCluster sized to the
+machine by default, or an existing cluster at a scheduler address; one task per sample,
+retried where a worker dies. Each finished sample is checkpointed at once (sweep.store), so
+a killed sweep resumed skips what is done; the table is ordered by sample number, the same
+whatever the workers and the order they finish in."""
+
+from __future__ import annotations
+
+import math
+import os
+from collections.abc import Callable
+from pathlib import Path
+
+from . import store
+from .sampling import Sample
+
+#: tries of a sample whose worker died under it (a sample that fails by itself is recorded
+#: with its error and not tried again)
+RETRIES = 2
+
+
+def sample_record(number: int, inputs: dict, raw: dict, folder: str | None) -> dict:
+    """One sample analysed (on a worker): `sample`, each varied input (the case's value in
+    core units, or its text), `status` ("ok" or the error) and the summary's figures (the
+    case's `summary` under its own names; numbers, flags and texts)."""
+    from ..analyses import analyse
+    from ..case import parse_case
+
+    record: dict = {"sample": number}
+    try:
+        case = parse_case(raw, source=f"sample {number}",
+                          base=None if folder is None else Path(folder))
+        for field in inputs:
+            record[f"input:{field}"] = _value(case, field)
+        summary = analyse(case).sections.get("summary", {})
+        record.update({key: _cell(value) for key, value in summary.items()
+                       if _cell(value) is not None})
+        record["status"] = "ok"
+    except Exception as exc:        # noqa: BLE001 - a failed sample is recorded, the rest go on
+        record["status"] = f"{type(exc).__name__}: {exc}"
+    return record
+
+
+def _value(case, field: str):
+    """The parsed case's value at a dotted field (a float in core units where it is one)."""
+    node = case
+    for name in field.split("."):
+        node = getattr(node, name, None)
+    return _cell(node)
+
+
+def _cell(value):
+    """A table cell: a finite float, a flag or a text; None for what a table cannot hold."""
+    if isinstance(value, bool):
+        return value
+    if isinstance(value, (int, float)):
+        return float(value) if math.isfinite(value) else None
+    if isinstance(value, str):
+        return value
+    return None
+
+
+def run(samples: list[Sample], folder: Path | None, out: Path, *,
+        scheduler: str | None = None, workers: int | None = None, resume: bool = False,
+        on_done: Callable[[dict], None] | None = None) -> list[dict]:
+    """Analyse the samples not yet done in `out` (all of them unless `resume`) and return
+    every sample's record, ordered by sample. `scheduler`: an existing Dask scheduler's
+    address; else a LocalCluster of `workers` processes (the machine's cores)."""
+    from distributed import Client, LocalCluster, as_completed
+
+    done = store.finished(out) if resume else store.clear(out)
+    todo = [s for s in samples if s.sample not in done]
+    cluster = None
+    if todo:
+        if scheduler is None:
+            cluster = LocalCluster(n_workers=workers or os.cpu_count() or 1,
+                                   threads_per_worker=1, processes=True,
+                                   dashboard_address=None)
+        try:
+            with Client(scheduler or cluster) as client:
+                futures = client.map(sample_record, [s.sample for s in todo],
+                                     [s.inputs for s in todo], [s.raw for s in todo],
+                                     [None if folder is None else str(folder)] * len(todo),
+                                     retries=RETRIES, pure=False)
+                for future in as_completed(futures):
+                    record = future.result()
+                    store.write_part(out, record)
+                    if on_done is not None:
+                        on_done(record)
+        finally:
+            if cluster is not None:
+                cluster.close()
+    return store.records(out, [s.sample for s in samples])

@@ -1,0 +1,61 @@
+"""A sweep's records on disk: one Parquet file per finished sample under OUT/parts
+(written whole or not at all by report.write_atomic), so a killed sweep loses nothing and
+a resumed one knows what is done; the sweep's table (samples.parquet) stacks them in
+sample order."""
+
+from __future__ import annotations
+
+import shutil
+from pathlib import Path
+
+PARTS = "parts"
+
+
+def _part(out: Path, sample: int) -> Path:
+    return Path(out) / PARTS / f"sample_{sample:07d}.parquet"
+
+
+def finished(out: Path) -> set[int]:
+    """The sample numbers already checkpointed in `out`."""
+    return {int(p.stem.split("_")[1]) for p in (Path(out) / PARTS).glob("sample_*.parquet")}
+
+
+def clear(out: Path) -> set[int]:
+    """Forget the checkpoints of an earlier sweep in `out`; nothing is finished."""
+    shutil.rmtree(Path(out) / PARTS, ignore_errors=True)
+    return set()
+
+
+def write_part(out: Path, record: dict) -> None:
+    """Checkpoint one sample's record."""
+    import pyarrow as pa
+    import pyarrow.parquet as pq
+
+    from ..report import write_atomic
+
+    table = pa.Table.from_pylist([record])
+    write_atomic(_part(out, record["sample"]), lambda handle: pq.write_table(table, handle),
+                 binary=True)
+
+
+def records(out: Path, samples: list[int]) -> list[dict]:
+    """The checkpointed records of the given samples, in sample order (a sample without a
+    checkpoint is left out)."""
+    import pyarrow.parquet as pq
+
+    out = Path(out)
+    return [pq.read_table(_part(out, k)).to_pylist()[0] for k in sorted(samples)
+            if _part(out, k).is_file()]
+
+
+def write_table(target: Path, rows: list[dict]) -> Path:
+    """The sweep's table: one row per record, the columns the union of theirs (null where a
+    record has none), written whole or not at all."""
+    import pyarrow as pa
+    import pyarrow.parquet as pq
+
+    from ..report import write_atomic
+
+    columns = list(dict.fromkeys(key for row in rows for key in row))
+    table = pa.Table.from_pylist([{key: row.get(key) for key in columns} for row in rows])
+    return write_atomic(target, lambda handle: pq.write_table(table, handle), binary=True)

@@ -1,0 +1,114 @@
+"""Running a sweep (sweep.run on a local Dask cluster, the `sweep` command): the table and
+statistics it writes, the same table whatever the workers, a resumed sweep that recomputes
+only what its checkpoints lack, a failed sample recorded beside the others, and a bad sweep
+refused before anything runs."""
+
+from __future__ import annotations
+
+import json
+
+import pyarrow.parquet as pq
+import pytest
+from typer.testing import CliRunner
+
+from toothcontact import runner
+from toothcontact.cli import app
+from toothcontact.sweep.run import sample_record
+from toothcontact.sweep.statistics import wilson
+
+
+
+def write_sweep(folder, samples=4):
+    text = (f'kind = "sweep"\nbase = "spur_crowned_20_60"\nsamples = {samples}\nseed = 5\n'
+            '[[tolerance]]\nfield = "misalignment.slope"\ndistribution = "normal"\n'
+            'mean = "0.0008"\nstd = "0.0004"\n'
+            '[[vary]]\nfield = "analysis.pressure_grid"\nvalues = [0]\n'
+            '[[vary]]\nfield = "analysis.interference"\nvalues = [false]\n')
+    path = folder / "sweep.toml"
+    path.write_text(text)
+    return path
+
+
+@pytest.fixture(scope="module")
+def two_workers(tmp_path_factory):
+    folder = tmp_path_factory.mktemp("sweep")
+    path = write_sweep(folder)
+    result = CliRunner().invoke(app, ["sweep", str(path), "--out", str(folder / "out"),
+                                      "--workers", "2"])
+    assert result.exit_code == 0, result.output
+    return folder, path, result
+
+
+def test_a_sweep_writes_its_table_and_statistics(two_workers):
+    """samples.parquet: a row per sample in sample order, the toleranced input in core units
+    and the summary's figures; sweep.json: strict JSON with percentiles (P5 <= P50 <= P95
+    <= P99), the edge-loading probability inside its Wilson interval, and the sensitivity
+    of the largest pressure to the slope (rank correlation, positive)."""
+    folder, _, result = two_workers
+    table = pq.read_table(folder / "out" / "samples.parquet").to_pylist()
+    assert [r["sample"] for r in table] == [0, 1, 2, 3]
+    assert all(r["status"] == "ok" for r in table)
+    slopes = [r["input:misalignment.slope"] for r in table]
+    assert len(set(slopes)) == 4 and all(isinstance(s, float) for s in slopes)
+    stats = json.loads((folder / "out" / "sweep.json").read_text())
+    p = stats["percentiles"]["max_p_max_MPa"]
+    assert p["P5"] <= p["P50"] <= p["P95"] <= p["P99"]
+    edge = stats["edge_loading"]
+    low, high = edge["interval_95"]
+    assert low <= edge["probability"] <= high
+    assert stats["sensitivity"]["misalignment.slope"]["max_p_max_MPa"] > 0
+    assert "4 samples, 4 answered, 0 failed" in result.output
+
+
+def test_the_same_seed_gives_the_same_table_whatever_the_workers(two_workers, tmp_path):
+    folder, path, _ = two_workers
+    _, written = runner.run_sweep(path, tmp_path / "one", workers=1)
+    one = pq.read_table(written[0]).to_pylist()
+    two = pq.read_table(folder / "out" / "samples.parquet").to_pylist()
+    assert one == two
+
+
+def test_a_resumed_sweep_computes_only_what_its_checkpoints_lack(two_workers, tmp_path):
+    """Two of four checkpoints removed (a sweep killed half way): --resume analyses those
+    two only, and the table is the whole sweep's again."""
+    import shutil
+
+    folder, path, _ = two_workers
+    out = tmp_path / "resumed"
+    shutil.copytree(folder / "out", out)
+    for k in (1, 3):
+        (out / "parts" / f"sample_{k:07d}.parquet").unlink()
+    done = []
+    runner.run_sweep(path, out, workers=1, resume=True, on_done=done.append)
+    assert sorted(r["sample"] for r in done) == [1, 3]
+    assert (pq.read_table(out / "samples.parquet").to_pylist()
+            == pq.read_table(folder / "out" / "samples.parquet").to_pylist())
+
+
+def test_a_sample_that_fails_is_recorded_with_its_error():
+    """A sample whose analysis fails keeps its number and says why; nothing is raised."""
+    record = sample_record(7, {"load.tangential_load": "0.001 N"},
+                           {"kind": "spur", "teeth": [20, 60]}, None)
+    assert record["sample"] == 7 and record["status"].startswith("CaseError")
+
+
+def test_a_bad_sweep_is_refused_before_anything_runs(tmp_path):
+    path = tmp_path / "bad.toml"
+    path.write_text('kind = "sweep"\nbase = "spur_crowned_20_60"\n[[vary]]\n'
+                    'field = "pinion.face_width"\nvalues = ["-3 mm"]\n')
+    result = CliRunner().invoke(app, ["sweep", str(path), "--out", str(tmp_path / "out")])
+    assert result.exit_code == 2
+    assert "pinion.face_width" in result.output and "Traceback" not in result.output
+    assert not (tmp_path / "out").exists()
+
+
+def test_the_wilson_interval():
+    """Wilson's score interval: 0 of 10 -> [0, 0.278], 5 of 10 -> [0.237, 0.763] (3 digits,
+    z = 1.96); it always holds the observed proportion and is symmetric about one half."""
+    assert wilson(0, 10) == pytest.approx([0.0, 0.2775], abs=5e-4)
+    assert wilson(5, 10) == pytest.approx([0.2366, 0.7634], abs=5e-4)
+    for hits in range(11):
+        low, high = wilson(hits, 10)
+        assert low <= hits / 10 <= high
+    low, high = wilson(7, 10)
+    assert wilson(3, 10) == pytest.approx([1 - high, 1 - low], abs=1e-12)
