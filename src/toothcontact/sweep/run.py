@@ -75,7 +75,7 @@ def run(samples: list[Sample], folder: Path | None, out: Path, *,
         if scheduler is None:
             cluster = LocalCluster(n_workers=workers or os.cpu_count() or 1,
                                    threads_per_worker=1, processes=True,
-                                   dashboard_address=None)
+                                   dashboard_address=":0")
         try:
             with Client(scheduler or cluster) as client:
                 futures = client.map(sample_record, [s.sample for s in todo],
