@@ -7,6 +7,7 @@ from __future__ import annotations
 
 import json
 
+import numpy as np
 import pyarrow.parquet as pq
 import pytest
 from typer.testing import CliRunner
@@ -163,3 +164,31 @@ def test_a_sweep_on_a_separate_scheduler_survives_a_killed_worker(tmp_path):
         for process in [*workers, scheduler]:
             process.kill()
             process.wait(timeout=30)
+
+
+def test_the_sensitivity_is_taken_within_each_grid_point():
+    """A figure that rises with the grid's load and, less, with a toleranced slope: pooled
+    over the grid the slope's rank correlation would be weak; within each grid point it is
+    1 (and -1 for a figure that falls with it). Percentiles are numpy's."""
+    from toothcontact.sweep.statistics import summarise
+
+    slopes = [0.1, 0.4, 0.2, 0.3]
+    rows = [{"sample": 4 * g + i, "status": "ok", "input:load": float(load),
+             "input:slope": s, "p_MPa": 1000.0 * load + s, "margin_mm": -s}
+            for g, load in enumerate((1, 2, 3)) for i, s in enumerate(slopes)]
+    stats = summarise(rows, ["slope"], ["load"])
+    assert stats["sensitivity"]["slope"] == {"p_MPa": pytest.approx(1.0),
+                                             "margin_mm": pytest.approx(-1.0)}
+    values = [r["p_MPa"] for r in rows]
+    assert stats["percentiles"]["p_MPa"]["P95"] == pytest.approx(np.percentile(values, 95))
+    pooled = summarise(rows, ["slope"])["sensitivity"]["slope"]["p_MPa"]
+    assert abs(pooled) < 0.5
+
+
+def test_the_sweep_draws_its_figures(two_workers):
+    """The sweep's figures beside its table: the histograms of its figures and, the slope
+    being toleranced, the tornado of its rank correlations."""
+    folder, _, _ = two_workers
+    for name in ("histograms.png", "tornado.png"):
+        path = folder / "out" / name
+        assert path.is_file() and path.read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"

@@ -729,3 +729,100 @@ def figures_for(result: dict, out_dir: str | Path) -> list[Path]:
         if result.get("misalignment"):
             written.append(worm_efficiency_vs_torque(result, out / "worm_efficiency_torque.png"))
     return written
+
+
+# ---------------------------------------------------------------------------------------
+# sweeps
+
+#: the figures a sweep's plots show, the first present being the primary one (the
+#: tornado's and the response curves'), with their axis labels
+SWEEP_FIGURES = {
+    "bem_max_p_max_MPa": "largest loaded pressure (MPa)",
+    "max_p_max_MPa": "largest Hertz pressure (MPa)",
+    "max_edge_pressure_MPa": "largest edge pressure (MPa)",
+    "loaded_transmission_error_peak_to_peak_urad": "loaded TE peak to peak (µrad)",
+    "transmission_error_peak_to_peak_urad": "unloaded TE peak to peak (µrad)",
+    "worst_face_edge_margin_mm": "worst face-edge margin (mm)",
+}
+
+
+def sweep_figures(rows: list[dict], stats: dict, vary: list[str], tolerance: list[str],
+                  title: str, out_dir: str | Path) -> list[Path]:
+    """A sweep's figures from its table (`rows`, samples.parquet's records) and statistics
+    (sweep.json's): histograms.png (each figure of SWEEP_FIGURES present, with P5, P50
+    and P95), tornado.png (the rank correlation of each toleranced input with the primary
+    figure) when inputs are toleranced, response.png (the primary figure's median and
+    P5-P95 band over each grid axis with numeric values) when a grid varies."""
+    out = Path(out_dir)
+    ok = [r for r in rows if r.get("status") == "ok"]
+    present = [k for k in SWEEP_FIGURES if np.isfinite(_column(ok, k)).any()]
+    if not present:
+        return []
+    written = [_sweep_histograms(ok, stats, present, title, out / "histograms.png")]
+    primary = present[0]
+    ranks = {f: stats.get("sensitivity", {}).get(f, {}).get(primary) for f in tolerance}
+    ranks = {f: rho for f, rho in ranks.items() if rho is not None}
+    if ranks:
+        written.append(_sweep_tornado(ranks, primary, title, out / "tornado.png"))
+    axes = [f for f in vary if np.isfinite(_column(ok, f"input:{f}")).sum() > 1
+            and len(set(_column(ok, f"input:{f}"))) > 1]
+    if axes:
+        written.append(_sweep_response(ok, axes, primary, title, out / "response.png"))
+    return written
+
+
+def _sweep_histograms(rows, stats, keys, title, path) -> Path:
+    columns = 2 if len(keys) > 1 else 1
+    lines = math.ceil(len(keys) / columns)
+    fig = _figure(2.6 * lines + 0.6)
+    fig.suptitle(f"{title}: {len(rows)} samples answered")
+    for i, key in enumerate(keys):
+        ax = fig.add_subplot(lines, columns, i + 1)
+        values = _column(rows, key)
+        values = values[np.isfinite(values)]
+        ax.hist(values, bins=min(30, max(5, values.size // 5)), color=SERIES[0])
+        for q, style in (("P5", ":"), ("P50", "-"), ("P95", ":")):
+            at = stats.get("percentiles", {}).get(key, {}).get(q)
+            if at is not None:
+                ax.axvline(at, color="k", linestyle=style, linewidth=1.0, label=q)
+        ax.set_xlabel(SWEEP_FIGURES[key])
+        ax.set_ylabel("samples")
+        if i == 0:
+            ax.legend(fontsize="small")
+    return _save(fig, path)
+
+
+def _sweep_tornado(ranks: dict, primary: str, title: str, path) -> Path:
+    order = sorted(ranks, key=lambda f: abs(ranks[f]))
+    fig = _figure(1.2 + 0.45 * len(order))
+    ax = fig.add_subplot()
+    values = [ranks[f] for f in order]
+    ax.barh(order, values, color=[SERIES[0] if v >= 0 else SERIES[2] for v in values])
+    ax.axvline(0.0, color="k", linewidth=0.8)
+    ax.set_xlim(-1.0, 1.0)
+    ax.set_xlabel(f"Spearman rank correlation with the {SWEEP_FIGURES[primary]}")
+    ax.set_title(f"{title}: sensitivity to the toleranced inputs")
+    return _save(fig, path)
+
+
+def _sweep_response(rows, axes, primary, title, path) -> Path:
+    fig = _figure(2.8 * len(axes) + 0.6)
+    fig.suptitle(f"{title}: {SWEEP_FIGURES[primary]} over the grid")
+    y = _column(rows, primary)
+    for i, field in enumerate(axes):
+        ax = fig.add_subplot(len(axes), 1, i + 1)
+        x = _column(rows, f"input:{field}")
+        levels = np.unique(x[np.isfinite(x)])
+        groups = [y[(x == level) & np.isfinite(y)] for level in levels]
+        keep = [g.size > 0 for g in groups]
+        levels = levels[keep]
+        groups = [g for g in groups if g.size]
+        median = [np.median(g) for g in groups]
+        ax.fill_between(levels, [np.percentile(g, 5) for g in groups],
+                        [np.percentile(g, 95) for g in groups], color=SERIES[0], alpha=0.25,
+                        label="P5-P95 over the other inputs")
+        ax.plot(levels, median, "o-", color=SERIES[0], label="median")
+        ax.set_xlabel(f"{field} (core units: mm, N, MPa, rad)")
+        ax.set_ylabel(SWEEP_FIGURES[primary])
+        ax.legend(fontsize="small")
+    return _save(fig, path)

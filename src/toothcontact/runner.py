@@ -147,10 +147,16 @@ def run_sweep(path: str | Path, out_dir: str | Path | None = None, *,
                          resume=resume, on_done=on_done)
     stats = {"sweep": str(path), "base": str(base_path), "seed": spec.seed,
              "sampling": spec.sampling,
-             **statistics.summarise(rows, [t.field for t in spec.tolerance])}
+             **statistics.summarise(rows, [t.field for t in spec.tolerance],
+                                    [v.field for v in spec.vary])}
     table = store.write_table(out / "samples.parquet", rows)
     summary = report.write_text(out / "sweep.json", report.json_text(stats))
-    return stats, [table, summary]
+    from . import plots
+
+    figures = plots.sweep_figures(rows, stats, [v.field for v in spec.vary],
+                                  [t.field for t in spec.tolerance], spec.title or path.stem,
+                                  out)
+    return stats, [table, summary, *figures]
 
 
 def has_pictures(case) -> bool:

@@ -1,7 +1,9 @@
 """What a sweep's table says: per output figure its percentiles over the samples that
 answered (P5, P50, P95, P99), the probability of edge loading with its Wilson score
 interval (95 %), and for each toleranced input its Spearman rank correlation with each
-figure (the sensitivity ranking: a monotone influence, whatever its shape)."""
+figure (the sensitivity ranking: a monotone influence, whatever its shape), taken within
+each grid point (where the grid holds the other inputs still: the draws are the same at
+every point) and averaged over the grid points."""
 
 from __future__ import annotations
 
@@ -18,9 +20,9 @@ Z95 = 1.959963984540054
 EDGE_KEYS = ("edge_loaded_contacts", "edge_contacts")
 
 
-def summarise(rows: list[dict], inputs: list[str]) -> dict:
+def summarise(rows: list[dict], inputs: list[str], grid: list[str] = ()) -> dict:
     """The sweep's statistics (see the module) from its records; `inputs`: the toleranced
-    fields (their columns are `input:FIELD`)."""
+    fields, `grid`: the varied ones (their columns are `input:FIELD`)."""
     ok = [r for r in rows if r.get("status") == "ok"]
     figures = sorted({k for r in ok for k, v in r.items()
                       if k != "sample" and not k.startswith("input:")
@@ -39,14 +41,21 @@ def summarise(rows: list[dict], inputs: list[str]) -> dict:
         out["edge_loading"] = {"key": edge, "samples": len(ok), "edge_loaded": hits,
                                "probability": hits / len(ok) if ok else None,
                                "interval_95": wilson(hits, len(ok))}
+    points: dict[tuple, list[dict]] = {}
+    for r in ok:
+        points.setdefault(tuple(r.get(f"input:{f}") for f in grid), []).append(r)
     for field in inputs:
         column = f"input:{field}"
-        x = [r.get(column) for r in ok]
-        if not x or not all(isinstance(v, float) for v in x):
+        if not ok or not all(isinstance(r.get(column), float) for r in ok):
             continue
-        out["sensitivity"][field] = {
-            key: rho for key in figures
-            if (rho := _spearman(np.array(x), [r.get(key) for r in ok])) is not None}
+        ranks = {}
+        for key in figures:
+            rhos = [rho for group in points.values()
+                    if (rho := _spearman(np.array([r[column] for r in group]),
+                                         [r.get(key) for r in group])) is not None]
+            if rhos:
+                ranks[key] = float(np.mean(rhos))
+        out["sensitivity"][field] = ranks
     return out
 
 
