@@ -88,9 +88,9 @@ def test_a_resumed_sweep_computes_only_what_its_checkpoints_lack(two_workers, tm
 
 def test_a_sample_that_fails_is_recorded_with_its_error():
     """A sample whose analysis fails keeps its number and says why; nothing is raised."""
-    record = sample_record(7, {"load.tangential_load": "0.001 N"},
-                           {"kind": "spur", "teeth": [20, 60]}, None)
-    assert record["sample"] == 7 and record["status"].startswith("CaseError")
+    record, rows = sample_record(7, {"load.tangential_load": "0.001 N"},
+                                 {"kind": "spur", "teeth": [20, 60]}, None, positions=True)
+    assert record["sample"] == 7 and record["status"].startswith("CaseError") and rows == []
 
 
 def test_a_bad_sweep_is_refused_before_anything_runs(tmp_path):
@@ -192,3 +192,27 @@ def test_the_sweep_draws_its_figures(two_workers):
     for name in ("histograms.png", "tornado.png"):
         path = folder / "out" / name
         assert path.is_file() and path.read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
+
+
+def test_positions_on_request_hold_every_samples_rows(two_workers, tmp_path):
+    """--positions, resumed on a sweep run without it: every sample runs again (its rows
+    per position were not kept), and positions.parquet holds each sample's rows, as many
+    as its own analysis has, tagged with its number."""
+    import shutil
+
+    from toothcontact.analyses import analyse
+    from toothcontact.case import load_sweep, parse_case
+    from toothcontact.sweep.sampling import plan
+
+    folder, path, _ = two_workers
+    out = tmp_path / "positions"
+    shutil.copytree(folder / "out", out)
+    done = []
+    runner.run_sweep(path, out, workers=1, resume=True, positions=True, on_done=done.append)
+    assert len(done) == 4
+    rows = pq.read_table(out / "positions.parquet").to_pylist()
+    spec, base, base_path = load_sweep(path)
+    first = plan(spec, base, base_path.parent)[0]
+    own = analyse(parse_case(first.raw)).sections["positions"]
+    assert [r["sample"] for r in rows].count(0) == len(own)
+    assert sorted({r["sample"] for r in rows}) == [0, 1, 2, 3]

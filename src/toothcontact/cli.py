@@ -129,7 +129,10 @@ def sweep(file: Path = typer.Argument(..., help="sweep file (TOML, kind = \"swee
           workers: Optional[int] = typer.Option(None, "--workers", min=1,
                                                 help="local workers [the machine's cores]"),
           resume: bool = typer.Option(False, "--resume",
-                                      help="skip the samples an earlier run of OUT finished")):
+                                      help="skip the samples an earlier run of OUT finished"),
+          positions: bool = typer.Option(False, "--positions",
+                                         help="also positions.parquet: every sample's rows "
+                                              "per mesh position and pair")):
     """Run a sweep: every sample validated first, then analysed on Dask; writes
     samples.parquet (a row per sample) and sweep.json (percentiles, edge-loading
     probability, sensitivity), checkpointing each sample as it finishes.
@@ -150,7 +153,7 @@ def sweep(file: Path = typer.Argument(..., help="sweep file (TOML, kind = \"swee
 
         stats, written = _guarded(lambda: runner.run_sweep(
             file, out, scheduler=scheduler, workers=workers, resume=resume,
-            planned=planned, on_done=done))
+            positions=positions, planned=planned, on_done=done))
     typer.echo(f"{file.stem}: {stats['samples']} samples, {stats['ok']} answered, "
                f"{stats['failed']} failed; wrote {_wrote(written)} -> {written[0].parent}")
 

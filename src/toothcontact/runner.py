@@ -127,12 +127,13 @@ def _stage(stages: dict, name: str, action: Callable[[], list[Path]]) -> list[Pa
 
 def run_sweep(path: str | Path, out_dir: str | Path | None = None, *,
               scheduler: str | None = None, workers: int | None = None, resume: bool = False,
-              planned: Callable[[int], None] | None = None,
+              positions: bool = False, planned: Callable[[int], None] | None = None,
               on_done: Callable[[dict], None] | None = None) -> tuple[dict, list[Path]]:
     """Run a sweep file (sweep.spec) into OUT_DIR (default out/<sweep>): every sample
     validated first, then analysed on Dask (sweep.run), checkpointed under OUT_DIR/parts;
-    then OUT_DIR/samples.parquet (one row per sample) and OUT_DIR/sweep.json (the sweep's
-    statistics, sweep.statistics). `planned(n)` hears the number of samples, `on_done` each
+    then OUT_DIR/samples.parquet (one row per sample), with `positions` also
+    OUT_DIR/positions.parquet (each sample's rows per mesh position and pair), and
+    OUT_DIR/sweep.json (the sweep's statistics, sweep.statistics). `planned(n)` hears the number of samples, `on_done` each
     finished record. Returns the statistics and the files written."""
     from .sweep import run as sweep_run, statistics, store
     from .sweep.sampling import plan
@@ -144,19 +145,22 @@ def run_sweep(path: str | Path, out_dir: str | Path | None = None, *,
         planned(len(samples))
     out = Path(out_dir) if out_dir is not None else Path("out") / path.stem
     rows = sweep_run.run(samples, base_path.parent, out, scheduler=scheduler, workers=workers,
-                         resume=resume, on_done=on_done)
+                         resume=resume, positions=positions, on_done=on_done)
     stats = {"sweep": str(path), "base": str(base_path), "seed": spec.seed,
              "sampling": spec.sampling,
              **statistics.summarise(rows, [t.field for t in spec.tolerance],
                                     [v.field for v in spec.vary])}
-    table = store.write_table(out / "samples.parquet", rows)
-    summary = report.write_text(out / "sweep.json", report.json_text(stats))
+    written = [store.write_table(out / "samples.parquet", rows)]
+    if positions:
+        written.append(store.write_table(out / "positions.parquet", store.position_rows(
+            out, [s.sample for s in samples])))
+    written.append(report.write_text(out / "sweep.json", report.json_text(stats)))
     from . import plots
 
-    figures = plots.sweep_figures(rows, stats, [v.field for v in spec.vary],
-                                  [t.field for t in spec.tolerance], spec.title or path.stem,
-                                  out)
-    return stats, [table, summary, *figures]
+    written += plots.sweep_figures(rows, stats, [v.field for v in spec.vary],
+                                   [t.field for t in spec.tolerance], spec.title or path.stem,
+                                   out)
+    return stats, written
 
 
 def has_pictures(case) -> bool:

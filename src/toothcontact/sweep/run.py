@@ -19,26 +19,36 @@ from .sampling import Sample
 RETRIES = 2
 
 
-def sample_record(number: int, inputs: dict, raw: dict, folder: str | None) -> dict:
-    """One sample analysed (on a worker): `sample`, each varied input (the case's value in
-    core units, or its text), `status` ("ok" or the error) and the summary's figures (the
-    case's `summary` under its own names; numbers, flags and texts)."""
+def sample_record(number: int, inputs: dict, raw: dict, folder: str | None,
+                  positions: bool = False) -> tuple[dict, list[dict]]:
+    """One sample analysed (on a worker): its record, `sample`, each varied input (the
+    case's value in core units, or its text), `status` ("ok" or the error) and the
+    summary's figures (the case's `summary` under its own names; numbers, flags and
+    texts); and, if `positions`, the result's rows per mesh position and pair (their
+    table cells, with `sample`), else []."""
     from ..analyses import analyse
     from ..case import parse_case
 
     record: dict = {"sample": number}
+    rows: list[dict] = []
     try:
         case = parse_case(raw, source=f"sample {number}",
                           base=None if folder is None else Path(folder))
         for field in inputs:
             record[f"input:{field}"] = _value(case, field)
-        summary = analyse(case).sections.get("summary", {})
-        record.update({key: _cell(value) for key, value in summary.items()
-                       if _cell(value) is not None})
+        sections = analyse(case).sections
+        record.update(_cells(sections.get("summary", {})))
+        if positions:
+            rows = [{"sample": number, **_cells(row)} for row in sections.get("positions", [])]
         record["status"] = "ok"
     except Exception as exc:        # noqa: BLE001 - a failed sample is recorded, the rest go on
         record["status"] = f"{type(exc).__name__}: {exc}"
-    return record
+    return record, rows
+
+
+def _cells(entries: dict) -> dict:
+    """The entries a table can hold (see _cell)."""
+    return {key: _cell(value) for key, value in entries.items() if _cell(value) is not None}
 
 
 def _value(case, field: str):
@@ -62,13 +72,16 @@ def _cell(value):
 
 def run(samples: list[Sample], folder: Path | None, out: Path, *,
         scheduler: str | None = None, workers: int | None = None, resume: bool = False,
+        positions: bool = False,
         on_done: Callable[[dict], None] | None = None) -> list[dict]:
     """Analyse the samples not yet done in `out` (all of them unless `resume`) and return
-    every sample's record, ordered by sample. `scheduler`: an existing Dask scheduler's
-    address; else a LocalCluster of `workers` processes (the machine's cores)."""
+    every sample's record, ordered by sample (with `positions`, each sample's rows per
+    position are checkpointed too: store.position_rows). `scheduler`: an existing Dask
+    scheduler's address; else a LocalCluster of `workers` processes (the machine's
+    cores)."""
     from distributed import Client, LocalCluster, as_completed
 
-    done = store.finished(out) if resume else store.clear(out)
+    done = store.finished(out, positions) if resume else store.clear(out)
     todo = [s for s in samples if s.sample not in done]
     cluster = None
     if todo:
@@ -81,10 +94,10 @@ def run(samples: list[Sample], folder: Path | None, out: Path, *,
                 futures = client.map(sample_record, [s.sample for s in todo],
                                      [s.inputs for s in todo], [s.raw for s in todo],
                                      [None if folder is None else str(folder)] * len(todo),
-                                     retries=RETRIES, pure=False)
+                                     [positions] * len(todo), retries=RETRIES, pure=False)
                 for future in as_completed(futures):
-                    record = future.result()
-                    store.write_part(out, record)
+                    record, rows = future.result()
+                    store.write_part(out, record, rows if positions else None)
                     if on_done is not None:
                         on_done(record)
         finally:
