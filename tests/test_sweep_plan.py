@@ -136,3 +136,12 @@ def test_a_sweep_file_finds_its_base_by_name_or_beside_it(tmp_path):
         spec, raw, found = load_sweep(path)
         assert raw["kind"] == "spur" and found.is_file()
         assert len(plan(spec, raw, found.parent)) == 2
+
+
+def test_the_bundled_sweep_is_a_valid_sweep():
+    """cases/sweeps/spur_crown_tolerance.toml: its 2 loads × 16 draws, each a valid case,
+    the slope's draws the same at both loads."""
+    spec, raw, found = load_sweep(CASES / "sweeps" / "spur_crown_tolerance.toml")
+    samples = plan(spec, raw, found.parent)
+    assert len(samples) == 32
+    assert list(slopes(samples[:16])) == list(slopes(samples[16:]))

@@ -775,7 +775,7 @@ def _sweep_histograms(rows, stats, keys, title, path) -> Path:
     columns = 2 if len(keys) > 1 else 1
     lines = math.ceil(len(keys) / columns)
     fig = _figure(2.6 * lines + 0.6)
-    fig.suptitle(f"{title}: {len(rows)} samples answered")
+    fig.suptitle(textwrap.fill(f"{title}: {len(rows)} samples answered", 90))
     for i, key in enumerate(keys):
         ax = fig.add_subplot(lines, columns, i + 1)
         values = _column(rows, key)
@@ -794,20 +794,20 @@ def _sweep_histograms(rows, stats, keys, title, path) -> Path:
 
 def _sweep_tornado(ranks: dict, primary: str, title: str, path) -> Path:
     order = sorted(ranks, key=lambda f: abs(ranks[f]))
-    fig = _figure(1.2 + 0.45 * len(order))
+    fig = _figure(1.5 + 0.45 * len(order))
     ax = fig.add_subplot()
     values = [ranks[f] for f in order]
     ax.barh(order, values, color=[SERIES[0] if v >= 0 else SERIES[2] for v in values])
     ax.axvline(0.0, color="k", linewidth=0.8)
     ax.set_xlim(-1.0, 1.0)
     ax.set_xlabel(f"Spearman rank correlation with the {SWEEP_FIGURES[primary]}")
-    ax.set_title(f"{title}: sensitivity to the toleranced inputs")
+    fig.suptitle(textwrap.fill(f"{title}: sensitivity to the toleranced inputs", 90))
     return _save(fig, path)
 
 
 def _sweep_response(rows, axes, primary, title, path) -> Path:
     fig = _figure(2.8 * len(axes) + 0.6)
-    fig.suptitle(f"{title}: {SWEEP_FIGURES[primary]} over the grid")
+    fig.suptitle(textwrap.fill(f"{title}: {SWEEP_FIGURES[primary]} over the grid", 90))
     y = _column(rows, primary)
     for i, field in enumerate(axes):
         ax = fig.add_subplot(len(axes), 1, i + 1)
