@@ -133,11 +133,12 @@ def sweep(file: Path = typer.Argument(..., help="sweep file (TOML, kind = \"swee
           positions: bool = typer.Option(False, "--positions",
                                          help="also positions.parquet: every sample's rows "
                                               "per mesh position and pair")):
-    """Run a sweep: every sample validated first, then analysed on Dask; writes
-    samples.parquet (a row per sample) and sweep.json (percentiles, edge-loading
-    probability, sensitivity), checkpointing each sample as it finishes.
+    """Run a sweep file on Dask: writes samples.parquet, sweep.json and figures.
 
-    Exit 0: done (failed samples are recorded in the table); 2: the sweep was refused."""
+    Every sample is validated first, then analysed and checkpointed as it finishes; the
+    table has a row per sample, sweep.json the percentiles, the edge-loading probability
+    and the sensitivities. Exit 0: done (failed samples are recorded in the table); 2: the
+    sweep was refused."""
     from . import runner
 
     failures = []
