@@ -9,6 +9,7 @@ validated as a case before anything runs."""
 
 from __future__ import annotations
 
+import copy
 import itertools
 import warnings
 from dataclasses import dataclass
@@ -59,8 +60,6 @@ def plan(spec: SweepSpec, base: dict, folder: Path | None = None,
 
 def _with(base: dict, inputs: dict) -> dict:
     """A copy of the case table with each dotted field set (tables made where missing)."""
-    import copy
-
     raw = copy.deepcopy(base)
     for field, value in inputs.items():
         *tables, key = field.split(".")

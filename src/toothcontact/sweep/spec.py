@@ -10,14 +10,12 @@ from __future__ import annotations
 
 from typing import Literal
 
-from pydantic import BaseModel, ConfigDict, Field, model_validator
+from pydantic import Field, model_validator
+
+from ..case import Model
 
 
-class _Model(BaseModel):
-    model_config = ConfigDict(extra="forbid", populate_by_name=True)
-
-
-class Vary(_Model):
+class Vary(Model):
     """A grid axis: the field's `values`, or `from` .. `to` in `steps` equal steps."""
 
     field: str = Field(description="a dotted field path of the base case, e.g. 'load.torque'")
@@ -36,7 +34,7 @@ class Vary(_Model):
         return self
 
 
-class Tolerance(_Model):
+class Tolerance(Model):
     """A toleranced input: normal (`mean` with `std`, or a ±3σ `band`), uniform (`low`,
     `high`) or triangular (`low`, `mode`, `high`)."""
 
@@ -62,7 +60,7 @@ class Tolerance(_Model):
         return self
 
 
-class SweepSpec(_Model):
+class SweepSpec(Model):
     """A sweep file (see the module)."""
 
     kind: Literal["sweep"]
