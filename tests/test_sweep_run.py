@@ -216,3 +216,35 @@ def test_positions_on_request_hold_every_samples_rows(two_workers, tmp_path):
     own = analyse(parse_case(first.raw)).sections["positions"]
     assert [r["sample"] for r in rows].count(0) == len(own)
     assert sorted({r["sample"] for r in rows}) == [0, 1, 2, 3]
+
+
+def test_an_optimisation_over_a_spectrum_runs_and_resumes_without_rerunning(tmp_path):
+    """A rigid sweep (Hertz only) of 2 draws at 2 spectrum levels, the crown radius sized
+    in 3 sweeps: the report, the optimisation figure and every design's table are written,
+    the best design is one the optimiser tried and honours the constraint; run again
+    with --resume nothing is analysed again and the statistics are the same."""
+    path = tmp_path / "optimise.toml"
+    path.write_text(
+        'kind = "sweep"\nbase = "spur_crowned_20_60"\nsamples = 2\nseed = 3\n'
+        '[set]\n"analysis.pressure_grid" = 0\n"analysis.interference" = false\n'
+        '[spectrum]\nfield = "load.tangential_load"\nlevels = ["4000 N", "8000 N"]\n'
+        'shares = [0.75, 0.25]\n'
+        '[[tolerance]]\nfield = "misalignment.slope"\ndistribution = "uniform"\n'
+        'low = "0.0004"\nhigh = "0.0012"\n'
+        '[optimise]\nobjective = "P95 max_p_max_MPa"\nevaluations = 3\n'
+        '[[optimise.variable]]\nfield = "pinion.crown.radius"\nlow = "2000 mm"\n'
+        'high = "8000 mm"\n'
+        '[[optimise.constraint]]\nstatistic = "end_loading"\nmax = 0.5\n')
+    stats, written = runner.run_sweep(path, tmp_path / "out", workers=1)
+    names = {p.name for p in written}
+    assert {"samples.parquet", "sweep.json", "report.html", "optimisation.png"} <= names
+    opt = stats["optimise"]
+    assert opt["evaluations"] == 3 == len(list((tmp_path / "out" / "optimise").iterdir()))
+    assert opt["best"] in opt["history"]
+    assert opt["best"]["feasible"] == (opt["best"]["constraints"][0] <= 0.5)
+    assert sum(r["time_share"] for r in pq.read_table(written[0]).to_pylist()) == \
+        pytest.approx(1.0)
+    again = []
+    resumed, _ = runner.run_sweep(path, tmp_path / "out", workers=1, resume=True,
+                                  on_done=again.append)
+    assert again == [] and resumed == stats

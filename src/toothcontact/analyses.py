@@ -7,6 +7,7 @@ Pure functions: nothing here reads or writes files.
 
 from __future__ import annotations
 
+import functools
 import math
 import re
 import warnings
@@ -504,10 +505,10 @@ def _contact_pass(case: schema.SpurCase, pair, result: Result) -> None:
     _contact_sections(cycle, {"tangential_load_N": wt, "normal_load_N": normal_load}, result)
     if pair.shafts:
         _shaft_sections(pair, result)
-    from .contact.compliance import PairCompliance, ToothCompliance
+    from .contact.compliance import PairCompliance, tooth_compliance
 
-    teeth = PairCompliance(ToothCompliance(pair.pinion, case.material.E, case.material.nu),
-                           ToothCompliance(pair.gear, gear_material.E, gear_material.nu))
+    teeth = PairCompliance(tooth_compliance(pair.pinion, case.material.E, case.material.nu),
+                           tooth_compliance(pair.gear, gear_material.E, gear_material.nu))
     _loaded_sections(cycle, C_E, a.pressure_grid, teeth,
                      "tooth bending from each member's exact transverse slices (bending, shear, "
                      "axial and gear body compliance, solid blanks with a bore of half the root "
@@ -575,22 +576,33 @@ INTERFERENCE_BAND = 0.05
 INTERFERENCE_MESH = 0.01
 
 
+@functools.lru_cache(maxsize=16)
+def _collision_teeth(gear, modifications, teeth: int):
+    """A member's `teeth` tooth surfaces as a collision body (chords within
+    INTERFERENCE_MESH) and its band of working radii (form to tip circle, mm): built once
+    per process for the same teeth (a sweep's worker reuses them; each query places the
+    body afresh)."""
+    from .mesh import collision_body, gear_mesh
+    from .surfaces.outline import ToothOutline
+
+    outline = ToothOutline(gear, modifications)
+    return (collision_body(*gear_mesh(outline, teeth, INTERFERENCE_MESH)),
+            tuple(sorted((outline.generated.form_radius, gear.tip_radius))))
+
+
 def _spur_interference(mesh, pair, cycle, result: Result) -> None:
     """Tip and root interference of the placed bodies (python-fcl) at every mesh position:
     tooth surfaces (mesh.gear_mesh, chords within INTERFERENCE_MESH) of the teeth in contact
     over the cycle and one more on each side (a tooth entering mesh), their BVHs built once
-    and placed at each position."""
-    from .mesh import collision_body, gear_mesh, interference, place
-    from .surfaces.outline import ToothOutline
+    and placed at each position (_collision_teeth)."""
+    from .mesh import interference, place
 
     rows = cycle.rows
     reach = max(abs(r["pair"]) for r in rows) + 1     # the teeth in contact, and one more
     bodies, bands = {}, {}
     for name, gear, mods in (("pinion", pair.pinion, pair.pinion_modifications),
                              ("gear", pair.gear, pair.gear_modifications)):
-        outline = ToothOutline(gear, mods)
-        bodies[name] = collision_body(*gear_mesh(outline, 2 * reach + 1, INTERFERENCE_MESH))
-        bands[name] = tuple(sorted((outline.generated.form_radius, gear.tip_radius)))
+        bodies[name], bands[name] = _collision_teeth(gear, mods, 2 * reach + 1)
     found, back = [], []
     for roll in sorted({r["roll_deg"] for r in rows}):
         lag = next(float(cycle.gear_turn[k]) for k, r in enumerate(rows) if r["roll_deg"] == roll)
@@ -713,13 +725,15 @@ def _loaded_sections(cycle, C_E: float, grid: int, teeth, bending: str,
         max_edge_pressure_MPa=max(r["edge_pressure_MPa"] for r in answered),
         max_edge_load_fraction=max(r["edge_load_fraction"] for r in answered),
         edge_loaded_contacts=len(edged),
+        end_loaded_contacts=sum(bool(r["end_loaded"]) for r in answered),
         edge_pressure_note=f"edge_pressure_MPa is the pressure averaged over a {EDGE_STRIP} mm "
                            "strip at the edge, and bem_p_max_MPa the larger of it and the peak "
                            f"more than {EDGE_STRIP} mm inside the edges: both converge as the "
                            "grid is refined; bem_raw_peak_MPa, the largest cell pressure, grows "
                            "without bound at a sharp edge and is not a design value; a contact "
                            f"is edge_loaded when its edge pressure exceeds {EDGE_LOAD_RATIO:g} "
-                           "of bem_p_max_MPa")
+                           "of bem_p_max_MPa at any flank edge (tip, root or face end), "
+                           "end_loaded when at a face end (what a lead crown is for)")
     result.checks.append(Check(
         "loaded contact: no edge load (half-space solution)", not edged,
         f"highest edge pressure {worst['edge_pressure_MPa']:.0f} MPa averaged over "
@@ -939,10 +953,10 @@ def _spline_contact(case: schema.SplineCase, pair, result: Result) -> None:
     except (ValueError, RuntimeError) as exc:
         raise CaseError(f"misalignment / torque: no contact could be found: {exc}") from None
     _contact_sections(cycle, {"tangential_load_N": wt, "normal_load_N": normal_load}, result)
-    from .contact.compliance import PairCompliance, ToothCompliance
+    from .contact.compliance import PairCompliance, tooth_compliance
 
-    teeth = PairCompliance(ToothCompliance(pair.hub, case.material.E, case.material.nu),
-                           ToothCompliance(pair.sleeve, case.material.E, case.material.nu))
+    teeth = PairCompliance(tooth_compliance(pair.hub, case.material.E, case.material.nu),
+                           tooth_compliance(pair.sleeve, case.material.E, case.material.nu))
     _loaded_sections(cycle, C_E, a.pressure_grid, teeth,
                      "tooth bending from the hub's and sleeve's exact transverse slices "
                      "(bending, shear, axial and body compliance across the working depth: a "

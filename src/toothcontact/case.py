@@ -224,7 +224,8 @@ class ProfileCrownSpec(Model):
 
 
 class TipReliefSpec(Model):
-    amount: Length = Field(description="drop at the tip, e.g. '10 um'")
+    amount: quantity("length", low=0.0) = Field(
+        description="drop at the tip, e.g. '10 um'; '0 um' for none (a sweep's baseline)")
     start_diameter: Length = Field(description="diameter where the relief begins")
     shape: Literal["linear", "parabolic"] = "linear"
 

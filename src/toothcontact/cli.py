@@ -121,7 +121,8 @@ def run(case: Path = typer.Argument(..., help="case file (TOML), or the name of 
 
 
 @app.command()
-def sweep(file: Path = typer.Argument(..., help="sweep file (TOML, kind = \"sweep\")"),
+def sweep(file: Path = typer.Argument(..., help="sweep file (TOML, kind = \"sweep\") or a "
+                                                  "bundled sweep's name"),
           out: Optional[Path] = typer.Option(None, "--out", help="output folder [out/<sweep>]"),
           scheduler: Optional[str] = typer.Option(
               None, "--scheduler", help="an existing Dask scheduler, e.g. tcp://HOST:8786 "
@@ -209,8 +210,9 @@ def export(cases: list[Path] = typer.Argument(..., help="case files (TOML)"),
 
 @app.command()
 def cases():
-    """List the bundled cases."""
+    """List the bundled cases and sweeps."""
     from . import case as schema, runner
+    from .sweep.sampling import plan
 
     from rich.console import Console
     from rich.table import Table
@@ -220,7 +222,13 @@ def cases():
     for path in _guarded(runner.bundled_cases):
         info, _ = _guarded(lambda: schema.load_case(path))
         table.add_row(path.stem, info.kind, info.title, str(path))
-    Console(width=200).print(table)
+    sweeps = Table("name", "samples", "title", "path", title="bundled sweeps (run one with "
+                   "`toothcontact sweep NAME`)")
+    for path in _guarded(runner.bundled_sweeps):
+        spec, raw, base = _guarded(lambda: schema.load_sweep(path))
+        sweeps.add_row(path.stem, str(len(_guarded(lambda: plan(spec, raw, base.parent)))),
+                       spec.title or "", str(path))
+    Console(width=200).print(table, sweeps)
 
 
 @app.command()

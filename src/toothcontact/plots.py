@@ -19,7 +19,7 @@ from matplotlib.backends.backend_agg import FigureCanvasAgg
 from matplotlib.figure import Figure
 from matplotlib.legend_handler import HandlerTuple
 from matplotlib.lines import Line2D
-from matplotlib.patches import Patch
+from matplotlib.patches import Patch, Rectangle
 from matplotlib.ticker import FuncFormatter, MaxNLocator, ScalarFormatter
 
 from . import __version__
@@ -746,29 +746,182 @@ SWEEP_FIGURES = {
 }
 
 
-def sweep_figures(rows: list[dict], stats: dict, vary: list[str], tolerance: list[str],
-                  title: str, out_dir: str | Path) -> list[Path]:
+#: the grid fields a Harris map reads as the load (x) and as the relief (one curve each)
+LOAD_FIELDS = ("load.torque", "load.tangential_load")
+RELIEF_WORD = "relief"
+
+
+def sweep_figures(rows: list[dict], stats: dict, out_dir: str | Path) -> list[Path]:
     """A sweep's figures from its table (`rows`, samples.parquet's records) and statistics
-    (sweep.json's): histograms.png (each figure of SWEEP_FIGURES present, with P5, P50
-    and P95), tornado.png (the rank correlation of each toleranced input with the primary
-    figure) when inputs are toleranced, response.png (the primary figure's median and
-    P5-P95 band over each grid axis with numeric values) when a grid varies."""
+    (sweep.json's, which name its title, grid and toleranced inputs):
+    - histograms.png: each figure of SWEEP_FIGURES present, with P5, P50 and P95;
+    - tornado.png: each toleranced input's total and first Sobol index for the primary
+      figure (Saltelli's design), else its rank correlation;
+    - response.png: the primary figure's median and P5-P95 band over each numeric grid axis;
+    - map.png: over the first two numeric grid axes (crown × slope: the robustness map) the
+      primary figure's median, the region loaded at a face end outlined;
+    - harris.png: loaded TE peak to peak over the load, one curve per relief (Harris's map),
+      when the grid varies a load and a relief;
+    - optimisation.png: the objective of every design tried, and the path of the design.
+    The primary figure is the first of SWEEP_FIGURES the samples report; the curves and
+    maps draw the statistics' groups (per axis level, per grid point: P5/P50/P95)."""
     out = Path(out_dir)
+    title = stats.get("title", "sweep")
     ok = [r for r in rows if r.get("status") == "ok"]
     present = [k for k in SWEEP_FIGURES if np.isfinite(_column(ok, k)).any()]
     if not present:
         return []
     written = [_sweep_histograms(ok, stats, present, title, out / "histograms.png")]
     primary = present[0]
-    ranks = {f: stats.get("sensitivity", {}).get(f, {}).get(primary) for f in tolerance}
-    ranks = {f: rho for f, rho in ranks.items() if rho is not None}
-    if ranks:
-        written.append(_sweep_tornado(ranks, primary, title, out / "tornado.png"))
-    axes = [f for f in vary if np.isfinite(_column(ok, f"input:{f}")).sum() > 1
-            and len(set(_column(ok, f"input:{f}"))) > 1]
+    sobol = stats.get("sobol", {}).get("indices", {})
+    ranks = {f: stats.get("sensitivity", {}).get(f, {}).get(primary)
+             for f in stats.get("inputs", [])}
+    if any(primary in sobol.get(f, {}) for f in stats.get("inputs", [])):
+        written.append(_sweep_sobol({f: sobol[f][primary] for f in sobol
+                                     if primary in sobol[f]}, primary, title,
+                                    out / "tornado.png"))
+    elif any(rho is not None for rho in ranks.values()):
+        written.append(_sweep_tornado({f: r for f, r in ranks.items() if r is not None},
+                                      primary, title, out / "tornado.png"))
+    response = stats.get("response", {})
+    axes = [f for f in stats.get("grid", []) if f in response]
     if axes:
-        written.append(_sweep_response(ok, axes, primary, title, out / "response.png"))
+        written.append(_sweep_response(response, axes, primary, title, out / "response.png"))
+    points = stats.get("grid_points", [])
+    if len(axes) >= 2:
+        written.append(_sweep_map(points, axes[:2], primary, title, out / "map.png"))
+    load = next((f for f in axes if f in LOAD_FIELDS), None)
+    relief = next((f for f in axes if RELIEF_WORD in f), None)
+    te = "loaded_transmission_error_peak_to_peak_urad"
+    if load and relief and te in present:
+        written.append(_sweep_harris(points, load, relief, te, title, out / "harris.png"))
+    if stats.get("optimise", {}).get("history"):
+        written.append(_sweep_optimisation(stats["optimise"], title,
+                                           out / "optimisation.png"))
     return written
+
+
+def _median_at(points: list[dict], figure: str, **inputs) -> float:
+    """The figure's median at the grid points with the given inputs (the first such point
+    that reports it; NaN where none does)."""
+    for point in points:
+        if all(point["inputs"].get(k) == v for k, v in inputs.items()):
+            value = point["percentiles"].get(figure, {}).get("P50")
+            if value is not None:
+                return value
+    return math.nan
+
+
+def _axis_levels(points: list[dict], field: str) -> np.ndarray:
+    return np.unique([p["inputs"][field] for p in points
+                      if isinstance(p["inputs"].get(field), float)])
+
+
+def _sweep_map(points, axes, primary, title, path) -> Path:
+    """The primary figure's median over a grid of two axes (the first grid point of each
+    pair of their values; a cell without answers is blank); the cells where half or more
+    of the samples are loaded at a face end hatched and outlined."""
+    xs, ys = (_axis_levels(points, f) for f in axes)
+    median = np.array([[_median_at(points, primary, **{axes[0]: x, axes[1]: y}) for x in xs]
+                       for y in ys])
+    ended = np.array([[next((p.get("end_loading", 0.0) for p in points
+                             if p["inputs"].get(axes[0]) == x and p["inputs"].get(axes[1]) == y),
+                            0.0) for x in xs] for y in ys])
+    fig = _figure(4.6)
+    ax = fig.add_subplot()
+    mesh = ax.pcolormesh(xs, ys, median, shading="nearest", cmap="viridis")
+    fig.colorbar(mesh, ax=ax, label=f"median {SWEEP_FIGURES[primary]}")
+    xe, ye = _cell_edges(xs), _cell_edges(ys)
+    for i, j in zip(*np.nonzero(ended >= 0.5)):
+        ax.add_patch(Rectangle((xe[j], ye[i]), xe[j + 1] - xe[j], ye[i + 1] - ye[i],
+                               fill=False, hatch="//", edgecolor="w", linewidth=0.0))
+    if (ended >= 0.5).any():
+        ax.legend(handles=[Patch(facecolor="0.5", hatch="//", edgecolor="w",
+                                 label="loaded at a face end in half the samples or more")],
+                  fontsize="small", loc="upper right")
+    ax.set_xlabel(f"{axes[0]} (core units: mm, N, MPa, rad)")
+    ax.set_ylabel(f"{axes[1]} (core units)")
+    fig.suptitle(textwrap.fill(f"{title} (median at each grid point)", 90))
+    return _save(fig, path)
+
+
+def _cell_edges(centres: np.ndarray) -> np.ndarray:
+    """The edges of cells around sorted centres (midway; the end cells symmetric), as
+    pcolormesh's 'nearest' shading draws them."""
+    if centres.size == 1:
+        return np.array([centres[0] - 0.5, centres[0] + 0.5])
+    mid = (centres[1:] + centres[:-1]) / 2
+    return np.concatenate([[2 * centres[0] - mid[0]], mid, [2 * centres[-1] - mid[-1]]])
+
+
+def _sweep_harris(points, load, relief, te, title, path) -> Path:
+    """Harris's map: loaded TE peak to peak (the median at each grid point) against the
+    load, one curve per relief."""
+    fig = _figure(4.2)
+    ax = fig.add_subplot()
+    loads = _axis_levels(points, load)
+    for k, level in enumerate(_axis_levels(points, relief)):
+        te_at = np.array([_median_at(points, te, **{load: x, relief: level}) for x in loads])
+        ax.plot(loads, te_at, "o-", color=SERIES[k % len(SERIES)], label=f"{level * 1e3:g} µm")
+    ax.set_xlabel(f"{load} (core units: N, N·mm)")
+    ax.set_ylabel(SWEEP_FIGURES[te])
+    ax.set_ylim(bottom=0)
+    ax.legend(fontsize="small", title=relief, title_fontsize="small")
+    fig.suptitle(textwrap.fill(f"{title} (median at each grid point)", 90))
+    return _save(fig, path)
+
+
+def _sweep_optimisation(opt, title, path) -> Path:
+    """The objective of each design the optimiser tried (feasible filled, infeasible open,
+    the best starred) and each design variable against the evaluation."""
+    history = opt["history"]
+    n = [h["evaluation"] for h in history]
+    fig = _figure(2.8 + 2.0 * len(opt["variables"]))
+    grid = fig.add_gridspec(1 + len(opt["variables"]), 1,
+                            height_ratios=[1.6] + [1.0] * len(opt["variables"]))
+    ax = fig.add_subplot(grid[0])
+    objective = np.array([h["objective"] for h in history], dtype=float)
+    feasible = np.array([h["feasible"] for h in history])
+    ax.plot(n, objective, "-", color="0.6", linewidth=0.8)
+    ax.plot(np.array(n)[feasible], objective[feasible], "o", color=SERIES[0],
+            label="feasible")
+    ax.plot(np.array(n)[~feasible], objective[~feasible], "o", mfc="none", color=SERIES[2],
+            label="infeasible")
+    best = opt["best"]
+    ax.plot([best["evaluation"]], [best["objective"]], "*", ms=14, color="k", label="best")
+    ax.set_ylabel(opt["objective"])
+    ax.legend(fontsize="small")
+    for k, variable in enumerate(opt["variables"]):
+        axv = fig.add_subplot(grid[k + 1], sharex=ax)
+        values = [float(str(h["design"][variable["field"]]).split()[0]) for h in history]
+        axv.plot(n, values, "o-", color=SERIES[1], markersize=4)
+        unit = str(history[0]["design"][variable["field"]]).partition(" ")[2]
+        axv.set_ylabel(f"{variable['field']}" + (f"\n({unit})" if unit else ""))
+    fig.axes[-1].set_xlabel("evaluation (one sweep over the samples each)")
+    fig.suptitle(textwrap.fill(f"{title}: optimisation ({opt['evaluations']} designs; "
+                               f"constraints: " + (", ".join(
+                                   f"{c['statistic']} <= {c['max']:g}"
+                                   for c in opt["constraints"]) or "none") + ")", 90))
+    return _save(fig, path)
+
+
+def _sweep_sobol(indices: dict, primary: str, title: str, path) -> Path:
+    """Each toleranced input's total (bar) and first (dark bar) Sobol index of the primary
+    figure, with their 95 % bootstrap half-widths."""
+    order = sorted(indices, key=lambda f: indices[f]["ST"])
+    fig = _figure(1.5 + 0.55 * len(order))
+    ax = fig.add_subplot()
+    at = np.arange(len(order))
+    ax.barh(at + 0.2, [indices[f]["ST"] for f in order], 0.4,
+            xerr=[indices[f]["ST_conf"] for f in order], color=SERIES[0], label="total")
+    ax.barh(at - 0.2, [indices[f]["S1"] for f in order], 0.4,
+            xerr=[indices[f]["S1_conf"] for f in order], color=SERIES[2], label="first order")
+    ax.set_yticks(at, order)
+    ax.set_xlim(0.0, 1.05)
+    ax.set_xlabel(f"Sobol index of the {SWEEP_FIGURES[primary]} (share of its variance)")
+    ax.legend(fontsize="small")
+    fig.suptitle(textwrap.fill(f"{title}: sensitivity to the toleranced inputs", 90))
+    return _save(fig, path)
 
 
 def _sweep_histograms(rows, stats, keys, title, path) -> Path:
@@ -805,23 +958,19 @@ def _sweep_tornado(ranks: dict, primary: str, title: str, path) -> Path:
     return _save(fig, path)
 
 
-def _sweep_response(rows, axes, primary, title, path) -> Path:
+def _sweep_response(response, axes, primary, title, path) -> Path:
+    """The primary figure's median and P5-P95 band at each level of each grid axis (over
+    the other inputs)."""
     fig = _figure(2.8 * len(axes) + 0.6)
     fig.suptitle(textwrap.fill(f"{title}: {SWEEP_FIGURES[primary]} over the grid", 90))
-    y = _column(rows, primary)
     for i, field in enumerate(axes):
         ax = fig.add_subplot(len(axes), 1, i + 1)
-        x = _column(rows, f"input:{field}")
-        levels = np.unique(x[np.isfinite(x)])
-        groups = [y[(x == level) & np.isfinite(y)] for level in levels]
-        keep = [g.size > 0 for g in groups]
-        levels = levels[keep]
-        groups = [g for g in groups if g.size]
-        median = [np.median(g) for g in groups]
-        ax.fill_between(levels, [np.percentile(g, 5) for g in groups],
-                        [np.percentile(g, 95) for g in groups], color=SERIES[0], alpha=0.25,
-                        label="P5-P95 over the other inputs")
-        ax.plot(levels, median, "o-", color=SERIES[0], label="median")
+        levels = [g for g in response[field] if primary in g["percentiles"]]
+        x = [g["value"] for g in levels]
+        q = [g["percentiles"][primary] for g in levels]
+        ax.fill_between(x, [v["P5"] for v in q], [v["P95"] for v in q], color=SERIES[0],
+                        alpha=0.25, label="P5-P95 over the other inputs")
+        ax.plot(x, [v["P50"] for v in q], "o-", color=SERIES[0], label="median")
         ax.set_xlabel(f"{field} (core units: mm, N, MPa, rad)")
         ax.set_ylabel(SWEEP_FIGURES[primary])
         ax.legend(fontsize="small")

@@ -171,6 +171,21 @@ def html(document: dict, images=()) -> str:
     return _template("report.html.j2").render(v=view(document), images=pictures)
 
 
+def write_sweep_report(out_dir: Path, stats: dict, images=()) -> Path:
+    """A sweep's report as one self-contained HTML page (templates/sweep.html.j2, in the
+    style of a case's report; report_view.sweep_view) with its figures embedded:
+    OUT_DIR/report.html."""
+    from . import __version__
+    from .report_view import sweep_view
+
+    pictures = [{"name": Path(p).name,
+                 "data": base64.b64encode(Path(p).read_bytes()).decode("ascii")}
+                for p in images]
+    text = _template("sweep.html.j2").render(v=sweep_view(stats, __version__),
+                                              images=pictures)
+    return write_text(Path(out_dir) / "report.html", text)
+
+
 def _template(name: str):
     import jinja2
 

@@ -361,3 +361,122 @@ def toml_lines(table: dict, prefix: str = "") -> list[str]:
             for row in v:
                 lines += ["", f"[[{name}]]", *toml_lines(row, f"{name}.")]
     return lines
+
+
+# ---------------------------------------------------------------------------------------
+# a sweep's report
+
+
+@dataclass
+class SweepView:
+    """What a sweep's report shows, read from its statistics (sweep.json)."""
+
+    title: str
+    sweep: str
+    base: str
+    sampling: str
+    seed: int
+    samples: int
+    ok: int
+    failed: int
+    version: str
+    key_results: list[KeyResult]
+    tables: list[Table]
+    failures: list[tuple[str, str]]
+
+
+def sweep_view(stats: dict, version: str) -> SweepView:
+    """The report of a sweep's statistics: the figures that decide (P95 of the largest
+    loaded pressure, the edge-loading probability, the optimum), then the percentiles,
+    sensitivities, spectrum and optimisation as tables."""
+    tables = [_percentile_table("percentiles over the samples", stats.get("percentiles", {}))]
+    weighted = stats.get("time_weighted")
+    if weighted:
+        spectrum = stats["spectrum"]
+        tables.append(Table("load spectrum", ["level", "share of the time"],
+                            [[str(level), number(share)] for level, share
+                             in zip(spectrum["levels"], spectrum["shares"])], [False, True],
+                            note=f"{spectrum['field']}: each sample weighted by its level's "
+                                 "share over the draws"))
+        tables.append(_percentile_table("percentiles over the operating time",
+                                        weighted["percentiles"]))
+    sensitivity = stats.get("sensitivity", {})
+    figures = sorted({k for ranks in sensitivity.values() for k in ranks})
+    if figures:
+        tables.append(Table("sensitivity: Spearman rank correlation",
+                            ["toleranced input"] + [label(k) for k in figures],
+                            [[field] + [number(ranks.get(k)) for k in figures]
+                             for field, ranks in sensitivity.items()],
+                            [False] + [True] * len(figures),
+                            note="within each grid point, averaged over the grid"))
+    sobol = stats.get("sobol")
+    if sobol:
+        rows = [[field, label(k), number(i["S1"]), number(i["S1_conf"]), number(i["ST"]),
+                 number(i["ST_conf"])]
+                for field, per in sobol["indices"].items() for k, i in per.items()]
+        tables.append(Table("Sobol indices (Saltelli's design, SALib)",
+                            ["toleranced input", "figure", "first order S1", "± (95 %)",
+                             "total ST", "± (95 %)"], rows,
+                            [False, False, True, True, True, True],
+                            collapsed=len(rows) > COLLAPSE_ROWS,
+                            note=f"over {sobol['grid_points']} of {sobol['of']} grid points "
+                                 "(those whose every sample answered), averaged"))
+    opt = stats.get("optimise")
+    if opt:
+        names = [v["field"] for v in opt["variables"]]
+        constraints = [c["statistic"] for c in opt["constraints"]]
+        tables.append(Table(
+            "optimisation: every design tried",
+            ["evaluation"] + names + [opt["objective"]] + [f"{c} (≤ {o['max']:g})" for c, o
+                                                           in zip(constraints,
+                                                                  opt["constraints"])]
+            + ["feasible"],
+            [[str(h["evaluation"])] + [str(h["design"][n]) for n in names]
+             + [number(h["objective"])] + [number(g) for g in h["constraints"]]
+             + [number(h["feasible"])] for h in opt["history"]],
+            [True] + [False] * len(names) + [True] * (1 + len(constraints)) + [False],
+            collapsed=len(opt["history"]) > COLLAPSE_ROWS,
+            note=f"{opt['method']}: {opt['message']}"))
+    return SweepView(
+        title=stats.get("title") or stats["sweep"], sweep=stats["sweep"], base=stats["base"],
+        sampling=stats["sampling"], seed=stats["seed"], samples=stats["samples"],
+        ok=stats["ok"], failed=stats["failed"], version=version,
+        key_results=_sweep_key_results(stats), tables=tables,
+        failures=[(str(n), e) for n, e in stats.get("failures", {}).items()])
+
+
+def _percentile_table(title: str, percentiles: dict) -> Table:
+    names = ["P5", "P50", "P95", "P99"]
+    return Table(title, ["figure"] + names,
+                 [[label(k)] + [number(q.get(n)) for n in names]
+                  for k, q in percentiles.items()], [False] + [True] * len(names))
+
+
+def _sweep_key_results(stats: dict) -> list[KeyResult]:
+    out = []
+    for key in ("bem_max_p_max_MPa", "loaded_transmission_error_peak_to_peak_urad",
+                "max_p_max_MPa"):
+        q = stats.get("percentiles", {}).get(key)
+        if q:
+            out.append(KeyResult(f"{label(key)}, P95", number(q["P95"]),
+                                 f"P50 {number(q['P50'])}, P99 {number(q['P99'])}"))
+    for flag, what in (("edge_loading", "edge loading (any flank edge)"),
+                       ("end_loading", "loading at a face end")):
+        edge = stats.get(flag)
+        if edge and edge.get("probability") is not None:
+            low, high = edge["interval_95"]
+            out.append(KeyResult(f"probability of {what}", f"{edge['probability']:.1%}",
+                                 f"95 % interval {low:.1%} to {high:.1%} over "
+                                 f"{edge['samples']} samples", bad=edge["probability"] > 0))
+        weighted = (stats.get("time_weighted") or {}).get(flag)
+        if weighted:
+            out.append(KeyResult(f"share of the time: {what}", f"{weighted['time_share']:.1%}",
+                                 "over the load spectrum", bad=weighted["time_share"] > 0))
+    opt = stats.get("optimise")
+    if opt:
+        best = opt["best"]
+        out.append(KeyResult(f"optimum: {opt['objective']}", number(best["objective"]),
+                             ", ".join(f"{k} = {v}" for k, v in best["design"].items())
+                             + ("" if best["feasible"] else " (no feasible design found)"),
+                             bad=not best["feasible"]))
+    return out

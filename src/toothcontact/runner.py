@@ -26,6 +26,23 @@ def bundled_cases() -> list[Path]:
     return sorted(bundled_cases_dir().glob("*.toml"))
 
 
+def bundled_sweeps() -> list[Path]:
+    """The bundled sweep files (the cases folder's sweeps/)."""
+    return sorted((bundled_cases_dir() / "sweeps").glob("*.toml"))
+
+
+def sweep_path(name: str | Path) -> Path:
+    """A sweep file: `name` as a path if it is one, else the bundled sweep of that name."""
+    path = Path(name)
+    if path.is_file():
+        return path
+    bundled = bundled_cases_dir() / "sweeps" / f"{path.stem}.toml"
+    if path.parent == Path(".") and bundled.is_file():
+        return bundled
+    raise schema.CaseError(f"{name}: no such sweep file, and no bundled sweep of that name "
+                           "(`toothcontact cases` lists them)")
+
+
 def case_path(name: str | Path) -> Path:
     """A case file: `name` as a path if it is one, else the bundled case of that name (with
     or without .toml). Raises CaseError naming both places when neither exists."""
@@ -132,24 +149,52 @@ def run_sweep(path: str | Path, out_dir: str | Path | None = None, *,
     """Run a sweep file (sweep.spec) into OUT_DIR (default out/<sweep>): every sample
     validated first, then analysed on Dask (sweep.run), checkpointed under OUT_DIR/parts;
     then OUT_DIR/samples.parquet (one row per sample), with `positions` also
-    OUT_DIR/positions.parquet (each sample's rows per mesh position and pair), and
-    OUT_DIR/sweep.json (the sweep's statistics, sweep.statistics). `planned(n)` hears the number of samples, `on_done` each
-    finished record. Returns the statistics and the files written."""
+    OUT_DIR/positions.parquet (each sample's rows per mesh position and pair), with an
+    `[optimise]` table the optimisation (sweep.optimise: each design's sweep under
+    OUT_DIR/optimise), OUT_DIR/sweep.json (the statistics, sweep.statistics), the figures
+    and OUT_DIR/report.html. `planned(n)` hears the number of samples known so far,
+    `on_done` each finished record. Returns the statistics and the files written."""
+    import shutil
+
     from .sweep import run as sweep_run, statistics, store
+    from .sweep.optimise import optimise
     from .sweep.sampling import plan
 
-    path = Path(path)
+    path = sweep_path(path)
     spec, base, base_path = schema.load_sweep(path)
     samples = plan(spec, base, base_path.parent, source=str(path))
+    total = [len(samples)]
     if planned is not None:
-        planned(len(samples))
+        planned(total[0])
     out = Path(out_dir) if out_dir is not None else Path("out") / path.stem
-    rows = sweep_run.run(samples, base_path.parent, out, scheduler=scheduler, workers=workers,
-                         resume=resume, positions=positions, on_done=on_done)
-    stats = {"sweep": str(path), "base": str(base_path), "seed": spec.seed,
-             "sampling": spec.sampling,
-             **statistics.summarise(rows, [t.field for t in spec.tolerance],
-                                    [v.field for v in spec.vary])}
+    inputs, grid = [t.field for t in spec.tolerance], [v.field for v in spec.axes]
+
+    def sweep_into(todo, folder, keep_positions):
+        rows = sweep_run.run(todo, base_path.parent, folder, pool, resume=resume,
+                             positions=keep_positions, on_done=on_done)
+        return rows, statistics.summarise(rows, inputs, grid, spec.sampling == "saltelli")
+
+    def evaluate(design, folder):
+        designed = plan(spec, base, base_path.parent, source=f"{path}: optimise",
+                        design=design)
+        total[0] += len(designed)
+        if planned is not None:
+            planned(total[0])
+        rows, summary = sweep_into(designed, folder, False)
+        store.write_table(folder / "samples.parquet", rows)
+        return summary, rows
+
+    with sweep_run.Workers(scheduler, workers) as pool:
+        rows, summary = sweep_into(samples, out, positions)
+        stats = {"sweep": str(path), "title": spec.title or path.stem, "base": str(base_path),
+                 "seed": spec.seed, "sampling": spec.sampling, "inputs": inputs, "grid": grid,
+                 **({"spectrum": spec.spectrum.model_dump()} if spec.spectrum else {}),
+                 **summary}
+        if spec.optimise is not None:
+            if not resume:
+                shutil.rmtree(out / "optimise", ignore_errors=True)
+            stats["optimise"] = optimise(spec.optimise, evaluate, out / "optimise",
+                                         where=f"{path}: optimise")
     written = [store.write_table(out / "samples.parquet", rows)]
     if positions:
         written.append(store.write_table(out / "positions.parquet", store.position_rows(
@@ -157,9 +202,8 @@ def run_sweep(path: str | Path, out_dir: str | Path | None = None, *,
     written.append(report.write_text(out / "sweep.json", report.json_text(stats)))
     from . import plots
 
-    written += plots.sweep_figures(rows, stats, [v.field for v in spec.vary],
-                                   [t.field for t in spec.tolerance], spec.title or path.stem,
-                                   out)
+    figures = plots.sweep_figures(rows, stats, out)
+    written += figures + [report.write_sweep_report(out, stats, figures)]
     return stats, written
 
 

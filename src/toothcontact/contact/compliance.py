@@ -52,6 +52,7 @@ Units: mm, N, MPa.
 
 from __future__ import annotations
 
+import functools
 import math
 from dataclasses import dataclass
 
@@ -241,6 +242,14 @@ class ToothCompliance:
         length = np.array([c.coupling_length for c in self.table])
         r = np.asarray(radius, float)
         return np.interp(r, self.radii, total), np.interp(r, self.radii, length)
+
+
+@functools.lru_cache(maxsize=16)
+def tooth_compliance(gear, E: float, nu: float) -> ToothCompliance:
+    """A gear's ToothCompliance, built once per process for the same teeth and material (a
+    sweep's worker reuses it for every sample that leaves the teeth as they are; the table
+    is read, never changed)."""
+    return ToothCompliance(gear, E, nu)
 
 
 class WheelToothCompliance(ToothCompliance):

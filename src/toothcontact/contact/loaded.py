@@ -56,7 +56,8 @@ GAP_TOLERANCE, COARSE_TOLERANCE = 1e-5, 1e-3
 #: the result keys of a loaded contact (LoadedContact.summary); a row without a solution
 #: carries them as None, with bem_status "unloaded" (the other pairs of its position carry
 #: the load) or "failed" and the reason in bem_reason
-RESULT_KEYS = ("bem_status", "bem_load_N", "bem_p_max_MPa", "edge_loaded", "bem_area_mm2",
+RESULT_KEYS = ("bem_status", "bem_load_N", "bem_p_max_MPa", "edge_loaded", "end_loaded",
+               "bem_area_mm2",
                "bem_approach_mm", "bem_grid", "edge_pressure_MPa", "edge_load_fraction",
                "edge_pressure_at", "edge_strip_mm", "bem_raw_peak_MPa", "bem_iterations",
                "bem_relative_error", "bem_reason")
@@ -68,7 +69,7 @@ def unsolved(status: str, reason: str | None = None) -> dict:
     row = dict.fromkeys(RESULT_KEYS)
     if status == "unloaded":
         row.update(bem_load_N=0.0, bem_p_max_MPa=0.0, bem_area_mm2=0.0, edge_pressure_MPa=0.0,
-                   edge_load_fraction=0.0, edge_loaded=False)
+                   edge_load_fraction=0.0, edge_loaded=False, end_loaded=False)
     return {**row, "bem_status": status, "bem_reason": reason}
 
 
@@ -101,9 +102,12 @@ class LoadedContact:
                           default=("none", None))
         edge_pressure = worst.edge_pressure_MPa if worst is not None and worst.load_N > 0 else 0.0
         interior = self.interior_peak()
+        limit = EDGE_LOAD_RATIO * max(interior, edge_pressure)
+        loaded = [n for n, e in named if e.load_N > 0 and e.edge_pressure_MPa > limit]
         return {"bem_status": "solved", "bem_load_N": s.load_N,
                 "bem_p_max_MPa": max(interior, edge_pressure),
-                "edge_loaded": bool(edge_pressure > EDGE_LOAD_RATIO * max(interior, edge_pressure)),
+                "edge_loaded": bool(loaded),
+                "end_loaded": any("_end_" in n for n in loaded),
                 "bem_area_mm2": s.area_mm2, "bem_approach_mm": s.approach_mm,
                 "bem_grid": list(s.pressure_MPa.shape),
                 "edge_pressure_MPa": edge_pressure,

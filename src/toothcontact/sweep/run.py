@@ -1,5 +1,5 @@
 """A sweep's samples analysed on Dask (dask.distributed): a LocalCluster sized to the
-machine by default, or an existing cluster at a scheduler address; one task per sample,
+machine by default, or an existing cluster at a scheduler address (Workers); one task per sample,
 retried where a worker dies. Each finished sample is checkpointed at once (sweep.store), so
 a killed sweep resumed skips what is done; the table is ordered by sample number, the same
 whatever the workers and the order they finish in."""
@@ -70,37 +70,59 @@ def _cell(value):
     return None
 
 
-def run(samples: list[Sample], folder: Path | None, out: Path, *,
-        scheduler: str | None = None, workers: int | None = None, resume: bool = False,
-        positions: bool = False,
+class Workers:
+    """Where samples run: an existing Dask scheduler at `scheduler`, else a LocalCluster of
+    `workers` processes (the machine's cores) started at its first use and closed with
+    this (a context manager); one cluster serves every sweep an optimisation runs."""
+
+    def __init__(self, scheduler: str | None = None, workers: int | None = None):
+        self.scheduler, self.workers = scheduler, workers
+        self._cluster = self._client = None
+
+    @property
+    def client(self):
+        from distributed import Client, LocalCluster
+
+        if self._client is None:
+            if self.scheduler is None:
+                self._cluster = LocalCluster(n_workers=self.workers or os.cpu_count() or 1,
+                                             threads_per_worker=1, processes=True,
+                                             dashboard_address=":0")
+            self._client = Client(self.scheduler or self._cluster)
+        return self._client
+
+    def __enter__(self) -> "Workers":
+        return self
+
+    def __exit__(self, *exc) -> None:
+        if self._client is not None:
+            self._client.close()
+        if self._cluster is not None:
+            self._cluster.close()
+
+
+def run(samples: list[Sample], folder: Path | None, out: Path, workers: Workers, *,
+        resume: bool = False, positions: bool = False,
         on_done: Callable[[dict], None] | None = None) -> list[dict]:
-    """Analyse the samples not yet done in `out` (all of them unless `resume`) and return
-    every sample's record, ordered by sample (with `positions`, each sample's rows per
-    position are checkpointed too: store.position_rows). `scheduler`: an existing Dask
-    scheduler's address; else a LocalCluster of `workers` processes (the machine's
-    cores)."""
-    from distributed import Client, LocalCluster, as_completed
+    """Analyse on `workers` the samples not yet done in `out` (all of them unless
+    `resume`) and return every sample's record, ordered by sample, with its `time_share`
+    under a load spectrum (with `positions`, each sample's rows per position are
+    checkpointed too: store.position_rows)."""
+    from distributed import as_completed
 
     done = store.finished(out, positions) if resume else store.clear(out)
     todo = [s for s in samples if s.sample not in done]
-    cluster = None
     if todo:
-        if scheduler is None:
-            cluster = LocalCluster(n_workers=workers or os.cpu_count() or 1,
-                                   threads_per_worker=1, processes=True,
-                                   dashboard_address=":0")
-        try:
-            with Client(scheduler or cluster) as client:
-                futures = client.map(sample_record, [s.sample for s in todo],
-                                     [s.inputs for s in todo], [s.raw for s in todo],
-                                     [None if folder is None else str(folder)] * len(todo),
-                                     [positions] * len(todo), retries=RETRIES, pure=False)
-                for future in as_completed(futures):
-                    record, rows = future.result()
-                    store.write_part(out, record, rows if positions else None)
-                    if on_done is not None:
-                        on_done(record)
-        finally:
-            if cluster is not None:
-                cluster.close()
+        shares = {s.sample: s.time_share for s in todo}
+        futures = workers.client.map(
+            sample_record, [s.sample for s in todo], [s.inputs for s in todo],
+            [s.raw for s in todo], [None if folder is None else str(folder)] * len(todo),
+            [positions] * len(todo), retries=RETRIES, pure=False)
+        for future in as_completed(futures):
+            record, rows = future.result()
+            if shares[record["sample"]] is not None:
+                record["time_share"] = shares[record["sample"]]
+            store.write_part(out, record, rows if positions else None)
+            if on_done is not None:
+                on_done(record)
     return store.records(out, [s.sample for s in samples])

@@ -2,8 +2,10 @@
 first axis slowest) times `samples` draws of the `[[tolerance]]` inputs (the same draws at
 every grid point: common random numbers, so grid points differ by the grid alone). Draws
 are points of the unit cube from scipy.stats.qmc (Latin hypercube, scrambled Sobol) or
-numpy's generator, seeded by the sweep's seed, mapped through each distribution's inverse
-CDF; the same seed gives the same samples on any machine. Each sample is the base case's
+numpy's generator, or Saltelli's design for Sobol indices (SALib: `samples` base points,
+samples × (inputs + 2) draws), seeded by the sweep's seed, mapped through each
+distribution's inverse CDF; the same seed gives the same samples on any machine. With a
+load spectrum each sample stands for its level's time share over the draws. Each sample is the base case's
 table with the fields set (values as text with the unit they were given in) and is
 validated as a case before anything runs."""
 
@@ -29,32 +31,40 @@ class Sample:
     sample: int
     inputs: dict
     raw: dict
+    time_share: float | None = None
 
 
-def plan(spec: SweepSpec, base: dict, folder: Path | None = None,
-         source: str = "sweep") -> list[Sample]:
+def plan(spec: SweepSpec, base: dict, folder: Path | None = None, source: str = "sweep",
+         design: dict | None = None) -> list[Sample]:
     """The sweep's samples, each validated as a case (a CaseError names the sample, the
     field and the value). `base`: the base case's table as read; `folder`: where the files
-    it names are found (the base case's folder)."""
+    it names are found (the base case's folder); `design`: fields set in every sample
+    (field -> text; an optimiser's design variables)."""
     from .. import units
 
     ureg = units.registry()
-    axes = [_grid(axis, ureg, f"{source}: vary[{i}]") for i, axis in enumerate(spec.vary)]
+    fixed = _with(base, spec.set)
+    axes = [_grid(axis, ureg, f"{source}: vary[{i}]") for i, axis in enumerate(spec.axes)]
     draws = _draws(spec, ureg, source)
+    shares = dict(zip(map(repr, spec.spectrum.levels), spec.spectrum.shares)) \
+        if spec.spectrum else None
     out = []
     for point in itertools.product(*axes) if axes else [()]:
+        share = shares[repr(point[0])] / len(draws) if shares else None
         for draw in draws:
-            inputs = {axis.field: value for axis, value in zip(spec.vary, point)}
+            inputs = dict(design or {})
+            inputs.update({field: value for axis, value in zip(spec.axes, point)
+                           for field in (axis.field, *axis.also)})
             inputs.update(draw)
             number = len(out)
-            raw = _with(base, inputs)
+            raw = _with(fixed, inputs)
             try:
                 parse_case(raw, source=f"{source}: sample {number}", base=folder)
             except CaseError as exc:
                 raise CaseError(f"{exc} (set by the sweep: "
                                 + ", ".join(f"{k} = {v!r}" for k, v in inputs.items())
                                 + ")") from None
-            out.append(Sample(number, inputs, raw))
+            out.append(Sample(number, inputs, raw, share))
     return out
 
 
@@ -72,17 +82,17 @@ def _with(base: dict, inputs: dict) -> dict:
     return raw
 
 
-def _quantity(text, ureg, where: str):
+def quantity(text, ureg, where: str):
     try:
         return ureg.Quantity(text) if isinstance(text, str) else ureg.Quantity(float(text))
     except Exception:        # noqa: BLE001 - pint raises many kinds; the message names it
         raise CaseError(f"{where}: {text!r} is not a number with a unit") from None
 
 
-def _text(magnitude: float, unit) -> str | float:
+def as_text(magnitude: float, unit) -> str | float:
     """A sampled value as the case reads it: a bare number where it was given bare, else a
     number with its unit (a milliradian is dimensionless to pint, but not a bare number)."""
-    return float(magnitude) if str(unit) == "dimensionless" else f"{float(magnitude)!r} {unit}"
+    return float(magnitude) if str(unit) == "dimensionless" else f"{float(magnitude)!r} {unit:~}"
 
 
 def _grid(axis: Vary, ureg, where: str) -> list:
@@ -90,16 +100,16 @@ def _grid(axis: Vary, ureg, where: str) -> list:
     of `from`."""
     if axis.values:
         return list(axis.values)
-    start = _quantity(axis.start, ureg, f"{where}.from")
-    end = _in_unit(axis.to, start.units, ureg, f"{where}.to", f"from ({axis.start!r})")
-    return [_text(m, start.units) for m in np.linspace(start.magnitude, end, axis.steps)]
+    start = quantity(axis.start, ureg, f"{where}.from")
+    end = in_unit(axis.to, start.units, ureg, f"{where}.to", f"from ({axis.start!r})")
+    return [as_text(m, start.units) for m in np.linspace(start.magnitude, end, axis.steps)]
 
 
-def _in_unit(text, unit, ureg, where: str, whose: str) -> float:
+def in_unit(text, unit, ureg, where: str, whose: str) -> float:
     """The magnitude of `text` in `unit`; a CaseError where it is of another dimension."""
-    quantity = _quantity(text, ureg, where)
+    value = quantity(text, ureg, where)
     try:
-        return float(quantity.to(unit).magnitude)
+        return float(value.to(unit).magnitude)
     except Exception:        # noqa: BLE001 - a dimensionality error of pint
         raise CaseError(f"{where}: {text!r} is not in the unit of {whose}") from None
 
@@ -107,19 +117,22 @@ def _in_unit(text, unit, ureg, where: str, whose: str) -> float:
 def _draws(spec: SweepSpec, ureg, source: str) -> list[dict]:
     """`samples` draws of the toleranced inputs (field -> text), or one empty draw."""
     if not spec.tolerance:
-        return [{} for _ in range(spec.samples)] if spec.vary else [{}]
+        return [{} for _ in range(spec.samples)] if spec.axes else [{}]
     unit_cube = _unit_cube(spec.sampling, spec.samples, len(spec.tolerance), spec.seed)
     columns = [_inverse(t, unit_cube[:, j], ureg, f"{source}: tolerance[{j}]")
                for j, t in enumerate(spec.tolerance)]
     return [{t.field: column[i] for t, column in zip(spec.tolerance, columns)}
-            for i in range(spec.samples)]
+            for i in range(len(unit_cube))]
 
 
 def _unit_cube(sampling: str, n: int, d: int, seed: int) -> np.ndarray:
-    """n points in [0, 1)^d, strictly inside (a normal's inverse CDF is finite there)."""
+    """n points in [0, 1)^d (Saltelli's design: n × (d + 2) points, SALib's order, first
+    and total indices), strictly inside (a normal's inverse CDF is finite there)."""
     from scipy.stats import qmc
 
-    if sampling == "random":
+    if sampling == "saltelli":
+        points = saltelli_design(n, d, seed)
+    elif sampling == "random":
         points = np.random.default_rng(seed).random((n, d))
     elif sampling == "latin_hypercube":
         points = qmc.LatinHypercube(d=d, seed=seed).random(n)
@@ -131,6 +144,21 @@ def _unit_cube(sampling: str, n: int, d: int, seed: int) -> np.ndarray:
     return np.clip(points, tiny, 1.0 - tiny)
 
 
+def saltelli_problem(d: int) -> dict:
+    """SALib's problem of d inputs on the unit cube (the inverse CDFs map them after)."""
+    return {"num_vars": d, "names": [f"x{j}" for j in range(d)], "bounds": [[0.0, 1.0]] * d}
+
+
+def saltelli_design(n: int, d: int, seed: int) -> np.ndarray:
+    """Saltelli's scheme for first and total Sobol indices (SALib.sample.sobol): n base
+    points, n × (d + 2) rows."""
+    from SALib.sample import sobol
+
+    with warnings.catch_warnings():       # SALib prefers n a power of two; any n works
+        warnings.simplefilter("ignore")
+        return sobol.sample(saltelli_problem(d), n, calc_second_order=False, seed=seed)
+
+
 def _inverse(tolerance: Tolerance, u: np.ndarray, ureg, where: str) -> list:
     """The tolerance's values at the unit-interval points u: its inverse CDF, in the unit
     of its first parameter."""
@@ -138,10 +166,10 @@ def _inverse(tolerance: Tolerance, u: np.ndarray, ureg, where: str) -> list:
 
     t = tolerance
     first = t.mean if t.distribution == "normal" else t.low
-    unit = _quantity(first, ureg, where).units
+    unit = quantity(first, ureg, where).units
 
     def number(name):
-        return _in_unit(getattr(t, name), unit, ureg, f"{where}.{name}", repr(first))
+        return in_unit(getattr(t, name), unit, ureg, f"{where}.{name}", repr(first))
 
     if t.distribution == "normal":
         spread = number("std") if t.std is not None else number("band") / 3.0
@@ -160,4 +188,4 @@ def _inverse(tolerance: Tolerance, u: np.ndarray, ureg, where: str) -> list:
                 raise CaseError(f"{where}.mode: {t.mode!r} must lie between low and high")
             values = stats.triang.ppf(u, (mode - low) / (high - low), loc=low,
                                       scale=high - low)
-    return [_text(v, unit) for v in values]
+    return [as_text(v, unit) for v in values]

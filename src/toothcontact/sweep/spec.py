@@ -2,7 +2,9 @@
 sweep file) and what varies: `[[vary]]` grids (a dotted field path and values, or from/to
 in `steps`) and `[[tolerance]]` distributions (normal by `mean` and `std` or a ±3σ `band`,
 uniform or triangular by `low`, `high` and `mode`), drawn `samples` times per grid point
-with `seed` by `sampling` (random, Latin hypercube or scrambled Sobol, scipy.stats.qmc).
+with `seed` by `sampling` (random, Latin hypercube or scrambled Sobol, scipy.stats.qmc; or
+Saltelli's design for Sobol indices, SALib); a `[spectrum]` of load levels with time
+shares; `set` fields fixed in every sample; an `[optimise]` table of design variables sized over the tolerance samples.
 Every quantity is text with a unit, as in a case. Validation errors are CaseErrors naming
 the field."""
 
@@ -10,7 +12,7 @@ from __future__ import annotations
 
 from typing import Literal
 
-from pydantic import Field, model_validator
+from pydantic import Field, field_validator, model_validator
 
 from ..case import Model
 
@@ -19,6 +21,8 @@ class Vary(Model):
     """A grid axis: the field's `values`, or `from` .. `to` in `steps` equal steps."""
 
     field: str = Field(description="a dotted field path of the base case, e.g. 'load.torque'")
+    also: list[str] = Field([], description="more fields set to the same values, e.g. the "
+                                            "gear's relief beside the pinion's")
     values: list[str | bool | int | float] = Field([], description="the values, with units")
     start: str | float | None = Field(None, alias="from")
     to: str | float | None = None
@@ -60,6 +64,73 @@ class Tolerance(Model):
         return self
 
 
+class Spectrum(Model):
+    """A load spectrum: a grid axis whose `levels` run for the given time `shares`
+    (fractions of the operating time, summing to 1); the sweep's statistics are then also
+    weighted by time."""
+
+    field: str = Field(description="the load's dotted field, e.g. 'load.torque'")
+    levels: list[str | float] = Field(min_length=1, description="the load levels, with units")
+    shares: list[float] = Field(min_length=1, description="each level's share of the time")
+
+    @model_validator(mode="after")
+    def _shares(self):
+        if len(self.shares) != len(self.levels):
+            raise ValueError(f"{self.field}: {len(self.shares)} shares for "
+                             f"{len(self.levels)} levels; give one share per level")
+        if any(not (0.0 < s <= 1.0) for s in self.shares) or abs(sum(self.shares) - 1) > 1e-6:
+            raise ValueError(f"{self.field}: shares {self.shares} must be in (0, 1] and sum "
+                             "to 1")
+        return self
+
+
+#: the statistics an objective or a constraint may name over a figure, and the
+#: probabilities it may name alone: of edge loading at any flank edge, and at a face end
+STATISTICS = ("P5", "P50", "P95", "P99", "mean")
+PROBABILITIES = ("edge_loading", "end_loading")
+
+
+def _statistic(text: str) -> str:
+    name, _, figure = text.partition(" ")
+    if text not in PROBABILITIES and (name not in STATISTICS or not figure.strip()):
+        raise ValueError(f"{text!r} is not a statistic; give {' or '.join(PROBABILITIES)}, "
+                         f"or one of {', '.join(STATISTICS)} and a figure of the case's "
+                         "summary, e.g. 'P95 bem_max_p_max_MPa'")
+    return text
+
+
+class DesignVariable(Model):
+    """A design variable of an optimisation: a dotted field between `low` and `high`."""
+
+    field: str = Field(description="a dotted field path of the base case")
+    low: str | float
+    high: str | float
+
+
+class Constraint(Model):
+    """An optimisation constraint: a statistic (see Optimise.objective) at most `max`."""
+
+    statistic: str = Field(description="'edge_loading' or 'end_loading' (probabilities) or "
+                                       "'P95 FIGURE', ...")
+    max: float
+
+    _known = field_validator("statistic")(_statistic)
+
+
+class Optimise(Model):
+    """Design variables sized over the sweep's samples: minimise `objective` (a statistic
+    over the samples: 'P5|P50|P95|P99|mean FIGURE' or 'edge_loading', the probability of
+    edge loading, 'end_loading' at a face end) subject to each constraint, by scipy.optimize (COBYQA) from the middle of
+    the bounds, in at most `evaluations` sweeps."""
+
+    variables: list[DesignVariable] = Field(min_length=1, alias="variable")
+    objective: str
+    constraints: list[Constraint] = Field([], alias="constraint")
+    evaluations: int = Field(20, ge=2, le=500, description="sweeps the optimiser may run")
+
+    _known = field_validator("objective")(_statistic)
+
+
 class SweepSpec(Model):
     """A sweep file (see the module)."""
 
@@ -68,16 +139,32 @@ class SweepSpec(Model):
     base: str = Field(description="a bundled case name or a case file, relative to the sweep")
     samples: int = Field(1, ge=1, le=100000, description="tolerance samples per grid point")
     seed: int = Field(0, ge=0)
-    sampling: Literal["random", "latin_hypercube", "sobol"] = "latin_hypercube"
+    sampling: Literal["random", "latin_hypercube", "sobol", "saltelli"] = "latin_hypercube"
+    set: dict[str, str | bool | int | float] = Field(
+        {}, description="fields set in the base case for every sample (dotted path: value)")
     vary: list[Vary] = []
     tolerance: list[Tolerance] = []
+    spectrum: Spectrum | None = None
+    optimise: Optimise | None = None
+
+    @property
+    def axes(self) -> list[Vary]:
+        """The grid's axes: the spectrum's levels (first, slowest), then each [[vary]]."""
+        levels = [Vary(field=self.spectrum.field, values=self.spectrum.levels)] \
+            if self.spectrum else []
+        return levels + list(self.vary)
 
     @model_validator(mode="after")
     def _fields_once(self):
-        fields = [v.field for v in self.vary] + [t.field for t in self.tolerance]
+        fields = [f for v in self.axes for f in [v.field, *v.also]] + list(self.set) \
+            + [t.field for t in self.tolerance] \
+            + [v.field for v in (self.optimise.variables if self.optimise else [])]
         twice = sorted({f for f in fields if fields.count(f) > 1})
         if twice:
             raise ValueError(f"{twice[0]}: varied or toleranced twice; give each field once")
-        if not fields:
-            raise ValueError("nothing varies: give [[vary]] or [[tolerance]] tables")
+        if not self.axes and not self.tolerance:
+            raise ValueError("nothing varies: give [[vary]], [[tolerance]] or [spectrum] tables")
+        if self.sampling == "saltelli" and len(self.tolerance) < 2:
+            raise ValueError("sampling: 'saltelli' (Sobol indices) needs two or more "
+                             "[[tolerance]] inputs")
         return self

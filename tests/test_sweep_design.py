@@ -1,0 +1,199 @@
+"""Load spectra, Sobol indices and modification sizing on the sweep engine (sweep.spec,
+sweep.sampling, sweep.statistics, sweep.optimise) and a sweep's figures and report, without
+running analyses: each against a closed form (time-weighted percentiles as repeated draws,
+the Sobol indices of a linear model, a constrained optimum of a smooth model)."""
+
+from __future__ import annotations
+
+import json
+import math
+
+import numpy as np
+import pytest
+from mutations import CASES
+
+from toothcontact.case import CaseError, load_sweep, read_table
+from toothcontact.sweep import optimise as optimiser
+from toothcontact.sweep.sampling import plan, saltelli_design
+from toothcontact.sweep.spec import Optimise, SweepSpec
+from toothcontact.sweep.statistics import summarise, weighted_percentile
+
+BASE = read_table(CASES / "spur_crowned_20_60.toml")
+SLOPE = {"field": "misalignment.slope", "distribution": "uniform", "low": "0",
+         "high": "0.001"}
+CENTRE = {"field": "pinion.crown.center", "distribution": "uniform", "low": "-2 mm",
+          "high": "2 mm"}
+
+
+def sweep(**fields):
+    return SweepSpec.model_validate({"kind": "sweep", "base": "spur_crowned_20_60", **fields})
+
+
+def test_a_load_spectrum_is_the_first_grid_axis_and_its_samples_share_the_time():
+    """Three levels × 4 draws: the levels slowest, each sample's time share its level's
+    share over the draws, the shares summing to 1."""
+    spec = sweep(samples=4, tolerance=[SLOPE],
+                 spectrum={"field": "load.tangential_load",
+                           "levels": ["2000 N", "4000 N", "8000 N"], "shares": [0.5, 0.3, 0.2]})
+    samples = plan(spec, BASE)
+    assert [s.inputs["load.tangential_load"] for s in samples[::4]] == ["2000 N", "4000 N",
+                                                                         "8000 N"]
+    assert [s.time_share for s in samples[::4]] == [0.125, 0.075, 0.05]
+    assert math.fsum(s.time_share for s in samples) == pytest.approx(1.0, abs=1e-12)
+
+
+@pytest.mark.parametrize("fields, says", [
+    ({"spectrum": {"field": "load.torque", "levels": ["1 N*m", "2 N*m"], "shares": [1.0]}},
+     "1 shares for 2 levels"),
+    ({"spectrum": {"field": "load.torque", "levels": ["1 N*m", "2 N*m"],
+                   "shares": [0.5, 0.6]}}, "sum to 1"),
+    ({"sampling": "saltelli", "tolerance": [SLOPE]}, "two or more"),
+    ({"tolerance": [SLOPE], "optimise": {"objective": "P97 bem_max_p_max_MPa",
+                                         "variable": [{"field": "pinion.crown.radius",
+                                                       "low": "2 m", "high": "8 m"}]}},
+     "not a statistic"),
+    ({"tolerance": [SLOPE], "optimise": {
+        "objective": "P95 bem_max_p_max_MPa", "variable": [
+            {"field": "misalignment.slope", "low": "0", "high": "0.001"}]}}, "twice"),
+])
+def test_a_bad_spectrum_sampling_or_optimisation_is_refused_naming_it(tmp_path, fields, says):
+    import tomli_w
+
+    path = tmp_path / "sweep.toml"
+    path.write_text(tomli_w.dumps({"kind": "sweep", "base": "spur_crowned_20_60", **fields}))
+    with pytest.raises(CaseError, match=says):
+        load_sweep(path)
+
+
+def test_saltellis_design_has_n_times_inputs_plus_two_draws_at_each_grid_point():
+    spec = sweep(samples=8, sampling="saltelli", tolerance=[SLOPE, CENTRE],
+                 vary=[{"field": "load.tangential_load", "values": ["4000 N", "8000 N"]}])
+    samples = plan(spec, BASE)
+    assert len(samples) == 2 * 8 * (2 + 2)
+    first = [s.inputs["misalignment.slope"] for s in samples[:32]]
+    assert first == [s.inputs["misalignment.slope"] for s in samples[32:]]
+
+
+def rows_of(inputs: np.ndarray, y: np.ndarray, fields: list[str], **extra) -> list[dict]:
+    return [{"sample": k, "status": "ok", **{f"input:{f}": float(x) for f, x in
+                                              zip(fields, point)}, "figure": float(v), **extra}
+            for k, (point, v) in enumerate(zip(inputs, y))]
+
+
+def test_sobol_indices_of_a_linear_model_match_the_closed_form():
+    """y = 3 x1 + x2 on the unit square (Saltelli's design, 1024 base points): S1 = ST =
+    9/10 and 1/10 (independent inputs, no interaction), within 0.03."""
+    fields = ["a", "b"]
+    x = saltelli_design(1024, 2, seed=1)
+    stats = summarise(rows_of(x, 3 * x[:, 0] + x[:, 1], fields), fields, saltelli=True)
+    for field, share in zip(fields, (0.9, 0.1)):
+        index = stats["sobol"]["indices"][field]["figure"]
+        assert index["S1"] == pytest.approx(share, abs=0.03)
+        assert index["ST"] == pytest.approx(share, abs=0.03)
+
+
+def test_time_weighted_statistics_equal_repeated_draws():
+    """Weights 3:1 on two load levels give the percentiles of the values repeated 3:1, and
+    the time share edge-loaded is the weighted share."""
+    values = np.arange(20.0)
+    weights = np.where(values < 10, 0.075, 0.025)           # 10 draws per level: sum 1
+    repeated = np.concatenate([np.repeat(values[:10], 3), values[10:]])
+    for q in (5, 50, 95, 99):
+        assert weighted_percentile(values, weights, q) == np.percentile(
+            repeated, q, method="inverted_cdf")
+    rows = [{"sample": k, "status": "ok", "figure": v, "time_share": w,
+             "end_loaded_contacts": float(v >= 15)} for k, (v, w) in
+            enumerate(zip(values, weights))]
+    stats = summarise(rows, [])
+    assert stats["time_weighted"]["end_loading"]["time_share"] == pytest.approx(5 * 0.025)
+    assert stats["end_loading"]["probability"] == pytest.approx(5 / 20)
+
+
+def test_the_optimiser_finds_a_constrained_optimum(tmp_path):
+    """A smooth model of a crown radius r (mm): objective (r - 6000)², constraint
+    r/8000 <= 0.5: the optimum r = 4000 within 1 %, feasible, every design in the history
+    and the design's text in the unit of `low`."""
+    spec = Optimise.model_validate({
+        "objective": "P95 figure", "evaluations": 40,
+        "variable": [{"field": "pinion.crown.radius", "low": "2 m", "high": "8000 mm"}],
+        "constraint": [{"statistic": "P50 ratio", "max": 0.5}]})
+
+    def evaluate(design, folder):
+        r = float(design["pinion.crown.radius"].split()[0]) * 1000.0      # given in m
+        stats = {"ok": 1, "failed": 0, "percentiles": {"figure": {"P95": (r - 6000) ** 2},
+                                                       "ratio": {"P50": r / 8000}}}
+        return stats, [{"status": "ok"}]
+
+    out = optimiser.optimise(spec, evaluate, tmp_path)
+    best = out["best"]
+    assert best["feasible"] and best["design"]["pinion.crown.radius"].endswith(" m")
+    assert float(best["design"]["pinion.crown.radius"].split()[0]) == pytest.approx(4.0,
+                                                                                     rel=0.01)
+    assert out["evaluations"] == len(out["history"]) <= 40
+
+
+def test_an_objective_naming_a_figure_the_samples_lack_is_refused():
+    stats = {"ok": 1, "failed": 0, "percentiles": {"bem_max_p_max_MPa": {"P95": 1.0}}}
+    with pytest.raises(CaseError, match="'bem_max_p_mx_MPa' is not a figure.*bem_max_p_max"):
+        optimiser.statistic("P95 bem_max_p_mx_MPa", stats, [{"status": "ok"}], "optimise")
+
+
+def grid_rows():
+    """A synthetic crown × slope × load × relief grid: the pressure rises with slope and
+    falls with crown, end-loaded where slope > crown/4000 mrad; TE falls with relief."""
+    rows, k = [], 0
+    for crown in (2000.0, 4000.0, 6000.0):
+        for slope in (0.0, 0.0005, 0.001):
+            for load in (4000.0, 8000.0):
+                for relief in (0.0, 0.02):
+                    rows.append({
+                        "sample": k, "status": "ok", "input:pinion.crown.radius": crown,
+                        "input:misalignment.slope": slope, "input:load.tangential_load": load,
+                        "input:pinion.tip_relief.amount": relief,
+                        "bem_max_p_max_MPa": 1000 + 1e6 * slope - 0.05 * crown,
+                        "loaded_transmission_error_peak_to_peak_urad": 50 + load / 100
+                        - 1000 * relief, "end_loaded_contacts": float(slope * 4e6 > crown)})
+                    k += 1
+    return rows
+
+
+def test_the_figures_and_report_of_a_grid_sweep(tmp_path):
+    """From the table and statistics alone: the robustness map, the Harris map, the
+    response and the optimisation; the report names the key results and embeds each."""
+    from toothcontact import plots, report
+
+    rows = grid_rows()
+    fields = ["pinion.crown.radius", "misalignment.slope", "load.tangential_load",
+              "pinion.tip_relief.amount"]
+    stats = {"sweep": "grid.toml", "title": "grid", "base": "base.toml", "seed": 0,
+             "sampling": "latin_hypercube", "inputs": [], "grid": fields,
+             **summarise(rows, [], fields)}
+    stats["optimise"] = {"objective": "P95 bem_max_p_max_MPa", "constraints": [
+        {"statistic": "end_loading", "max": 0.05}], "variables": [
+        {"field": "pinion.crown.radius", "low": "2 m", "high": "8 m"}],
+        "method": "COBYQA", "message": "done", "evaluations": 2, "feasible_found": True,
+        "history": [{"evaluation": i, "design": {"pinion.crown.radius": f"{r} m"},
+                     "objective": o, "constraints": [c], "feasible": c <= 0.05}
+                    for i, (r, o, c) in enumerate([(5.0, 900.0, 0.0), (6.5, 850.0, 0.2)])]}
+    stats["optimise"]["best"] = stats["optimise"]["history"][0]
+    figures = plots.sweep_figures(rows, stats, tmp_path)
+    names = [p.name for p in figures]
+    assert names == ["histograms.png", "response.png", "map.png", "harris.png",
+                     "optimisation.png"]
+    assert all(p.read_bytes()[:8] == b"\x89PNG\r\n\x1a\n" for p in figures)
+    page = report.write_sweep_report(tmp_path, stats, figures).read_text()
+    assert "probability of loading at a face end" in page and "optimum" in page
+    assert page.count("data:image/png;base64,") == len(figures)
+    json.dumps(stats, allow_nan=False)
+
+
+def test_the_bundled_sweeps_are_valid_sweeps():
+    """Every sweep in cases/sweeps plans into valid cases; the crown study has a spectrum,
+    tolerances and an optimisation."""
+    found = sorted((CASES / "sweeps").glob("*.toml"))
+    assert len(found) >= 3
+    for path in found:
+        spec, raw, where = load_sweep(path)
+        assert plan(spec, raw, where.parent)
+    spec, _, _ = load_sweep(CASES / "sweeps" / "spur_crown_tolerance.toml")
+    assert spec.spectrum and spec.tolerance and spec.optimise
