@@ -8,6 +8,7 @@ problem becomes one `CaseError` whose message names the field, the value and wha
 from __future__ import annotations
 
 import math
+import os
 import tomllib
 from pathlib import Path
 from typing import Annotated, Any, Literal
@@ -755,7 +756,7 @@ def load_sweep(path: str | Path):
         spec = SweepSpec.model_validate(raw)
     except ValidationError as exc:
         raise CaseError(f"{path}: {_describe(exc, SweepSpec)}") from None
-    relative = path.parent / spec.base
+    relative = Path(os.path.normpath(path.parent / spec.base))
     base_path = relative if relative.is_file() else case_path(spec.base)
     _, base = load_case(base_path)
     return spec, base, base_path

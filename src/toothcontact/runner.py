@@ -187,7 +187,8 @@ def run_sweep(path: str | Path, out_dir: str | Path | None = None, *,
     with sweep_run.Workers(scheduler, workers) as pool:
         rows, summary = sweep_into(samples, out, positions)
         stats = {"sweep": str(path), "title": spec.title or path.stem, "base": str(base_path),
-                 "seed": spec.seed, "sampling": spec.sampling, "inputs": inputs, "grid": grid,
+                 "seed": spec.seed, "sampling": spec.sampling if inputs else "none (a grid)",
+                 "inputs": inputs, "grid": grid,
                  **({"spectrum": spec.spectrum.model_dump()} if spec.spectrum else {}),
                  **summary}
         if spec.optimise is not None:

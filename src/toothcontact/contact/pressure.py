@@ -120,14 +120,16 @@ class InfluenceOperator:
         # with a large prime factor, 2·964 = 8·241, transforms 4-5 times slower); the
         # kernel is laid out on it as for a grid of half its size
         # the real transform runs along the longer axis (on the grid's short rows only),
-        # the complex one along the shorter: 20-40 % faster on a long contact's grid
+        # the complex one along the shorter: 20-40 % faster on a long contact's grid; on one
+        # thread (scipy's default): these transforms are too small for threads to pay (the
+        # bundled spur case 3.85 s single-threaded, 4.64 s on both cores)
         self._real_axis = 0 if n0 >= n1 else 1
         self.padded = tuple(_even_fast_length(2 * n, axis == self._real_axis)
                             for axis, n in enumerate((n0, n1)))
         self.kernel = self.coefficients(self.padded[0] // 2, self.padded[1] // 2, self.dx,
                                         self.dy, reference, E_star)
         self._spectrum = {np.float64: np.ascontiguousarray(sfft.rfftn(
-            self.kernel, axes=(1 - self._real_axis, self._real_axis), workers=-1).real)}
+            self.kernel, axes=(1 - self._real_axis, self._real_axis)).real)}
         # the circulant's spectrum is positive for this kernel; the guard only keeps the
         # preconditioner finite
         spectrum = self._spectrum[np.float64]
@@ -165,12 +167,12 @@ class InfluenceOperator:
     def _convolve(self, p, spectrum, dtype) -> np.ndarray:
         n0, n1 = self.shape
         real, other = self._real_axis, 1 - self._real_axis
-        P = sfft.rfft(np.asarray(p, dtype=dtype), n=self.padded[real], axis=real, workers=-1)
-        P = sfft.fft(P, n=self.padded[other], axis=other, workers=-1, overwrite_x=True)
+        P = sfft.rfft(np.asarray(p, dtype=dtype), n=self.padded[real], axis=real)
+        P = sfft.fft(P, n=self.padded[other], axis=other, overwrite_x=True)
         P *= spectrum
-        U = sfft.ifft(P, axis=other, workers=-1, overwrite_x=True)
+        U = sfft.ifft(P, axis=other, overwrite_x=True)
         U = U[:n0] if other == 0 else U[:, :n1]
-        return sfft.irfft(U, n=self.padded[real], axis=real, workers=-1)[:n0, :n1]
+        return sfft.irfft(U, n=self.padded[real], axis=real)[:n0, :n1]
 
     def __call__(self, p: np.ndarray, single: bool = False) -> np.ndarray:
         """Displacement (mm, for E* = 1 MPa) under the pressure p (MPa) on the grid; single:

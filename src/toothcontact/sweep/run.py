@@ -1,6 +1,6 @@
 """A sweep's samples analysed on Dask (dask.distributed): a LocalCluster sized to the
-machine by default, or an existing cluster at a scheduler address (Workers); one task per sample,
-retried where a worker dies. Each finished sample is checkpointed at once (sweep.store), so
+machine by default, or an existing cluster at a scheduler address (Workers); one task per
+sample, retried where a worker dies. Each finished sample is checkpointed at once (sweep.store), so
 a killed sweep resumed skips what is done; the table is ordered by sample number, the same
 whatever the workers and the order they finish in."""
 

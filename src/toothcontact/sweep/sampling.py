@@ -1,12 +1,12 @@
-"""The samples of a sweep: every grid point of the `[[vary]]` axes (their product, the
-first axis slowest) times `samples` draws of the `[[tolerance]]` inputs (the same draws at
-every grid point: common random numbers, so grid points differ by the grid alone). Draws
-are points of the unit cube from scipy.stats.qmc (Latin hypercube, scrambled Sobol) or
-numpy's generator, or Saltelli's design for Sobol indices (SALib: `samples` base points,
-samples × (inputs + 2) draws), seeded by the sweep's seed, mapped through each
-distribution's inverse CDF; the same seed gives the same samples on any machine. With a
-load spectrum each sample stands for its level's time share over the draws. Each sample is the base case's
-table with the fields set (values as text with the unit they were given in) and is
+"""The samples of a sweep: every grid point of the `[[vary]]` axes (their product, the first
+axis slowest) times `samples` draws of the `[[tolerance]]` inputs (the same draws at every
+grid point: common random numbers, so grid points differ by the grid alone). Draws are
+points of the unit cube from scipy.stats.qmc (Latin hypercube, scrambled Sobol) or numpy's
+generator, or Saltelli's design for Sobol indices (SALib: `samples` base points, samples ×
+(inputs + 2) draws), seeded by the sweep's seed, mapped through each distribution's
+inverse CDF; the same seed gives the same samples on any machine. With a load spectrum
+each sample stands for its level's time share over the draws. Each sample is the base
+case's table with the fields set (values as text with the unit they were given in) and is
 validated as a case before anything runs."""
 
 from __future__ import annotations

@@ -4,9 +4,9 @@ in `steps`) and `[[tolerance]]` distributions (normal by `mean` and `std` or a Â
 uniform or triangular by `low`, `high` and `mode`), drawn `samples` times per grid point
 with `seed` by `sampling` (random, Latin hypercube or scrambled Sobol, scipy.stats.qmc; or
 Saltelli's design for Sobol indices, SALib); a `[spectrum]` of load levels with time
-shares; `set` fields fixed in every sample; an `[optimise]` table of design variables sized over the tolerance samples.
-Every quantity is text with a unit, as in a case. Validation errors are CaseErrors naming
-the field."""
+shares; `set` fields fixed in every sample; an `[optimise]` table of design variables
+sized over the tolerance samples. Every quantity is text with a unit, as in a case.
+Validation errors are CaseErrors naming the field."""
 
 from __future__ import annotations
 
@@ -119,9 +119,10 @@ class Constraint(Model):
 
 class Optimise(Model):
     """Design variables sized over the sweep's samples: minimise `objective` (a statistic
-    over the samples: 'P5|P50|P95|P99|mean FIGURE' or 'edge_loading', the probability of
-    edge loading, 'end_loading' at a face end) subject to each constraint, by scipy.optimize (COBYQA) from the middle of
-    the bounds, in at most `evaluations` sweeps."""
+    over the samples: 'P5|P50|P95|P99|mean FIGURE', or 'edge_loading', the probability of
+    edge loading, 'end_loading' at a face end) subject to each constraint, by
+    scipy.optimize (COBYQA) from the middle of the bounds, in at most `evaluations`
+    sweeps."""
 
     variables: list[DesignVariable] = Field(min_length=1, alias="variable")
     objective: str

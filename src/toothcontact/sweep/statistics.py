@@ -1,11 +1,15 @@
 """What a sweep's table says: per output figure its percentiles over the samples that
 answered (P5, P50, P95, P99), the probability of edge loading with its Wilson score
-interval (95 %) (at any flank edge, and at a face end), and for each toleranced input its Spearman rank correlation with each
-figure (the sensitivity ranking: a monotone influence, whatever its shape), taken within
-each grid point (where the grid holds the other inputs still: the draws are the same at
-every point) and averaged over the grid points; with Saltelli's design also each input's
-first and total Sobol indices (SALib), likewise per grid point and averaged. Under a load
-spectrum the same figures weighted by each sample's share of the operating time."""
+interval (95 %) (at any flank edge, and at a face end), and for each toleranced input its
+Spearman rank correlation with each figure (the sensitivity ranking: a monotone influence,
+whatever its shape), taken within each grid point (where the grid holds the other inputs
+still: the draws are the same at every point) and averaged over the grid points; with
+Saltelli's design also each input's first and total Sobol indices (SALib.analyze.sobol:
+Saltelli et al., Comput. Phys. Commun. 181 (2010) 259-270, table 2, estimators (b) for S1
+and (f), Jansen's, for ST), likewise per grid point and averaged. Under a load spectrum
+the same figures weighted by each sample's share of the operating time. Per grid point,
+and per level of each numeric grid axis, P5/P50/P95 of each figure and the fractions of
+samples edge- and end-loaded (the response curves and maps draw these)."""
 
 from __future__ import annotations
 
