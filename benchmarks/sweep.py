@@ -126,28 +126,11 @@ def scaling(samples: int, folder: Path) -> dict:
 
 
 def killed_worker(samples: int, folder: Path) -> dict:
-    from distributed import Client
-
     from toothcontact import runner
+    from toothcontact.sweep.run import separate_processes
 
-    dask = os.path.join(os.path.dirname(sys.executable), "dask")
-    address = folder / "scheduler.json"
-    quiet = {"stdout": subprocess.DEVNULL, "stderr": subprocess.DEVNULL}
-    scheduler = subprocess.Popen([dask, "scheduler", "--scheduler-file", str(address),
-                                  "--port", "0", "--no-dashboard"], **quiet)
-    workers = []
-    try:
-        for _ in range(300):
-            if address.is_file():
-                break
-            time.sleep(0.1)
-        workers = [subprocess.Popen([dask, "worker", "--scheduler-file", str(address),
-                                     "--nthreads", "1", "--no-nanny", "--no-dashboard"],
-                                    **quiet) for _ in range(2)]
-        with Client(scheduler_file=str(address)) as client:
-            client.wait_for_workers(2, timeout=60)
-            where = client.scheduler.address
-        path = sweep_file(folder, samples)
+    path = sweep_file(folder, samples)
+    with separate_processes(folder) as (where, workers):
         killed = []
 
         def kill_one(record):
@@ -160,10 +143,6 @@ def killed_worker(samples: int, folder: Path) -> dict:
                                       on_done=kill_one)
         wall = time.perf_counter() - start
         remote = table(written)
-    finally:
-        for process in [*workers, scheduler]:
-            process.kill()
-            process.wait(timeout=30)
     _, local = runner.run_sweep(path, folder / "local", workers=2)
     return {"samples": samples, "wall_s": wall, "killed_after_sample": killed[0],
             "answered": sum(r["status"] == "ok" for r in remote),

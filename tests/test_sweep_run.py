@@ -119,31 +119,11 @@ def test_a_sweep_on_a_separate_scheduler_survives_a_killed_worker(tmp_path):
     """A Dask scheduler and two workers started as separate processes (`dask scheduler`,
     `dask worker --no-nanny`); one worker is killed once the first sample is in: the sweep
     still completes, every sample answered, the table the same as a local run's."""
-    import os
     import signal
-    import subprocess
-    import sys
-    import time
 
-    from distributed import Client
+    from toothcontact.sweep.run import separate_processes
 
-    dask = os.path.join(os.path.dirname(sys.executable), "dask")
-    address = tmp_path / "scheduler.json"
-    quiet = {"stdout": subprocess.DEVNULL, "stderr": subprocess.DEVNULL}
-    scheduler = subprocess.Popen([dask, "scheduler", "--scheduler-file", str(address),
-                                  "--port", "0", "--no-dashboard"], **quiet)
-    workers = []
-    try:
-        for _ in range(200):
-            if address.is_file():
-                break
-            time.sleep(0.1)
-        workers = [subprocess.Popen([dask, "worker", "--scheduler-file", str(address),
-                                     "--nthreads", "1", "--no-nanny", "--no-dashboard"],
-                                    **quiet) for _ in range(2)]
-        with Client(scheduler_file=str(address)) as client:
-            client.wait_for_workers(2, timeout=60)
-            where = client.scheduler.address
+    with separate_processes(tmp_path) as (where, workers):
         path = write_sweep(tmp_path, samples=6)
         killed = []
 
@@ -155,15 +135,11 @@ def test_a_sweep_on_a_separate_scheduler_survives_a_killed_worker(tmp_path):
         _, written = runner.run_sweep(path, tmp_path / "out", scheduler=where,
                                       on_done=kill_one)
         assert killed and workers[0].wait(timeout=30) == -signal.SIGKILL
-        table = pq.read_table(written[0]).to_pylist()
-        assert [r["sample"] for r in table] == list(range(6))
-        assert all(r["status"] == "ok" for r in table)
-        _, local = runner.run_sweep(path, tmp_path / "local", workers=1)
-        assert table == pq.read_table(local[0]).to_pylist()
-    finally:
-        for process in [*workers, scheduler]:
-            process.kill()
-            process.wait(timeout=30)
+    table = pq.read_table(written[0]).to_pylist()
+    assert [r["sample"] for r in table] == list(range(6))
+    assert all(r["status"] == "ok" for r in table)
+    _, local = runner.run_sweep(path, tmp_path / "local", workers=1)
+    assert table == pq.read_table(local[0]).to_pylist()
 
 
 def test_the_sensitivity_is_taken_within_each_grid_point():

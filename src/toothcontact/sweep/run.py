@@ -6,8 +6,12 @@ whatever the workers and the order they finish in."""
 
 from __future__ import annotations
 
+import contextlib
 import math
 import os
+import subprocess
+import sys
+import time
 from collections.abc import Callable
 from pathlib import Path
 
@@ -126,3 +130,35 @@ def run(samples: list[Sample], folder: Path | None, out: Path, workers: Workers,
             if on_done is not None:
                 on_done(record)
     return store.records(out, [s.sample for s in samples])
+
+
+@contextlib.contextmanager
+def separate_processes(folder: Path, workers: int = 2):
+    """A Dask scheduler and `workers` one-thread workers started as separate processes on
+    this machine (`dask scheduler`, `dask worker --no-nanny`), as a deployment runs them:
+    yields the scheduler's address and the worker processes (to kill one, say); all are
+    killed on exit. `folder` holds the scheduler file."""
+    from distributed import Client
+
+    dask = os.path.join(os.path.dirname(sys.executable), "dask")
+    address = Path(folder) / "scheduler.json"
+    quiet = {"stdout": subprocess.DEVNULL, "stderr": subprocess.DEVNULL}
+    scheduler = subprocess.Popen([dask, "scheduler", "--scheduler-file", str(address),
+                                  "--port", "0", "--no-dashboard"], **quiet)
+    started = []
+    try:
+        for _ in range(300):
+            if address.is_file():
+                break
+            time.sleep(0.1)
+        started = [subprocess.Popen([dask, "worker", "--scheduler-file", str(address),
+                                     "--nthreads", "1", "--no-nanny", "--no-dashboard"],
+                                    **quiet) for _ in range(workers)]
+        with Client(scheduler_file=str(address)) as client:
+            client.wait_for_workers(workers, timeout=60)
+            where = client.scheduler.address
+        yield where, started
+    finally:
+        for process in [*started, scheduler]:
+            process.kill()
+            process.wait(timeout=30)
