@@ -197,3 +197,19 @@ def test_the_bundled_sweeps_are_valid_sweeps():
         assert plan(spec, raw, where.parent)
     spec, _, _ = load_sweep(CASES / "sweeps" / "spur_crown_tolerance.toml")
     assert spec.spectrum and spec.tolerance and spec.optimise
+
+
+def test_an_optimisation_bound_that_is_no_case_is_refused_before_anything_runs(tmp_path):
+    """A design variable's low bound that no case takes (a negative crown radius): refused
+    at once, naming the field and the value, with no output written."""
+    from toothcontact import runner
+
+    path = tmp_path / "sweep.toml"
+    path.write_text('kind = "sweep"\nbase = "spur_crowned_20_60"\n[[tolerance]]\n'
+                    'field = "misalignment.slope"\ndistribution = "uniform"\nlow = "0"\n'
+                    'high = "0.001"\n[optimise]\nobjective = "P95 max_p_max_MPa"\n'
+                    '[[optimise.variable]]\nfield = "pinion.crown.radius"\nlow = "-5 mm"\n'
+                    'high = "8000 mm"\n')
+    with pytest.raises(CaseError, match=r"pinion\.crown\.radius.*-5\.0 mm"):
+        runner.run_sweep(path, tmp_path / "out")
+    assert not (tmp_path / "out").exists()

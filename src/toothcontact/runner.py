@@ -8,6 +8,8 @@ from collections.abc import Callable
 from dataclasses import dataclass
 from pathlib import Path
 
+import numpy as np
+
 from . import analyses, case as schema, report
 
 _HERE = Path(__file__).resolve().parent
@@ -157,12 +159,17 @@ def run_sweep(path: str | Path, out_dir: str | Path | None = None, *,
     import shutil
 
     from .sweep import run as sweep_run, statistics, store
-    from .sweep.optimise import optimise
+    from .sweep.optimise import designs, optimise
     from .sweep.sampling import plan
 
     path = sweep_path(path)
     spec, base, base_path = schema.load_sweep(path)
     samples = plan(spec, base, base_path.parent, source=str(path))
+    if spec.optimise is not None:          # the bounds' corners are cases too, checked now
+        design_of = designs(spec.optimise, f"{path}: optimise")
+        for corner in (0.0, 1.0):
+            plan(spec, base, base_path.parent, source=f"{path}: optimise",
+                 design=design_of(np.full(len(spec.optimise.variables), corner)))
     total = [len(samples)]
     if planned is not None:
         planned(total[0])

@@ -60,14 +60,10 @@ def design_key(design: dict) -> str:
     return "design_" + hashlib.sha1(text.encode()).hexdigest()[:12]
 
 
-def optimise(spec: Optimise, evaluate: Callable[[dict, Path], tuple[dict, list[dict]]],
-             out: Path, where: str = "optimise") -> dict:
-    """Solve the optimisation: `evaluate(design, folder)` runs the sweep with the design's
-    fields set (field -> text with unit) into `folder` and returns its statistics and
-    records. Returns the history (every design tried, its objective and constraints) and
-    the best feasible design (else the least infeasible)."""
-    from scipy.optimize import NonlinearConstraint, minimize
-
+def designs(spec: Optimise, where: str = "optimise") -> Callable[[np.ndarray], dict]:
+    """The design at a point of the unit cube (each variable scaled to [0, 1] between its
+    bounds): field -> text in the unit of its `low`. A CaseError names a bound that is no
+    number with a unit, or a `high` not above `low`."""
     from .. import units
     from .sampling import as_text, in_unit, quantity
 
@@ -80,12 +76,25 @@ def optimise(spec: Optimise, evaluate: Callable[[dict, Path], tuple[dict, list[d
             raise CaseError(f"{where}.variable[{i}]: high ({v.high!r}) must exceed low "
                             f"({v.low!r})")
         bounds.append((float(low.magnitude), high, low.units))
-    history: list[dict] = []
-    seen: dict[tuple, dict] = {}
 
     def design_of(x) -> dict:
         return {v.field: as_text(lo + float(np.clip(t, 0, 1)) * (hi - lo), unit)
                 for v, t, (lo, hi, unit) in zip(spec.variables, x, bounds)}
+
+    return design_of
+
+
+def optimise(spec: Optimise, evaluate: Callable[[dict, Path], tuple[dict, list[dict]]],
+             out: Path, where: str = "optimise") -> dict:
+    """Solve the optimisation: `evaluate(design, folder)` runs the sweep with the design's
+    fields set (field -> text with unit) into `folder` and returns its statistics and
+    records. Returns the history (every design tried, its objective and constraints) and
+    the best feasible design (else the least infeasible)."""
+    from scipy.optimize import NonlinearConstraint, minimize
+
+    design_of = designs(spec, where)
+    history: list[dict] = []
+    seen: dict[tuple, dict] = {}
 
     def evaluated(x) -> dict:
         key = tuple(np.round(np.clip(x, 0, 1), 12))
