@@ -80,7 +80,6 @@ def test_small_worm_diameter_factor_seed_case():
 @pytest.mark.parametrize("raw,field", [
     (worm_case("ZA", 1, 25.0, 40, 2.0), "worm.lead_angle"),  # d1 inside the thread depth
     (worm_case("ZI", 2, 10.0, 40, 2.0, hob_pitch_diameter="20 mm"), "wheel.hob_pitch_diameter"),
-    (worm_case("ZI", 1, 5.0, 40, 2.0, length=8.0), "worm.length"),
     (worm_case("ZA", 1, 5.0, 40, 2.0, face_width="40 mm"), "wheel.face_width"),
 ])
 def test_impossible_designs_name_the_field(raw, field):
@@ -88,3 +87,40 @@ def test_impossible_designs_name_the_field(raw, field):
     field, never in an internal error."""
     with pytest.raises(CaseError, match=field.replace(".", r"\.")):
         analyse(parse_case(raw))
+
+
+def test_margins_beyond_two_edges_at_once_stay_the_size_of_the_ellipse():
+    """A 2-start ZA worm (m 2 mm, 18.6°, 60 mm long) on a 60-tooth wheel: at roll 0 one
+    ellipse runs past the wheel's face end and root at once, where the wheel's surface
+    continued beyond both edges is no flank (its speed grows without bound). Its margins
+    were -107 mm (a wheel tooth 4.5 mm deep); measured from the flank's nearest line, at
+    the edge's speed beyond it, every margin of every contact is now no more negative than
+    the contact's own length across the pattern (2 × the rigid semi-axis)."""
+    raw = {**worm_case("ZA", 2, 18.6, 60, 2.0, length=60.0),
+           "wheel_material": {"E": "98 GPa", "nu": 0.35}, "load": {"output_torque": "49 N*m"}}
+    rows = analyse(parse_case(raw)).sections["positions"]
+    for r in rows:
+        reach = 2.0 * max(r["rigid_a_mm"] or 0.0, r["a_mm"] or 0.0)
+        assert all(m >= -reach for m in r["edge_margins_mm"].values()), (r["roll_deg"], r["pair"])
+
+
+def test_a_worm_shorter_than_the_wheels_generating_zone_is_cut_by_a_longer_hob():
+    """The hob is a tool of its own: where the worm is shorter than the zone that generates
+    the wheel's face, the hob (the worm's thread) is lengthened to cover it, 5 % over, and
+    the wheel it cuts is the very wheel a long worm cuts as its own hob (the envelope
+    depends on the thread, not the hob's length): the same points to 1e-9 mm. An 8 mm
+    worm (one lead of 6.3 mm and a little) then meshes over its own length: its end
+    carries the load, and the analysis says so instead of refusing the design."""
+    short, long = (gearset.worm_set(parse_case(worm_case("ZI", 1, 5.0, 40, 2.0, length=n)))
+                   for n in (8.0, 60.0))
+    for side in ("left", "right"):
+        cut, reference = short.wheel[side], long.wheel[side]
+        low, high = cut.generating_zone
+        assert cut.hob.length == pytest.approx(1.05 * 2 * max(-low, high), rel=1e-9)
+        assert cut.hob.length > 8.0 and reference.hob is long.worm[side]
+        u, v = cut.grid(9, 9)
+        assert np.abs(cut.evaluate(u, v).points - reference.evaluate(u, v).points).max() < 1e-9
+    raw = {**worm_case("ZI", 1, 5.0, 40, 2.0, length=8.0), "load": {"output_torque": "20 N*m"}}
+    summary = analyse(parse_case(raw)).sections["summary"]
+    assert summary["worst_face_edge"].startswith("worm_end")
+    assert summary["worst_face_edge_margin_mm"] < 0 and summary["edge_loaded_contacts"] > 0

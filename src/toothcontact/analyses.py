@@ -992,6 +992,7 @@ def worm_geometry_case(case: schema.WormCase) -> Result:
         "worm": section,
         "hob": {"pitch_diameter_mm": hob.pitch_diameter,
                 "oversized": hob.pitch_diameter != worm.pitch_diameter,
+                "length_mm": hob.length,
                 "lead_angle_deg": math.degrees(hob.lead_angle),
                 "crossing_angle_deg": math.degrees(wheel.crossing_angle),
                 "generating_center_distance_mm": wheel.generating_centre_distance},

@@ -463,6 +463,15 @@ class WormSet:
     wheel: dict[str, WormWheelFlank]
 
 
+#: a hob lengthened to cut the whole wheel face is this much longer than its generating zone
+HOB_LENGTH_MARGIN = 1.05
+
+
+def _wheel(hob, w, worm) -> WormWheelFlank:
+    return WormWheelFlank(hob, w.teeth, worm=worm, profile_shift=w.profile_shift,
+                          face_width=w.face_width, align_hob_thread=w.align_hob_thread)
+
+
 def worm_set(case: WormCase) -> WormSet:
     """The worm of a case and its wheel, enveloped by the hob (the worm itself or an
     oversized hob with the worm's axial module, hence its lead)."""
@@ -475,21 +484,23 @@ def worm_set(case: WormCase) -> WormSet:
     w = case.wheel
     hob_d1 = w.hob_pitch_diameter or d1
     extra = 4.0 * math.pi * mx * spec.starts  # an oversized hob is this much longer
-    hob_common = {**common, "length": spec.length + extra}
     wheel = {}
     for side in ("left", "right"):
         hob = worm[side] if hob_d1 == d1 else WormFlank(
-            axial_module=mx, pitch_diameter=hob_d1, side=side, **hob_common)
+            axial_module=mx, pitch_diameter=hob_d1, side=side,
+            **{**common, "length": spec.length + extra})
         try:
-            wheel[side] = WormWheelFlank(hob, w.teeth, worm=worm[side],
-                                         profile_shift=w.profile_shift, face_width=w.face_width,
-                                         align_hob_thread=w.align_hob_thread)
+            try:
+                wheel[side] = _wheel(hob, w, worm[side])
+            except BlankError as exc:
+                if exc.parameter != "hob_length":
+                    raise
+                # a hob is a tool of its own: as long as the wheel's face needs, even where
+                # the worm it copies is shorter (the worm then meshes over its own length)
+                longer = WormFlank(axial_module=mx, pitch_diameter=hob_d1, side=side,
+                                   **{**common, "length": HOB_LENGTH_MARGIN * exc.needed})
+                wheel[side] = _wheel(longer, w, worm[side])
         except BlankError as exc:
-            if exc.parameter == "hob_length":
-                needed = exc.needed - (0.0 if hob is worm[side] else extra)
-                raise ValueError(f"worm.length: {spec.length:.4g} mm is too short for the hob "
-                                 f"that cuts the wheel ({exc}): give at least "
-                                 f"{math.ceil(needed * 10) / 10:.4g} mm") from None
             given = "" if w.face_width is not None else " (the default)"
             raise ValueError(f"wheel.face_width{given}: {exc}") from None
     return WormSet(worm, wheel)

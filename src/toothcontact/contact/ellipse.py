@@ -65,23 +65,35 @@ def edge_margins(flank: Flank, frames: Frame, planes: TangentPlanes, a: np.ndarr
 _NODES, _WEIGHTS = np.polynomial.legendre.leggauss(6)
 
 
+#: beyond its edges a surface continued stands in for the flank where its speed stays
+#: within this factor of the edge's (an involute past its tip); elsewhere (a generated
+#: wheel past its face end and root, where the continuation grows without bound) the
+#: edge's speed does
+CONTINUATION_SPEED = 2.0
+
+
 def arc_to_edge(flank: Flank, name: str, start: np.ndarray, end: float, other: np.ndarray) -> np.ndarray:
     """Signed length (mm) along the flank's `name` ("u" or "v") parameter line from `start`
-    to the edge at `end`, the other parameter held at `other`: the integral of the line's
-    speed, by 6-point Gauss-Legendre (the speed is smooth; an involute's is linear in its
-    roll angle). Where the surface does not exist on part of the line (beyond a hob's
-    reach), the speed at the edge's side of the domain stands in for it."""
-    mid, half = 0.5 * (start + end), 0.5 * (end - start)
-    t = mid[..., None] + half[..., None] * _NODES
-    fixed = np.broadcast_to(other[..., None], t.shape)
+    to the edge at `end`, the other parameter held at `other` (clamped to the flank's
+    domain: a point beyond two edges at once is measured from the flank's nearest line):
+    the integral of the line's speed, by 6-point Gauss-Legendre (the speed is smooth; an
+    involute's is linear in its roll angle). Past the edge the surface continued stands in
+    (see CONTINUATION_SPEED); where the surface does not exist on part of the line (beyond
+    a hob's reach), the speed at the edge's side of the domain stands in for it."""
     (u0, u1), (v0, v1) = flank.domain
     low, high = (u0, u1) if name == "u" else (v0, v1)
+    other = np.clip(other, *((v0, v1) if name == "u" else (u0, u1)))
+
+    def speed_at(s, o):
+        sample = flank.evaluate(*((s, o) if name == "u" else (o, s)), order=1)
+        return np.linalg.norm(sample.r_u if name == "u" else sample.r_v, axis=-1)
+
+    mid, half = 0.5 * (start + end), 0.5 * (end - start)
+    t = mid[..., None] + half[..., None] * _NODES
     with np.errstate(all="ignore"):
-        sample = flank.evaluate(*((t, fixed) if name == "u" else (fixed, t)), order=1)
-        speed = np.linalg.norm(sample.r_u if name == "u" else sample.r_v, axis=-1)
-        if not np.isfinite(speed).all():
-            edge = flank.evaluate(*((np.clip(start, low, high), other) if name == "u"
-                                    else (other, np.clip(start, low, high))), order=1)
-            fallback = np.linalg.norm(edge.r_u if name == "u" else edge.r_v, axis=-1)
-            speed = np.where(np.isfinite(speed), speed, fallback[..., None])
+        speed = speed_at(t, np.broadcast_to(other[..., None], t.shape))
+        edge = speed_at(np.clip(start, low, high), other)[..., None]
+    beyond = (t < low) | (t > high)
+    speed = np.where(np.isfinite(speed) & ~(beyond & (speed > CONTINUATION_SPEED * edge)),
+                     speed, edge)
     return half * (speed @ _WEIGHTS)
