@@ -73,9 +73,13 @@ def position_stiffness(result, width):
 def test_a_slope_loads_the_face_as_isos_linear_misalignment(aligned):
     """An uncrowned 20/60 pair under a slope of 0.5 mrad (F_βy = 10 µm over b = 20 mm):
     at every position the line load, fitted by a line inside the end strips and taken to
-    the face ends, gives K_Hβ within 5 % of ISO 6336-1's 1 + F_βy·c/(2·F_m/b) with the same
-    stiffness c, the position's own from the aligned pair (measured -2.9 % to -0.1 %; at
-    1 mrad -1.8 % to +2.3 %): one pair (c ≈ 12.3) gives 1.17, two (c ≈ 21) 1.32. The face
+    the face ends, gives K_Hβ against ISO 6336-1's 1 + F_βy·c/(2·F_m/b) with the same
+    stiffness c, the position's own from the aligned pair: one pair (c ≈ 12.3) gives 1.17,
+    two (c ≈ 21) 1.32. Where the loaded pairs touch without load ISO's linear stiffness
+    holds: within 2 % (measured -0.7 % to -0.2 %). Where a pair 14 µm away takes load only
+    through the others' deflection (roll -6.75 deg) the stiffness is not linear (that pair
+    engages more of its face the more the others deflect): within 10 % (measured +6.5 %;
+    the split of each position found with the teeth's bending on the full grid). The face
     ends depart from the line: the unloaded end A is softer than its neighbours (end
     softening: measured 5.7 % below the line), the loaded end B carries the half-space
     contact's edge peak (5 % above it)."""
@@ -92,7 +96,9 @@ def test_a_slope_loads_the_face_as_isos_linear_misalignment(aligned):
         gradient, level = np.polyfit(face[2:-2], line[2:-2], 1)
         trend = (level + gradient * 0.5 * width) / mean
         iso = face_load_factor(slope * width * 1e3, stiffness[roll], line_load)
-        assert trend == pytest.approx(iso, rel=0.05)
+        linear = all(r["separation_mm"] < 0.001 for r in rows
+                     if r["roll_deg"] == roll and r["bem_load_N"] > 0)
+        assert trend == pytest.approx(iso, rel=0.02 if linear else 0.10)
         assert section["K_H_beta"][i] == pytest.approx(line.max() / mean, rel=1e-4)
         if sum(r["roll_deg"] == roll and r["bem_load_N"] > 0 for r in rows) == 1:
             assert line[0] < level + gradient * face[0]          # end A: softer

@@ -45,7 +45,7 @@ thread in its axial section, coupled along the thread (ThreadCompliance).
 
 On a grid of contact cells the two members' slices give one symmetric operator u = B·F
 (StructureOperator: F the cells' loads, u their deflections along the contact normal),
-which the half-space solver adds to its own (pressure.solve_contact, `structure`): rigid
+which the half-space solver adds to its own (pressure.Grid, `structure`): rigid
 approach, tooth bending and contact deformation close the initial separation in one system.
 Units: mm, N, MPa.
 """
@@ -400,25 +400,25 @@ class MemberLoading:
         across, across_share = hats(radii, radius)
         along, along_share = hats(coupling.nodes, z)
         first = int(across.min())                   # the radial nodes in use: first, first + 1...
-        self._profile = matrix[first:int(across.max()) + 2, first:int(across.max()) + 2]
-        self._shape = (len(self._profile), len(coupling.nodes))
+        self.profile = matrix[first:int(across.max()) + 2, first:int(across.max()) + 2]
+        self.shape = (len(self.profile), len(coupling.nodes))
         across -= first
         # each cell's four nodes (row-major in the shape) and its weights on them
-        nodes = np.stack([a * self._shape[1] + k for a in (across, across + 1)
+        nodes = np.stack([a * self.shape[1] + k for a in (across, across + 1)
                           for k in (along, along + 1)], axis=-1)
         root = np.sqrt(share)
         weights = np.stack([wa * wk * root for wa in (1.0 - across_share, across_share)
                             for wk in (1.0 - along_share, along_share)], axis=-1)
-        #: cells × nodes (4 a row), and its transpose spreading the cells' loads to the nodes
-        self._gather = csr_matrix((weights.ravel(), nodes.ravel(),
-                                   np.arange(0, 4 * len(z) + 1, 4)),
-                                  shape=(len(z), self._shape[0] * self._shape[1]))
-        self._spread = self._gather.T
+        #: cells × nodes (4 a row): the nodes' deflections read at the cells; its
+        #: transpose spreads the cells' loads to the nodes
+        self.gather = csr_matrix((weights.ravel(), nodes.ravel(),
+                                  np.arange(0, 4 * len(z) + 1, 4)),
+                                 shape=(len(z), self.shape[0] * self.shape[1]))
 
-    def deflection(self, loads: np.ndarray) -> np.ndarray:
-        """Deflections (mm) of the cells along the normal under their loads (N)."""
-        nodes = (self._spread @ loads).reshape(self._shape)
-        return self._gather @ (self._profile @ nodes @ self.coupling.flexibility).ravel()
+    def nodes_deflection(self, node_loads: np.ndarray) -> np.ndarray:
+        """The nodes' deflections (mm, flat) under their loads (N, flat): profile
+        compliance across, face coupling along."""
+        return (self.profile @ node_loads.reshape(self.shape) @ self.coupling.flexibility).ravel()
 
 
 class StructureOperator:
@@ -429,18 +429,29 @@ class StructureOperator:
 
     def __init__(self, members: list[MemberLoading], shape: tuple[int, int], cell: float,
                  active: np.ndarray, reference: tuple):
+        from scipy.sparse import csr_matrix, hstack
+
         self.members, self.shape, self.cell = members, shape, cell
         self.active = np.flatnonzero(active.ravel())
         #: ((depth mm, E MPa, nu) per member): the contact's compression is measured to
         #: the teeth's centre lines (pressure.InfluenceOperator), where the slices' bending
         #: is measured from
         self.reference = reference
+        # both members' node weights on the whole grid (no rows off the material), and the
+        # transpose stored as rows too: one product each way per application
+        gather = hstack([m.gather for m in members], format="csr")
+        counts = np.zeros(int(np.prod(shape)) + 1, dtype=gather.indptr.dtype)
+        counts[self.active + 1] = np.diff(gather.indptr)
+        self._gather = csr_matrix((gather.data, gather.indices, np.cumsum(counts)),
+                                  shape=(len(counts) - 1, gather.shape[1]))
+        self._spread = self._gather.T.tocsr()
+        self._split = np.cumsum([m.gather.shape[1] for m in members])[:-1]
 
     def __call__(self, p: np.ndarray) -> np.ndarray:
-        loads = np.asarray(p, float).ravel()[self.active] * self.cell
-        u = np.zeros(int(np.prod(self.shape)))
-        u[self.active] = sum(m.deflection(loads) for m in self.members)
-        return u.reshape(self.shape)
+        loads = self._spread @ (np.asarray(p, float).ravel() * self.cell)
+        deflections = np.concatenate([m.nodes_deflection(q) for m, q in
+                                      zip(self.members, np.split(loads, self._split))])
+        return (self._gather @ deflections).reshape(self.shape)
 
     def coarsened(self, step: int) -> "StructureOperator":
         """The operator on the grid taken every `step`-th cell along both axes (cells

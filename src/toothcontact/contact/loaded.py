@@ -3,17 +3,20 @@ with the load shared between the tooth pairs of a mesh position.
 
 Each contact's gap field (field.contact_field: the tangent plane around the contact, masked
 where either flank has no material) is solved by the elastic half-space solver
-(pressure.solve_contact) for that contact's load; for cylindrical gears the teeth's bending
-along the face (compliance.PairCompliance: slices coupled along the face) is part of the same
-system, so a pair's approach is its contact deformation and its teeth's bending together.
+(pressure.solve_shared, with the other contacts of its position); for cylindrical gears the
+teeth's bending along the face (compliance.PairCompliance: slices coupled along the face) is
+part of the same system, so a pair's approach is its contact deformation and its teeth's
+bending together.
 Pairs in contact at one position share one rigid rotation of the gear: each closes by the
 same approach D (its approach measured from its own gap, which includes its separation at
-first touch); the loads sum to the normal load. The split is found by modelling each pair as
-delta_k(W) = s_k + c_k·W^n_k (n_k = 2/3 and c_k from the rigid analysis's Hertz approach at
-first; then c_k calibrated from its last solve and n_k fitted through its last two: a
-line contact's approach, and a bending tooth's, grows nearly linearly, a pair that barely
-touches steeply), solving the model for D, solving each loaded pair again, until the
-loads settle.
+first touch); the loads sum to the normal load. All pairs of a position are therefore one
+contact problem (pressure.solve_shared: their grids one block-diagonal system with one
+approach and one load), solved once: the split of the load follows from it as the contact
+set does. With the teeth's bending it is solved first on every COARSE_STEP-th point of the
+fields (4 times fewer cells), then on the full grids from that solution, the bending part of
+the system on both (holding the coarse solve's bending fixed on the full grid instead, as an
+earlier version did, left the bundled helical pair's largest pressure 23 % high: the full
+grid moves load toward relieved tips and between the pairs, and the bending must follow).
 
 The pressure at a sharp face end is singular: the raw peak grows as the grid is refined. The
 edge is therefore reported as the pressure averaged over a strip `EDGE_STRIP` wide at the
@@ -23,7 +26,6 @@ Units: mm, N, MPa.
 
 from __future__ import annotations
 
-import math
 from dataclasses import dataclass
 
 import numpy as np
@@ -31,7 +33,7 @@ import numpy as np
 from .compliance import PairCompliance, StructureOperator
 from .field import GapField, contact_fields, pattern_semi_axes
 from .local import face_length
-from .pressure import ContactSolution, solve_contact
+from .pressure import ContactSolution, Grid, GridEdgeError, solve_shared
 
 #: width (mm) of the strip at an edge over which the edge pressure is averaged
 EDGE_STRIP = 0.1
@@ -42,14 +44,11 @@ EDGE_LOAD_RATIO = 0.25
 #: longest cell (mm) of a loaded contact's grid along a long contact, where the grid's size
 #: allows: a third of the edge strip, which then averages over three cells or more
 CELL = EDGE_STRIP / 3.0
-#: relative change of the pairs' loads at which the shared solve stops
-SHARE_TOLERANCE = 0.005
-#: with the teeth's bending, the load sharing's rounds solve every COARSE_STEP-th point of
-#: the field (4 times fewer cells), and only the final split on the full grid
+#: with the teeth's bending, a position is solved first on every COARSE_STEP-th point of
+#: its fields (4 times fewer cells), then on the full grids from there
 COARSE_STEP = 2
-#: the relative gap error each contact is solved to (pressure.solve_contact), on the full
-#: grid and in the load sharing's coarse rounds: on a 30 µm approach, 0.3 nm and 30 nm;
-#: the pressures to 1e-5, the split to about 0.2 % of the load (SHARE_TOLERANCE is 0.5 %)
+#: the relative gap error a position is solved to (pressure.solve_shared), on the full
+#: grids and in the coarse first solve: on a 30 µm approach, 0.3 nm and 30 nm
 GAP_TOLERANCE, COARSE_TOLERANCE = 1e-5, 1e-3
 
 
@@ -160,12 +159,11 @@ def loaded_cycle(cycle, C_E: float, points: int = 128, teeth: PairCompliance | N
         positions.setdefault(row["roll_deg"], []).append(k)
     fields = contact_fields(cycle, range(len(rows)), points, _Pair.MARGIN,   # one batch
                             largest_cell=CELL)
-    models: dict[int, tuple[float, float]] = {}     # each tooth pair's last approach model
     for ks in positions.values():
         load = sum(rows[k]["normal_load_N"] for k in ks)
         try:
-            pairs = [_Pair(cycle, k, points, 1.0 / C_E, fields[k], teeth) for k in ks]
-            solutions = _share(pairs, load, models)
+            pairs = [_Pair(cycle, k, points, fields[k], teeth) for k in ks]
+            solutions = _share(pairs, load, 1.0 / C_E)
         except (ValueError, RuntimeError) as exc:
             failed.update({k: str(exc) for k in ks})
             continue
@@ -182,13 +180,10 @@ class _Pair:
     #: the pattern's box enlarged by this much at first
     MARGIN = 1.5
 
-    def __init__(self, cycle, k: int, points: int, E_star: float, field: GapField,
+    def __init__(self, cycle, k: int, points: int, field: GapField,
                  teeth: PairCompliance | None):
-        self.cycle, self.k, self.points, self.E_star = cycle, k, points, E_star
-        self.teeth = teeth
-        self.separation = cycle.rows[k]["separation_mm"]
-        #: the tooth pair (its index in the cycle) and whether it touches without load
-        self.tooth_pair = cycle.rows[k]["pair"]
+        self.cycle, self.k, self.points, self.teeth = cycle, k, points, teeth
+        #: whether the pair touches without load (else it is kept beyond the approach)
         self.rigid_contact = cycle.rows[k].get("rigid_contact", True)
         self.semi_axes = self.MARGIN * pattern_semi_axes(cycle, [k])[0]
         #: the largest semi-axis a field needs: the flanks' length along the face, a box
@@ -200,172 +195,70 @@ class _Pair:
         self._use(field)
 
     def _use(self, field: GapField) -> None:
-        """Solve on `field` from now on (its structure operators built, no solutions yet)."""
+        """Solve on `field` from now on (its structure operators built)."""
         self.field = field
         self.structure = None if self.teeth is None else self.teeth.operator(self.cycle, field)
         self.coarse_structure = (None if self.structure is None
                                  else self.structure.coarsened(COARSE_STEP))
-        self.last: ContactSolution | None = None
-        self.last_coarse: ContactSolution | None = None
 
-    def hertz_coefficient(self) -> float:
-        """c of Hertz's approach law delta = c·W^(2/3) (mm/N^(2/3)) from the rigid
-        analysis's approach at the row's load; NaN where it gives none (a line, an area)."""
-        row = self.cycle.rows[self.k]
-        approach = row.get("approach_mm")
-        return approach / row["normal_load_N"] ** (2.0 / 3.0) if approach else math.nan
+    def grow(self) -> None:
+        """Widen the field (the loaded contact reached its edge); ValueError where it
+        already covers the flanks."""
+        grown = np.minimum(self.semi_axes * self.growth, self.largest)
+        if np.array_equal(grown, self.semi_axes):
+            raise ValueError(f"the loaded contact at roll {self.cycle.rows[self.k]['roll_deg']:.3f} "
+                             "deg outgrows its gap field (the surfaces end around it)")
+        self.semi_axes = grown
+        self._use(contact_fields(self.cycle, [self.k], self.points, 1.0,
+                                 self.semi_axes[None], CELL)[0])
 
-    def solve(self, load: float, coarse: bool = False) -> ContactSolution:
-        """The contact under `load` (N), started from its last solution on this field (the
-        load sharing solves each pair a few times at nearby loads). With the teeth's bending
-        `coarse` solves on every COARSE_STEP-th point of the field (the load sharing's
-        rounds), and the full grid starts from the coarse solution; without it there is one
-        grid."""
-        coarse = coarse and self.structure is not None
-        for _ in range(5):
-            try:
-                return self._solve(load, coarse)
-            except ValueError as exc:
-                if "reaches the grid's edge" not in str(exc):
-                    raise
-            grown = np.minimum(self.semi_axes * self.growth, self.largest)
-            if np.array_equal(grown, self.semi_axes):
-                break
-            self.semi_axes = grown
-            self._use(contact_fields(self.cycle, [self.k], self.points, 1.0,
-                                     self.semi_axes[None], CELL)[0])
-        raise ValueError(f"the loaded contact at roll {self.cycle.rows[self.k]['roll_deg']:.3f} "
-                         "deg outgrows its gap field (the surfaces end around it)")
-
-    def _solve(self, load: float, coarse: bool) -> ContactSolution:
-        dx, dy = self.field.spacing
+    def grid(self, coarse: bool = False) -> Grid:
+        """The field as the solver's grid, with the teeth's bending where there is a tooth
+        model; coarse: every COARSE_STEP-th point (cells COARSE_STEP² times larger)."""
+        f, (dx, dy) = self.field, self.field.spacing
+        reference = () if self.structure is None else self.structure.reference
         if coarse:
             step = COARSE_STEP
-            self.last_coarse = solve_contact(
-                self.field.gap[::step, ::step], step * dx, step * dy, load, self.E_star,
-                mask=self.field.material[::step, ::step],
-                start=None if self.last_coarse is None else self.last_coarse.pressure_MPa,
-                dtype=np.float32, structure=self.coarse_structure,
-                reference=self.structure.reference, tol=COARSE_TOLERANCE)
-            return self.last_coarse
-        if self.structure is None or self.last_coarse is None:
-            reference = () if self.structure is None else self.structure.reference
-            self.last = solve_contact(self.field.gap, dx, dy, load, self.E_star,
-                                      mask=self.field.material,
-                                      start=None if self.last is None else self.last.pressure_MPa,
-                                      dtype=np.float32, structure=self.structure,
-                                      reference=reference, tol=GAP_TOLERANCE)
-            return self.last
-        # the full grid refines the contact under the bending the coupled coarse solve found:
-        # the teeth's deflection is smooth along the face, and the coarse and the full
-        # grid's pressures carry the same line load
+            return Grid(f.gap[::step, ::step], step * dx, step * dy, f.material[::step, ::step],
+                        self.coarse_structure, reference)
+        return Grid(f.gap, dx, dy, f.material, self.structure, reference)
+
+    def refined(self, coarse: ContactSolution | None) -> np.ndarray | None:
+        """The coarse solution's pressure interpolated (bilinearly) on the full grid, the
+        full solve's start; None for none."""
+        if coarse is None:
+            return None
+        from scipy.ndimage import map_coordinates
+
         n0, n1 = self.field.gap.shape
-        start = np.repeat(np.repeat(self.last_coarse.pressure_MPa * (load / self.last_coarse.load_N),
-                                    COARSE_STEP, axis=0), COARSE_STEP, axis=1)[:n0, :n1]
-        start = np.where(self.field.material, start, 0.0)
-        bending = self.structure(start)
-        self.last = solve_contact(self.field.gap + bending, dx, dy, load, self.E_star,
-                                  mask=self.field.material, start=start, dtype=np.float32,
-                                  reference=self.structure.reference, tol=GAP_TOLERANCE)
-        return self.last
+        at = np.meshgrid(np.arange(n0) / COARSE_STEP, np.arange(n1) / COARSE_STEP,
+                         indexing="ij")
+        p = map_coordinates(coarse.pressure_MPa, at, order=1, mode="nearest")
+        return np.where(self.field.material, p, 0.0)
 
 
-def _share(pairs: list[_Pair], load: float,
-           models: dict[int, tuple[float, float]] | None = None) -> list[ContactSolution | None]:
-    """Solutions of the pairs of one position under their shares of `load` (see module):
-    each pair's approach modelled as s_k + c_k·W^n_k, n_k = 2/3 and c_k from the rigid
-    analysis's Hertz approach at first (a pair in contact without one, a line or an area, is
-    first solved at the equal split among the pairs in contact to calibrate it; a pair kept
-    beyond the approach takes the stiffest of their models), then c_k from its last solution
-    and n_k fitted through its last two (0.5 to 3: a line contact grows nearly linearly, a pair that
-    barely touches steeply); the model solved for the split, the loaded pairs solved there
-    (on the coarse grid where the teeth bend, see _Pair.solve), until the split settles; the
-    solutions returned are those at the final split on the full grid, the split corrected
-    (up to twice) by the difference of the full grid's approaches from the coarse ones where
-    they differ by more than SHARE_TOLERANCE. A pair the model leaves unloaded is not
-    solved. `models` (tooth pair -> (c, n)): the pairs' models calibrated at the previous
-    position, the first guess where there is one (closer than Hertz's: it holds the teeth's
-    bending), updated with this position's."""
-    if len(pairs) == 1:
-        if pairs[0].structure is not None:
-            pairs[0].solve(load, coarse=True)       # the full grid's start
-        return [pairs[0].solve(load)]
-    count = len(pairs)
-    s = np.array([p.separation for p in pairs])
-    exponent = np.full(count, 2.0 / 3.0)
-    c = np.array([p.hertz_coefficient() for p in pairs])
-    models = {} if models is None else models
-    keys = [p.tooth_pair for p in pairs]
-    for i, key in enumerate(keys):
-        if key in models:
-            c[i], exponent[i] = models[key]
-    at = np.full(count, np.nan)                     # the load of each pair's last solution
-    solutions: list[ContactSolution | None] = [None] * count
-    touching = np.array([p.rigid_contact for p in pairs])
-    for k in np.flatnonzero(~np.isfinite(c) & touching):
-        at[k] = load / touching.sum()
-        solutions[k] = pairs[k].solve(at[k], coarse=True)
-        c[k] = max(solutions[k].approach_mm - s[k], 1e-12) / at[k] ** exponent[k]
-    # a pair kept beyond the approach borrows the stiffest model of the pairs in contact: the
-    # split loads it only once the position's approach reaches its separation (whatever its
-    # own stiffness), and it is then solved and calibrated like the others
-    stiffest = np.flatnonzero(touching)[np.argmin((c * load ** exponent)[touching])]
-    c[~touching], exponent[~touching] = c[stiffest], exponent[stiffest]
-    split = None
-    for _ in range(20):
-        new = _split(c, exponent, s, load)
-        settled = split is not None and np.max(np.abs(new - split)) <= SHARE_TOLERANCE * load
-        split = new
-        if settled:
-            break
-        for k in np.flatnonzero(new > 1e-6 * load):
-            before, before_at = solutions[k], at[k]
-            solutions[k], at[k] = pairs[k].solve(new[k], coarse=True), new[k]
-            rise = max(solutions[k].approach_mm - s[k], 1e-12)
-            if before is not None and abs(math.log(new[k] / before_at)) > 0.01:
-                fitted = (math.log(rise / max(before.approach_mm - s[k], 1e-12))
-                          / math.log(new[k] / before_at))
-                # the interpolant through its last two solves: a pair that barely touches
-                # stiffens fast (fitted up to 2-3); held to 1 it flips the split between two
-                exponent[k] = min(max(fitted, 0.5), 3.0)
-            c[k] = rise / new[k] ** exponent[k]
-    models.update({key: (c[i], exponent[i]) for i, key in enumerate(keys) if np.isfinite(at[i])})
-
-    def on_full_grid(split):
-        return [pair.solve(w) if w > 1e-6 * load else None for pair, w in zip(pairs, split)]
-
-    final = on_full_grid(split)
-    if pairs[0].structure is None:
-        return final
-    # the full grid's approach differs a little from the coarse one the split was found on
-    # (most at a sharp tip corner, up to a few per cent): the model shifted by that
-    # difference gives the full grid's split
-    for _ in range(2):
-        loaded = np.flatnonzero(split > 1e-6 * load)
-        full = np.array([final[k].approach_mm for k in loaded])
-        if np.ptp(full) <= SHARE_TOLERANCE * np.mean(full):
-            break
-        s[loaded] += full - (s[loaded] + c[loaded] * split[loaded] ** exponent[loaded])
-        split = _split(c, exponent, s, load)
-        final = on_full_grid(split)
-    return final
-
-
-def _split(c: np.ndarray, n: np.ndarray, s: np.ndarray, load: float) -> np.ndarray:
-    """Loads W_k >= 0 with s_k + c_k W_k^n_k = D for the loaded pairs and sum W_k = load:
-    bisection on D."""
-
-    def load_at(D):       # each pair's load at approach D, at most the whole load
-        with np.errstate(divide="ignore", over="ignore"):
-            w = (np.maximum(D - s, 0.0) / c) ** (1.0 / n)
-        return np.minimum(np.nan_to_num(w, nan=load, posinf=load), load)
-
-    lo, hi = float(np.min(s)), float(np.max(s + c * load ** n))
-    for _ in range(60):
-        mid = 0.5 * (lo + hi)
-        if load_at(mid).sum() < load:
-            lo = mid
-        else:
-            hi = mid
-    w = load_at(hi)
-    return w * (load / w.sum())
+def _share(pairs: list[_Pair], load: float, E_star: float) -> list[ContactSolution | None]:
+    """Solutions of the pairs of one position (see module) under `load` (N) together,
+    composite modulus E_star (MPa): one shared solve (pressure.solve_shared) started from
+    the rigid analysis's split (the load equally among the pairs in contact; the others
+    take load once the approach reaches them), first on the coarse grids where the teeth
+    bend; a pair whose contact reaches its field's edge gets a wider field and the position
+    is solved again. None for a pair that carries no load."""
+    touching = [p.rigid_contact for p in pairs]
+    if not any(touching):
+        touching = [True] * len(pairs)
+    loads = np.array(touching, float) * (load / sum(touching))
+    for _ in range(5 * len(pairs) + 1):
+        try:
+            starts = None
+            if pairs[0].structure is not None:
+                coarse = solve_shared([p.grid(coarse=True) for p in pairs], loads, E_star,
+                                      dtype=np.float32, tol=COARSE_TOLERANCE)
+                starts = [p.refined(s) for p, s in zip(pairs, coarse)]
+                loads = np.array([0.0 if s is None else s.load_N for s in coarse])
+            return solve_shared([p.grid() for p in pairs], loads, E_star, starts=starts,
+                                dtype=np.float32, tol=GAP_TOLERANCE)
+        except GridEdgeError as exc:
+            pairs[exc.grid].grow()
+    raise ValueError(f"the loaded contact at roll {pairs[0].cycle.rows[pairs[0].k]['roll_deg']:.3f} "
+                     "deg outgrows its gap fields")

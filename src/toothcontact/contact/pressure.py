@@ -50,12 +50,15 @@ from ..analytic.hertz import hertz_point
 __all__ = [
     "ContactSolution",
     "EdgeLoad",
+    "Grid",
+    "GridEdgeError",
     "InfluenceOperator",
     "hertz_start",
     "interference_start",
     "influence_operator",
     "rectangle_displacement",
     "solve_contact",
+    "solve_shared",
 ]
 
 
@@ -347,10 +350,9 @@ def _positive(name: str, value, unit: str) -> float:
     return v
 
 
-def _check_inputs(gap, dx, dy, load, E_star, mask):
+def _check_grid(gap, dx, dy, mask):
+    """(gap with 0 off the material, dx, dy, mask) of one grid, checked."""
     dx, dy = _positive("dx_mm", dx, "mm"), _positive("dy_mm", dy, "mm")
-    load = _positive("load_N", load, "N")
-    E_star = _positive("E_star_MPa", E_star, "MPa")
     try:
         h = np.array(gap, dtype=float)
     except (TypeError, ValueError):
@@ -374,7 +376,7 @@ def _check_inputs(gap, dx, dy, load, E_star, mask):
         i, j = np.argwhere(bad)[0]
         raise ValueError(f"gap_mm: {h[i, j]} at cell ({i}, {j}) must be finite where mask is "
                          "True")
-    return np.where(m, h, 0.0), dx, dy, load, E_star, m.copy()
+    return np.where(m, h, 0.0), dx, dy, m.copy()
 
 
 # --------------------------------------------------------------------------------------------
@@ -457,10 +459,103 @@ def interference_start(h, dx: float, dy: float, mask, load: float, E_star: float
 # solver
 
 
-def _error(h, u, p, m):
-    """(relative gap error, approach, separation) of the state p, u (see :func:`_state`)."""
-    approach, _, _, error = _state((h + u).ravel(), np.flatnonzero(p.ravel() > 0.0), m.ravel())
-    return error / float(u[m].max()), approach, np.where(m, h + u - approach, 0.0)
+class GridEdgeError(ValueError):
+    """The contact reaches the edge of grid `grid` (its index in a shared solve) on material:
+    the gap does not close within that grid under the load."""
+
+    def __init__(self, message: str, grid: int):
+        super().__init__(message)
+        self.grid = grid
+
+
+@dataclass(frozen=True)
+class Grid:
+    """One gap field of a shared solve (see :func:`solve_shared`): the gap (mm; x along axis
+    0 in steps dx_mm, y along axis 1 in steps dy_mm), the material mask (None: everywhere),
+    a further linear displacement `structure` p (MPa) -> u (mm) of its bodies (the teeth's
+    bending), and the depths its compression is measured to (`reference`, see
+    InfluenceOperator)."""
+
+    gap_mm: np.ndarray
+    dx_mm: float
+    dy_mm: float
+    mask: np.ndarray | None = None
+    structure: object = None
+    reference: tuple = ()
+
+
+class _System:
+    """The grids of a shared solve as one flattened vector (the grids' cells one after the
+    other): the influence is block diagonal, each grid's own half-space (DC-FFT) plus its
+    `structure`; the preconditioner each grid's circulant inverse. Loads are p·cell, cell
+    the area of a grid's cells (mm²)."""
+
+    def __init__(self, grids: list[tuple], E_star: float, single: bool):
+        #: per grid: (h, dx, dy, m, structure, reference) as checked
+        self.compliance, self.single = 1.0 / E_star, single
+        self.h = np.concatenate([g[0].ravel() for g in grids])
+        self.m = np.concatenate([g[3].ravel() for g in grids])
+        self.shapes = [g[0].shape for g in grids]
+        bounds = np.cumsum([0] + [g[0].size for g in grids])
+        self.slices = [slice(int(a), int(b)) for a, b in zip(bounds[:-1], bounds[1:])]
+        self.ops = [influence_operator(tuple(int(k) for k in g[0].shape), g[1], g[2], g[5],
+                                       E_star if g[5] else 1.0) for g in grids]
+        self.structures = [g[4] for g in grids]
+        areas = [g[1] * g[2] for g in grids]
+        #: the cells' areas: one number for one grid (or equal cells), else per cell
+        self.cells = (areas[0] if len(set(areas)) == 1 else
+                      np.concatenate([np.full(g[0].size, a) for g, a in zip(grids, areas)]))
+        self._buffer = np.zeros(self.h.size)
+
+    def cell(self, where: np.ndarray):
+        """The areas (mm²) of the cells `where` (one number where all cells are alike)."""
+        return self.cells if np.isscalar(self.cells) else self.cells[where]
+
+    def load(self, p: np.ndarray, where: np.ndarray) -> float:
+        """The load (N) of the pressures p (MPa) on the cells `where`."""
+        return _dot(self.cell(where), p[where]) if not np.isscalar(self.cells) else \
+            self.cells * float(p[where].sum())
+
+    def _blocks(self, values: np.ndarray, where: np.ndarray | None):
+        """Each grid's values on the grid (from the flat `values` on `where`, or from the
+        whole flat vector with where None), or None for a grid without any."""
+        if where is None:
+            flat = values
+        else:
+            flat = self._buffer
+            flat.fill(0.0)
+            flat[where] = values
+        for s, shape in zip(self.slices, self.shapes):
+            block = flat[s]
+            yield s, (block.reshape(shape) if block.any() else None)
+
+    def displacement(self, values: np.ndarray, where: np.ndarray | None = None,
+                     single: bool | None = None) -> np.ndarray:
+        """The displacement (mm, flat) under the pressures `values` (MPa) on the cells
+        `where` (all cells if None); single: the transforms in float32 (default the
+        system's)."""
+        single = self.single if single is None else single
+        out = np.zeros(self.h.size)
+        for (s, q), op, structure in zip(self._blocks(values, where), self.ops,
+                                         self.structures):
+            if q is not None:
+                u = op(q, single).ravel() * self.compliance
+                out[s] = u if structure is None else u + structure(q).ravel()
+        return out
+
+    def precondition(self, values: np.ndarray, where: np.ndarray) -> np.ndarray:
+        """The preconditioned residual on `where`, as loads: each grid's circulant inverse
+        of the residual `values` (mm), times its cells' area."""
+        out = np.zeros(self.h.size)
+        for (s, e), op in zip(self._blocks(values, where), self.ops):
+            if e is not None:
+                out[s] = op.approximate_inverse(e, self.single).ravel()
+        return out[where] * self.cell(where)
+
+    def error(self, p: np.ndarray, u: np.ndarray) -> tuple[float, float]:
+        """(relative gap error, approach) of the state p, u (see :func:`_state`)."""
+        approach, _, _, error = _state(self.h + u, np.flatnonzero(p > 0.0), self.m)
+        return error / float(u[self.m].max()), approach
 
 
 def _dot(a: np.ndarray, b: np.ndarray) -> float:
@@ -495,52 +590,43 @@ def _state(g, contact, material):
 JOIN_RESTART = 0.01
 
 
-def _ccg(h, m, p, u, op, compliance, load, cell, tol, max_iter, single, structure=None):
-    """Preconditioned constrained conjugate gradients (Polonsky & Keer 1999) from p, u.
+def _ccg(system: _System, p, u, load, tol, max_iter):
+    """Preconditioned constrained conjugate gradients (Polonsky & Keer 1999) from p, u (flat,
+    MPa and mm) on the system's grids together.
 
-    Works on the flattened grid with S, the cells in contact (p > 0), and J, the material
-    cells outside S that penetrate (loaded gap below the approach; see :func:`_state`).
-    Per step, on the working set S ∪ J: residual e = g - approach (zero mean on S, negative
-    on J), preconditioned residual z = P·M·e with M the circulant inverse and P the removal
-    of the mean on S ∪ J (a direction that keeps the load), direction t = z + (G/G_old)·t
-    (G = e·z), or t = z when cells join (Polonsky & Keer's δ = 0), r = K t, exact line
-    search tau = e·t / r·t, p -= tau·t, negative pressures cut to 0 (those cells leave S and
-    t; t, re-centred, keeps the load), and p scaled to carry the load (Polonsky & Keer's
-    sequence). u follows p: u -= tau·r, plus one convolution of the cut pressures when
-    there are any.
+    Works on S, the cells in contact (p > 0), and J, the material cells outside S that
+    penetrate (loaded gap below the approach; see :func:`_state`), over all grids: the
+    grids share one approach (their gaps are measured from one datum) and one load. The
+    iteration runs in loads f = p·cell (so that grids of different cells are one symmetric
+    system). Per step, on the working set S ∪ J: residual e = g - approach (zero mean on S,
+    negative on J), preconditioned residual z = P·M·e with M each grid's circulant inverse
+    (times its cell area) and P the removal of the mean on S ∪ J (a direction that keeps
+    the load), direction t = z + (G/G_old)·t (G = e·z), or t = z when cells join (Polonsky
+    & Keer's δ = 0), r = K t, exact line search tau = e·t / r·t, f -= tau·t, negative
+    loads cut to 0 (those cells leave S and t; t, re-centred, keeps the load), and p scaled
+    to carry the load (Polonsky & Keer's sequence). u follows p: u -= tau·r, plus the
+    displacement of the cut pressures when there are any.
 
-    The penetrating cells join inside the preconditioned step itself (p = -tau·t there):
+    The penetrating cells join inside the preconditioned step itself (f = -tau·t there):
     Polonsky & Keer's p = -tau·gap is a pressure only for the unpreconditioned step (with
     the preconditioner tau is a pure number, and -tau·gap a length), and their step is 0/0
     when S holds one cell (e = 0 on S), where ours is a steepest-descent step over S ∪ J.
-    A `structure` operator (see solve_contact) adds its displacement to the half-space's
-    in every product; the preconditioner stays the half-space's.
+    A grid's `structure` operator adds its displacement to the half-space's in every
+    product; the preconditioner stays the half-space's.
     Returns p and the steps taken (max_iter unless the error fell below tol). Raises
     RuntimeError when the step breaks down (t·K·t not a number > 0: no descent left while the
     error is above tol)."""
-    shape, n = h.shape, h.size
-    hf, mf = h.ravel(), m.ravel()
-    pf, uf = p.ravel().copy(), np.ascontiguousarray(u).ravel().copy()
+    hf, mf = system.h, system.m
+    pf, uf = p.copy(), u.copy()
     idx = np.flatnonzero(pf > 0.0)
-    buffer = np.zeros(n)
     t = np.zeros(idx.size)
     G_old, conjugate = 1.0, False
-
-    def on_grid(values, where):
-        buffer.fill(0.0)
-        buffer[where] = values
-        return buffer.reshape(shape)
-
-    def displacement(q):
-        out = op(q, single).ravel() * compliance
-        return out if structure is None else out + structure(q).ravel()
-
     for step in range(max_iter + 1):
         g = hf + uf
         approach, e, join, error = _state(g, idx, mf)
         error /= float(uf[mf].max())
         if error < tol:
-            return pf.reshape(shape), step
+            return pf, step
         if step == max_iter:
             break
         work = idx
@@ -551,12 +637,13 @@ def _ccg(h, m, p, u, op, compliance, load, cell, tol, max_iter, single, structur
                 conjugate = False
             else:
                 t = np.concatenate([t, np.zeros(join.size)])
-        z = op.approximate_inverse(on_grid(e, work), single).ravel()[work]
+        z = system.precondition(e, work)
         z -= z.mean()
         G = _dot(e, z)
         t = z + (G / G_old) * t if conjugate else z
         G_old = G
-        r = displacement(on_grid(t, work))
+        cells = system.cell(work)
+        r = system.displacement(t / cells, work)
         denom = _dot(r[work], t)
         if not (math.isfinite(denom) and denom > 0):
             raise RuntimeError(
@@ -564,20 +651,121 @@ def _ccg(h, m, p, u, op, compliance, load, cell, tol, max_iter, single, structur
                 f"at iteration {step} with relative gap error {error:.3g} on "
                 f"{idx.size} contact cells")
         tau = _dot(e, t) / denom
-        pw = pf[work] - tau * t
+        pw = pf[work] - tau * (t / cells)
         uf -= tau * r
         cut = pw < 0.0
         pf[work] = np.where(cut, 0.0, pw)
         if cut.any():
-            uf += displacement(on_grid(-pw[cut], work[cut]))
+            uf += system.displacement(-pw[cut], work[cut])
             work, t = work[~cut], t[~cut]
             t -= t.mean()
         idx = work
         conjugate = True
-        factor = load / (cell * float(pf[idx].sum()))
+        factor = load / system.load(pf, idx)
         pf[idx] *= factor
         uf *= factor
-    return pf.reshape(shape), step
+    return pf, step
+
+
+def solve_shared(grids: list[Grid], loads_N, E_star_MPa: float, *, tol: float = 1e-8,
+                 max_iter: int = 500, warm_start: bool = True, starts=None,
+                 dtype=np.float64) -> list[ContactSolution | None]:
+    """Pressure on several gap fields that close by one rigid approach and together carry
+    one load: the contacts of one mesh position, each on its own grid (their gaps measured
+    from one datum: a pair's gap holds its separation). One constrained conjugate-gradient
+    solve over all grids (:func:`_ccg`): the split of the load follows, as the contact
+    set does.
+
+    grids: the gap fields (see :class:`Grid`).
+    loads_N: the load each grid is started with (N, >= 0); their sum is the total load
+        the grids carry. A grid started with 0 has no pressure at first (it takes load once
+        the approach reaches it).
+    starts: per grid, a pressure (MPa) to start from (scaled to the grid's start load), or
+        None for the warm start (see :func:`solve_contact`).
+    tol, max_iter, warm_start, dtype: as for :func:`solve_contact`.
+
+    Returns one ContactSolution per grid (each with its own load, and the common approach,
+    iterations and relative gap error), None for a grid that carries no load. Raises
+    GridEdgeError (a ValueError) naming the grid whose contact reaches its edge, ValueError
+    for bad input, RuntimeError if tol is not met in max_iter steps."""
+    if not grids:
+        raise ValueError("grids: at least one gap field is needed")
+    loads = [float(w) for w in np.atleast_1d(np.asarray(loads_N, dtype=float))]
+    if len(loads) != len(grids) or not all(math.isfinite(w) and w >= 0 for w in loads):
+        raise ValueError(f"loads_N: {loads_N!r} must be one finite load >= 0 N per grid "
+                         f"({len(grids)})")
+    W = _positive("loads_N (their sum)", sum(loads), "N")
+    E_star = _positive("E_star_MPa", E_star_MPa, "MPa")
+    checked = [(*_check_grid(g.gap_mm, g.dx_mm, g.dy_mm, g.mask), g.structure, tuple(g.reference))
+               for g in grids]
+    tol = _positive("tol", tol, "(relative gap error)")
+    if not (isinstance(max_iter, (int, np.integer)) and max_iter >= 1):
+        raise ValueError(f"max_iter: {max_iter!r} must be an integer >= 1")
+    if np.dtype(dtype) not in (np.dtype(np.float64), np.dtype(np.float32)):
+        raise ValueError(f"dtype: {dtype!r} must be numpy.float64 or numpy.float32")
+    single = np.dtype(dtype) == np.dtype(np.float32)
+    system = _System(checked, E_star, single)
+    starts = [None] * len(grids) if starts is None else list(starts)
+    p = np.concatenate([_start(h, dx, dy, m, w, E_star, start, warm_start).ravel()
+                        for (h, dx, dy, m, *_), w, start in zip(checked, loads, starts)])
+    p *= W / system.load(p, np.flatnonzero(p))
+    iterations = 0
+    while True:
+        u = system.displacement(p, single=False)             # float64, afresh
+        error, approach = system.error(p, u)
+        if error < tol:
+            break
+        if iterations >= max_iter:
+            raise RuntimeError(f"solve_contact: relative gap error {error:.3g} after "
+                               f"{iterations} iterations, above tol = {tol:g}")
+        p, steps = _ccg(system, p, u, W, tol, max_iter - iterations)
+        iterations += steps
+    out = []
+    for k, ((h, dx, dy, m, *_), s) in enumerate(zip(checked, system.slices)):
+        pk, uk = p[s].reshape(h.shape), u[s].reshape(h.shape)
+        S = pk > 0.0
+        if not S.any():
+            out.append(None)
+            continue
+        border = np.zeros_like(S)
+        border[[0, -1], :] = border[:, [0, -1]] = True
+        if (S & border).any():
+            i, j = np.argwhere(S & border)[0]
+            which = f"grid {k}: " if len(grids) > 1 else ""
+            raise GridEdgeError(
+                f"gap_mm: {which}the contact reaches the grid's edge at cell ({i}, {j}) under "
+                f"load_N = {W:g}: the gap must close inside the grid (enlarge the grid, or "
+                "set mask False where there is no material)", k)
+        load, area = float(pk.sum()) * dx * dy, float(S.sum()) * dx * dy
+        separation = np.where(m, h + uk - approach, 0.0)
+        for array in (pk, uk, separation, m):
+            array.setflags(write=False)
+        out.append(ContactSolution(
+            pressure_MPa=pk, displacement_mm=uk, separation_mm=separation, mask=m,
+            dx_mm=dx, dy_mm=dy, load_N=load, E_star_MPa=E_star, area_mm2=area,
+            peak_pressure_MPa=float(pk.max()), mean_pressure_MPa=load / area,
+            approach_mm=approach, iterations=iterations, relative_error=error))
+    return out
+
+
+def _start(h, dx, dy, m, load, E_star, start, warm_start) -> np.ndarray:
+    """A grid's starting pressure (MPa) for `load` (N): `start` where it carries anything
+    on the material, else the Hertz ellipse fitted to the gap, else the rigid
+    interference (warm_start), else uniform on the material; zero for no load."""
+    if load == 0.0:
+        return np.zeros(h.shape)
+    p = None
+    if start is not None:
+        p = np.where(m, np.clip(np.asarray(start, float), 0.0, None), 0.0)
+        if p.shape != h.shape or not p.sum() > 0:
+            p = None
+    if p is None and warm_start:
+        p = hertz_start(h, dx, dy, m, load, E_star)
+        if p is None:
+            p = interference_start(h, dx, dy, m, load, E_star)
+    if p is None:
+        p = m.astype(float)
+    return p * (load / (dx * dy * p.sum()))
 
 
 def solve_contact(gap_mm, dx_mm: float, dy_mm: float, load_N: float, E_star_MPa: float,
@@ -609,62 +797,10 @@ def solve_contact(gap_mm, dx_mm: float, dy_mm: float, load_N: float, E_star_MPa:
 
     Raises ValueError for a load, E*, dx or dy that is not a finite number > 0, a mask of
     another shape or without material, a gap that is not finite on material, or a contact
-    that reaches the grid's edge on material (the gap does not close within the grid under
-    this load); RuntimeError if tol is not met in max_iter steps, or at once if a step breaks
-    down (both with the error reached)."""
-    h, dx, dy, W, E_star, m = _check_inputs(gap_mm, dx_mm, dy_mm, load_N, E_star_MPa, mask)
-    tol = _positive("tol", tol, "(relative gap error)")
-    if not (isinstance(max_iter, (int, np.integer)) and max_iter >= 1):
-        raise ValueError(f"max_iter: {max_iter!r} must be an integer >= 1")
-    if np.dtype(dtype) not in (np.dtype(np.float64), np.dtype(np.float32)):
-        raise ValueError(f"dtype: {dtype!r} must be numpy.float64 or numpy.float32")
-    single = np.dtype(dtype) == np.dtype(np.float32)
-    reference = tuple(reference)
-    op = influence_operator(tuple(int(k) for k in h.shape), dx, dy, reference,
-                            E_star if reference else 1.0)
-    compliance, cell = 1.0 / E_star, dx * dy
-
-    p = None
-    if start is not None:
-        p = np.where(m, np.clip(np.asarray(start, float), 0.0, None), 0.0)
-        if p.shape != h.shape or not p.sum() > 0:
-            p = None
-    if p is None and warm_start:
-        p = hertz_start(h, dx, dy, m, W, E_star)
-        if p is None:
-            p = interference_start(h, dx, dy, m, W, E_star)
-    if p is None:
-        p = m.astype(float)
-    p *= W / (cell * p.sum())
-    iterations = 0
-    while True:
-        u = op(p) * compliance                   # float64, afresh
-        if structure is not None:
-            u = u + structure(p)
-        error, approach, separation = _error(h, u, p, m)
-        if error < tol:
-            break
-        if iterations >= max_iter:
-            raise RuntimeError(f"solve_contact: relative gap error {error:.3g} after "
-                               f"{iterations} iterations, above tol = {tol:g}")
-        p, steps = _ccg(h, m, p, u, op, compliance, W, cell, tol, max_iter - iterations, single,
-                        structure)
-        iterations += steps
-
-    S = p > 0.0
-    border = np.zeros_like(S)
-    border[[0, -1], :] = border[:, [0, -1]] = True
-    if (S & border).any():
-        i, j = np.argwhere(S & border)[0]
-        raise ValueError(
-            f"gap_mm: the contact reaches the grid's edge at cell ({i}, {j}) under "
-            f"load_N = {W:g}: the gap must close inside the grid (enlarge the grid, or set "
-            "mask False where there is no material)")
-    area = float(S.sum()) * cell
-    for array in (p, u, separation, m):
-        array.setflags(write=False)
-    return ContactSolution(
-        pressure_MPa=p, displacement_mm=u, separation_mm=separation, mask=m,
-        dx_mm=dx, dy_mm=dy, load_N=W, E_star_MPa=E_star, area_mm2=area,
-        peak_pressure_MPa=float(p.max()), mean_pressure_MPa=W / area,
-        approach_mm=approach, iterations=iterations, relative_error=error)
+    that reaches the grid's edge on material (GridEdgeError: the gap does not close within
+    the grid under this load); RuntimeError if tol is not met in max_iter steps, or at once
+    if a step breaks down (both with the error reached)."""
+    W = _positive("load_N", load_N, "N")
+    grid = Grid(gap_mm, dx_mm, dy_mm, mask, structure, tuple(reference))
+    return solve_shared([grid], [W], E_star_MPa, tol=tol, max_iter=max_iter,
+                        warm_start=warm_start, starts=[start], dtype=dtype)[0]
