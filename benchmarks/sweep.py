@@ -12,9 +12,11 @@
    separate processes (`dask scheduler`, `dask worker`), one worker SIGKILLed once the
    first sample is in: the sweep completes and its table equals a local run's.
 
-Prints a table and writes benchmarks/sweep.json.
+Prints a table and writes benchmarks/sweep.json; `--parts` runs some of the three and keeps
+the others' last record (each part records the commit it measured).
 
     .venv/bin/python benchmarks/sweep.py [--samples 200] [--killed-samples 40] [--repeat 3]
+                                         [--parts per_sample scaling killed_worker]
 """
 
 from __future__ import annotations
@@ -150,33 +152,48 @@ def killed_worker(samples: int, folder: Path) -> dict:
             "same_table_as_local": remote == table(local)}
 
 
+PARTS = ("per_sample", "scaling", "killed_worker")
+
+
 def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--samples", type=int, default=200)
     parser.add_argument("--killed-samples", type=int, default=40)
     parser.add_argument("--repeat", type=int, default=3)
+    parser.add_argument("--parts", nargs="+", choices=PARTS, default=list(PARTS))
     args = parser.parse_args()
-    record = {"machine": f"{platform.machine()}, {os.cpu_count()} cores, Python "
-                         f"{platform.python_version()}", "per_sample": per_sample(args.repeat)}
+    path = HERE / "sweep.json"
+    record = json.loads(path.read_text()) if path.exists() else {}
+    record["machine"] = (f"{platform.machine()}, {os.cpu_count()} cores, Python "
+                         f"{platform.python_version()}")
+    commit = subprocess.run(["git", "-C", str(ROOT), "rev-parse", "--short", "HEAD"],
+                            capture_output=True, text=True).stdout.strip()
     with tempfile.TemporaryDirectory() as tmp:
-        record["scaling"] = scaling(args.samples, Path(tmp))
-        record["killed_worker"] = killed_worker(args.killed_samples, Path(tmp))
-    s, sc, k = record["per_sample"], record["scaling"], record["killed_worker"]
-    print(f"{'per sample (' + CASE + ')':44} {'first release':>14} {'now':>8} {'speed-up':>9}")
-    print(f"{'full loaded analysis, interference on':44} {s['before_s']:13.2f}s "
-          f"{s['now_s']:7.2f}s {s['speed_up']:8.2f}x")
-    print(f"{'  of which inside the FFT library (limit)':44} {'':14} {s['now_fft_s']:7.2f}s "
-          f"({s['now_fft_share']:.0%})")
-    print(f"\n{sc['samples']}-sample Monte Carlo {'wall':>10} {'samples/s':>10}")
-    for name in ("one_worker", "two_workers"):
-        print(f"{name.replace('_', ' '):24} {sc[name]['wall_s']:9.1f}s "
-              f"{sc[name]['samples_per_s']:10.3f}")
-    print(f"speed-up {sc['speed_up']:.2f}x, same table: {sc['same_table']}")
-    print(f"\nseparate scheduler, one of two workers killed after sample "
-          f"{k['killed_after_sample']}: {k['answered']}/{k['samples']} answered in "
-          f"{k['wall_s']:.1f}s, complete: {k['complete']}, same table as local: "
-          f"{k['same_table_as_local']}")
-    (HERE / "sweep.json").write_text(json.dumps(record, indent=2) + "\n")
+        runs = {"per_sample": lambda: per_sample(args.repeat),
+                "scaling": lambda: scaling(args.samples, Path(tmp)),
+                "killed_worker": lambda: killed_worker(args.killed_samples, Path(tmp))}
+        for part in args.parts:
+            record[part] = {**runs[part](), "commit": commit}
+    s, sc, k = (record.get(part) for part in PARTS)
+    if s:
+        print(f"{'per sample (' + CASE + ')':44} {'first release':>14} {'now':>8} {'speed-up':>9}")
+        print(f"{'full loaded analysis, interference on':44} {s['before_s']:13.2f}s "
+              f"{s['now_s']:7.2f}s {s['speed_up']:8.2f}x   ({s.get('commit', '?')})")
+        print(f"{'  of which inside the FFT library (limit)':44} {'':14} {s['now_fft_s']:7.2f}s "
+              f"({s['now_fft_share']:.0%})")
+    if sc:
+        print(f"\n{sc['samples']}-sample Monte Carlo {'wall':>10} {'samples/s':>10}"
+              f"   ({sc.get('commit', '?')})")
+        for name in ("one_worker", "two_workers"):
+            print(f"{name.replace('_', ' '):24} {sc[name]['wall_s']:9.1f}s "
+                  f"{sc[name]['samples_per_s']:10.3f}")
+        print(f"speed-up {sc['speed_up']:.2f}x, same table: {sc['same_table']}")
+    if k:
+        print(f"\nseparate scheduler, one of two workers killed after sample "
+              f"{k['killed_after_sample']}: {k['answered']}/{k['samples']} answered in "
+              f"{k['wall_s']:.1f}s, complete: {k['complete']}, same table as local: "
+              f"{k['same_table_as_local']}   ({k.get('commit', '?')})")
+    path.write_text(json.dumps(record, indent=2) + "\n")
 
 
 if __name__ == "__main__":

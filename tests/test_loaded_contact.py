@@ -183,7 +183,8 @@ def test_a_position_the_solver_cannot_answer_keeps_every_other_result(monkeypatc
         return solve(grids, loads, E_star, **options)
 
     monkeypatch.setattr(loaded, "solve_shared", fail_first_position)
-    result = analyse(parse_case(spur({"radius": "4000 mm"}, 0.0, positions=3, grid=64)))
+    with loaded.solve_threads(1):                   # the first position is the first call
+        result = analyse(parse_case(spur({"radius": "4000 mm"}, 0.0, positions=3, grid=64)))
     rows = result.sections["positions"]
     first = rows[0]["roll_deg"]
     for r in rows:
@@ -199,3 +200,20 @@ def test_a_position_the_solver_cannot_answer_keeps_every_other_result(monkeypatc
     assert failed and not failed[0].ok
     assert result.sections["summary"]["bem_failed_contacts"] == sum(r["roll_deg"] == first
                                                                     for r in rows)
+
+
+def test_the_positions_solved_on_threads_answer_as_on_one(aligned):
+    """The positions of a cycle are independent solves: on one thread and on three the
+    loaded rows are identical (every key, exactly)."""
+    keys = loaded_module.RESULT_KEYS
+    rows = {}
+    for threads in (1, 3):
+        with loaded_module.solve_threads(threads):
+            solved, failed = loaded_cycle(aligned.cycle, STEEL, 64)
+        assert not failed
+        rows[threads] = [{k: v for k, v in c.summary().items() if k in keys} if c else None
+                         for c in solved]
+    assert rows[1] == rows[3]
+    with pytest.raises(ValueError, match="count: 0 must be an integer >= 1"):
+        with loaded_module.solve_threads(0):
+            pass

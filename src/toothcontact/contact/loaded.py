@@ -26,6 +26,10 @@ Units: mm, N, MPa.
 
 from __future__ import annotations
 
+import os
+from concurrent.futures import ThreadPoolExecutor
+from contextlib import contextmanager
+from contextvars import ContextVar
 from dataclasses import dataclass
 
 import numpy as np
@@ -50,6 +54,29 @@ COARSE_STEP = 2
 #: the relative gap error a position is solved to (pressure.solve_shared), on the full
 #: grids and in the coarse first solve: on a 30 µm approach, 0.3 nm and 30 nm
 GAP_TOLERANCE, COARSE_TOLERANCE = 1e-5, 1e-3
+
+
+#: threads solving a cycle's positions at once (each position is its own solve, and the
+#: transforms and sparse products release the GIL): None for the machine's cores
+_THREADS: ContextVar[int | None] = ContextVar("solve_threads", default=None)
+
+
+@contextmanager
+def solve_threads(count: int):
+    """Solve the positions of every cycle analysed in this context on `count` threads (a
+    sweep's sample takes its worker's share of the cores)."""
+    if not (isinstance(count, int) and count >= 1):
+        raise ValueError(f"count: {count!r} must be an integer >= 1 (threads)")
+    token = _THREADS.set(count)
+    try:
+        yield
+    finally:
+        _THREADS.reset(token)
+
+
+def machine_cores() -> int:
+    """The cores this process may run on."""
+    return len(os.sched_getaffinity(0)) if hasattr(os, "sched_getaffinity") else os.cpu_count() or 1
 
 
 #: the result keys of a loaded contact (LoadedContact.summary); a row without a solution
@@ -150,7 +177,9 @@ def loaded_cycle(cycle, C_E: float, points: int = 128, teeth: PairCompliance | N
     position (None for a pair the others keep unloaded), and the rows whose position could
     not be solved, with the reason (row index -> text; those rows are None too: the other
     positions keep their solutions). `teeth`: the members' tooth compliance along the face,
-    None to leave bending out (the pairs then share by their contact approaches alone)."""
+    None to leave bending out (the pairs then share by their contact approaches alone).
+    The positions are solved on the machine's cores (threads; see solve_threads), each
+    on its own: the result does not depend on their number."""
     rows = cycle.rows
     out: list[LoadedContact | None] = [None] * len(rows)
     failed: dict[int, str] = {}
@@ -159,13 +188,21 @@ def loaded_cycle(cycle, C_E: float, points: int = 128, teeth: PairCompliance | N
         positions.setdefault(row["roll_deg"], []).append(k)
     fields = contact_fields(cycle, range(len(rows)), points, _Pair.MARGIN,   # one batch
                             largest_cell=CELL)
-    for ks in positions.values():
+
+    def position(ks: list[int]):
         load = sum(rows[k]["normal_load_N"] for k in ks)
         try:
             pairs = [_Pair(cycle, k, points, fields[k], teeth) for k in ks]
-            solutions = _share(pairs, load, 1.0 / C_E)
+            return pairs, _share(pairs, load, 1.0 / C_E)
         except (ValueError, RuntimeError) as exc:
-            failed.update({k: str(exc) for k in ks})
+            return None, str(exc)
+
+    threads = max(1, min(_THREADS.get() or machine_cores(), len(positions)))
+    with ThreadPoolExecutor(threads) as pool:      # results in the positions' order
+        answers = list(pool.map(position, positions.values()))
+    for ks, (pairs, solutions) in zip(positions.values(), answers):
+        if pairs is None:
+            failed.update({k: solutions for k in ks})
             continue
         for k, pair, solution in zip(ks, pairs, solutions):
             if solution is not None:
@@ -179,6 +216,8 @@ class _Pair:
 
     #: the pattern's box enlarged by this much at first
     MARGIN = 1.5
+    #: the widest field's semi-axis over the flanks' length along the face
+    REACH = 1.05
 
     def __init__(self, cycle, k: int, points: int, field: GapField,
                  teeth: PairCompliance | None):
@@ -187,9 +226,11 @@ class _Pair:
         self.rigid_contact = cycle.rows[k].get("rigid_contact", True)
         self.semi_axes = self.MARGIN * pattern_semi_axes(cycle, [k])[0]
         #: the largest semi-axis a field needs: the flanks' length along the face, a box
-        #: that covers them whole about any point of them
-        self.largest = max(float(face_length(getattr(cycle, m), cycle.contact_uv(m, k))[0])
-                           for m in ("pinion", "gear"))
+        #: that covers them whole about any point of them, and a little more (REACH), so
+        #: that the flanks end inside it even about a point at one end
+        self.largest = self.REACH * max(
+            float(face_length(getattr(cycle, m), cycle.contact_uv(m, k))[0])
+            for m in ("pinion", "gear"))
         self.growth = (np.array([1.6, 1.6]) if cycle.rows[k]["contact_model"] == "ellipse"
                        else np.array([2.5, 1.3]))
         self._use(field)

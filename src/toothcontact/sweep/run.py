@@ -24,14 +24,15 @@ RETRIES = 2
 
 
 def sample_record(number: int, inputs: dict, raw: dict, folder: str | None,
-                  positions: bool = False) -> tuple[dict, list[dict]]:
-    """One sample analysed (on a worker): its record, `sample`, each varied input (the
-    case's value in core units, or its text), `status` ("ok" or the error) and the
-    summary's figures (the case's `summary` under its own names; numbers, flags and
-    texts); and, if `positions`, the result's rows per mesh position and pair (their
-    table cells, with `sample`), else []."""
+                  positions: bool = False, threads: int = 1) -> tuple[dict, list[dict]]:
+    """One sample analysed (on a worker, its positions solved on `threads` threads): its
+    record, `sample`, each varied input (the case's value in core units, or its text),
+    `status` ("ok" or the error) and the summary's figures (the case's `summary` under its
+    own names; numbers, flags and texts); and, if `positions`, the result's rows per mesh
+    position and pair (their table cells, with `sample`), else []."""
     from ..analyses import analyse
     from ..case import parse_case
+    from ..contact.loaded import solve_threads
 
     record: dict = {"sample": number}
     rows: list[dict] = []
@@ -40,7 +41,8 @@ def sample_record(number: int, inputs: dict, raw: dict, folder: str | None,
                           base=None if folder is None else Path(folder))
         for field in inputs:
             record[f"input:{field}"] = _value(case, field)
-        sections = analyse(case).sections
+        with solve_threads(threads):
+            sections = analyse(case).sections
         record.update(_cells(sections.get("summary", {})))
         if positions:
             rows = [{"sample": number, **_cells(row)} for row in sections.get("positions", [])]
@@ -77,7 +79,9 @@ def _cell(value):
 class Workers:
     """Where samples run: an existing Dask scheduler at `scheduler`, else a LocalCluster of
     `workers` processes (the machine's cores) started at its first use and closed with
-    this (a context manager); one cluster serves every sweep an optimisation runs."""
+    this (a context manager); one cluster serves every sweep an optimisation runs. A
+    sample solves its positions on its worker's share of the local cores (`threads`), on
+    one thread on a deployment's workers (sized there, one per core)."""
 
     def __init__(self, scheduler: str | None = None, workers: int | None = None):
         self.scheduler, self.workers = scheduler, workers
@@ -89,11 +93,22 @@ class Workers:
 
         if self._client is None:
             if self.scheduler is None:
-                self._cluster = LocalCluster(n_workers=self.workers or os.cpu_count() or 1,
+                from ..contact.loaded import machine_cores
+
+                self._cluster = LocalCluster(n_workers=self.workers or machine_cores(),
                                              threads_per_worker=1, processes=True,
                                              dashboard_address=":0")
             self._client = Client(self.scheduler or self._cluster)
         return self._client
+
+    @property
+    def threads(self) -> int:
+        """Threads per sample."""
+        from ..contact.loaded import machine_cores
+
+        if self.scheduler is not None:
+            return 1
+        return max(1, machine_cores() // (self.workers or machine_cores()))
 
     def __enter__(self) -> "Workers":
         return self
@@ -121,7 +136,8 @@ def run(samples: list[Sample], folder: Path | None, out: Path, workers: Workers,
         futures = workers.client.map(
             sample_record, [s.sample for s in todo], [s.inputs for s in todo],
             [s.raw for s in todo], [None if folder is None else str(folder)] * len(todo),
-            [positions] * len(todo), retries=RETRIES, pure=False)
+            [positions] * len(todo), [workers.threads] * len(todo), retries=RETRIES,
+            pure=False)
         for future in as_completed(futures):
             record, rows = future.result()
             if shares[record["sample"]] is not None:
