@@ -41,6 +41,7 @@ from __future__ import annotations
 import functools
 import math
 from dataclasses import dataclass
+from typing import NamedTuple
 
 import numpy as np
 import scipy.fft as sfft
@@ -484,27 +485,38 @@ class Grid:
     reference: tuple = ()
 
 
+class _Checked(NamedTuple):
+    """One grid of a shared solve as checked: gap h (0 off the material), cell sides, mask."""
+
+    h: np.ndarray
+    dx: float
+    dy: float
+    m: np.ndarray
+    structure: object
+    reference: tuple
+
+
 class _System:
     """The grids of a shared solve as one flattened vector (the grids' cells one after the
     other): the influence is block diagonal, each grid's own half-space (DC-FFT) plus its
     `structure`; the preconditioner each grid's circulant inverse. Loads are p·cell, cell
     the area of a grid's cells (mm²)."""
 
-    def __init__(self, grids: list[tuple], E_star: float, single: bool):
-        #: per grid: (h, dx, dy, m, structure, reference) as checked
+    def __init__(self, grids: list[_Checked], E_star: float, single: bool):
         self.compliance, self.single = 1.0 / E_star, single
-        self.h = np.concatenate([g[0].ravel() for g in grids])
-        self.m = np.concatenate([g[3].ravel() for g in grids])
-        self.shapes = [g[0].shape for g in grids]
-        bounds = np.cumsum([0] + [g[0].size for g in grids])
+        self.h = np.concatenate([g.h.ravel() for g in grids])
+        self.m = np.concatenate([g.m.ravel() for g in grids])
+        self.shapes = [g.h.shape for g in grids]
+        bounds = np.cumsum([0] + [g.h.size for g in grids])
         self.slices = [slice(int(a), int(b)) for a, b in zip(bounds[:-1], bounds[1:])]
-        self.ops = [influence_operator(tuple(int(k) for k in g[0].shape), g[1], g[2], g[5],
-                                       E_star if g[5] else 1.0) for g in grids]
-        self.structures = [g[4] for g in grids]
-        areas = [g[1] * g[2] for g in grids]
+        self.ops = [influence_operator(tuple(int(k) for k in g.h.shape), g.dx, g.dy,
+                                       g.reference, E_star if g.reference else 1.0)
+                    for g in grids]
+        self.structures = [g.structure for g in grids]
+        areas = [g.dx * g.dy for g in grids]
         #: the cells' areas: one number for one grid (or equal cells), else per cell
         self.cells = (areas[0] if len(set(areas)) == 1 else
-                      np.concatenate([np.full(g[0].size, a) for g, a in zip(grids, areas)]))
+                      np.concatenate([np.full(g.h.size, a) for g, a in zip(grids, areas)]))
         self._buffer = np.zeros(self.h.size)
 
     def cell(self, where: np.ndarray):
@@ -513,8 +525,9 @@ class _System:
 
     def load(self, p: np.ndarray, where: np.ndarray) -> float:
         """The load (N) of the pressures p (MPa) on the cells `where`."""
-        return _dot(self.cell(where), p[where]) if not np.isscalar(self.cells) else \
-            self.cells * float(p[where].sum())
+        if np.isscalar(self.cells):
+            return self.cells * float(p[where].sum())
+        return _dot(self.cells[where], p[where])
 
     def _blocks(self, values: np.ndarray, where: np.ndarray | None):
         """Each grid's values on the grid (from the flat `values` on `where`, or from the
@@ -696,8 +709,8 @@ def solve_shared(grids: list[Grid], loads_N, E_star_MPa: float, *, tol: float = 
                          f"({len(grids)})")
     W = _positive("loads_N (their sum)", sum(loads), "N")
     E_star = _positive("E_star_MPa", E_star_MPa, "MPa")
-    checked = [(*_check_grid(g.gap_mm, g.dx_mm, g.dy_mm, g.mask), g.structure, tuple(g.reference))
-               for g in grids]
+    checked = [_Checked(*_check_grid(g.gap_mm, g.dx_mm, g.dy_mm, g.mask), g.structure,
+                        tuple(g.reference)) for g in grids]
     tol = _positive("tol", tol, "(relative gap error)")
     if not (isinstance(max_iter, (int, np.integer)) and max_iter >= 1):
         raise ValueError(f"max_iter: {max_iter!r} must be an integer >= 1")
@@ -706,8 +719,8 @@ def solve_shared(grids: list[Grid], loads_N, E_star_MPa: float, *, tol: float = 
     single = np.dtype(dtype) == np.dtype(np.float32)
     system = _System(checked, E_star, single)
     starts = [None] * len(grids) if starts is None else list(starts)
-    p = np.concatenate([_start(h, dx, dy, m, w, E_star, start, warm_start).ravel()
-                        for (h, dx, dy, m, *_), w, start in zip(checked, loads, starts)])
+    p = np.concatenate([_start(g.h, g.dx, g.dy, g.m, w, E_star, start, warm_start).ravel()
+                        for g, w, start in zip(checked, loads, starts)])
     p *= W / system.load(p, np.flatnonzero(p))
     iterations = 0
     while True:
@@ -721,7 +734,7 @@ def solve_shared(grids: list[Grid], loads_N, E_star_MPa: float, *, tol: float = 
         p, steps = _ccg(system, p, u, W, tol, max_iter - iterations)
         iterations += steps
     out = []
-    for k, ((h, dx, dy, m, *_), s) in enumerate(zip(checked, system.slices)):
+    for k, ((h, dx, dy, m, _, _), s) in enumerate(zip(checked, system.slices)):
         pk, uk = p[s].reshape(h.shape), u[s].reshape(h.shape)
         S = pk > 0.0
         if not S.any():
