@@ -197,9 +197,12 @@ def loaded_cycle(cycle, C_E: float, points: int = 128, teeth: PairCompliance | N
         except (ValueError, RuntimeError) as exc:
             return None, str(exc)
 
-    threads = max(1, min(_THREADS.get() or machine_cores(), len(positions)))
-    with ThreadPoolExecutor(threads) as pool:      # results in the positions' order
-        answers = list(pool.map(position, positions.values()))
+    threads = min(_THREADS.get() or machine_cores(), len(positions))
+    if threads <= 1:
+        answers = [position(ks) for ks in positions.values()]
+    else:
+        with ThreadPoolExecutor(threads) as pool:      # results in the positions' order
+            answers = list(pool.map(position, positions.values()))
     for ks, (pairs, solutions) in zip(positions.values(), answers):
         if pairs is None:
             failed.update({k: solutions for k in ks})
