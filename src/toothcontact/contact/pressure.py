@@ -720,8 +720,7 @@ def solve_shared(grids: list[Grid], loads_N, E_star_MPa: float, *, tol: float = 
     system = _System(checked, E_star, single)
     starts = [None] * len(grids) if starts is None else list(starts)
     p = np.concatenate([_start(g.h, g.dx, g.dy, g.m, w, E_star, start, warm_start).ravel()
-                        for g, w, start in zip(checked, loads, starts)])
-    p *= W / system.load(p, np.flatnonzero(p))
+                        for g, w, start in zip(checked, loads, starts)])     # carries W
     iterations = 0
     while True:
         u = system.displacement(p, single=False)             # float64, afresh

@@ -93,22 +93,26 @@ class Workers:
 
         if self._client is None:
             if self.scheduler is None:
-                from ..contact.loaded import machine_cores
-
-                self._cluster = LocalCluster(n_workers=self.workers or machine_cores(),
+                self._cluster = LocalCluster(n_workers=self._local()[0],
                                              threads_per_worker=1, processes=True,
                                              dashboard_address=":0")
             self._client = Client(self.scheduler or self._cluster)
         return self._client
 
+    def _local(self) -> tuple[int, int]:
+        """(workers, cores) of the local cluster: `workers`, else one per core."""
+        from ..contact.loaded import machine_cores
+
+        cores = machine_cores()
+        return self.workers or cores, cores
+
     @property
     def threads(self) -> int:
         """Threads per sample."""
-        from ..contact.loaded import machine_cores
-
         if self.scheduler is not None:
             return 1
-        return max(1, machine_cores() // (self.workers or machine_cores()))
+        workers, cores = self._local()
+        return max(1, cores // workers)
 
     def __enter__(self) -> "Workers":
         return self
