@@ -395,25 +395,20 @@ class MemberLoading:
                  radii: np.ndarray, matrix: np.ndarray, coupling: FaceCoupling):
         self.z, self.radius, self.share, self.extent = z, radius, share, extent
         self.radii, self.matrix, self.coupling = radii, matrix, coupling
-        from scipy.sparse import csr_matrix
-
         across, across_share = hats(radii, radius)
         along, along_share = hats(coupling.nodes, z)
         first = int(across.min())                   # the radial nodes in use: first, first + 1...
         self.profile = matrix[first:int(across.max()) + 2, first:int(across.max()) + 2]
         self.shape = (len(self.profile), len(coupling.nodes))
         across -= first
-        # each cell's four nodes (row-major in the shape) and its weights on them
-        nodes = np.stack([a * self.shape[1] + k for a in (across, across + 1)
-                          for k in (along, along + 1)], axis=-1)
+        #: each cell's four nodes (row-major in the shape, cells × 4) and its weights on
+        #: them: the nodes' deflections read at the cells; their transpose spreads the cells'
+        #: loads to the nodes
+        self.nodes = np.stack([a * self.shape[1] + k for a in (across, across + 1)
+                               for k in (along, along + 1)], axis=-1)
         root = np.sqrt(share)
-        weights = np.stack([wa * wk * root for wa in (1.0 - across_share, across_share)
-                            for wk in (1.0 - along_share, along_share)], axis=-1)
-        #: cells × nodes (4 a row): the nodes' deflections read at the cells; its
-        #: transpose spreads the cells' loads to the nodes
-        self.gather = csr_matrix((weights.ravel(), nodes.ravel(),
-                                  np.arange(0, 4 * len(z) + 1, 4)),
-                                 shape=(len(z), self.shape[0] * self.shape[1]))
+        self.weights = np.stack([wa * wk * root for wa in (1.0 - across_share, across_share)
+                                 for wk in (1.0 - along_share, along_share)], axis=-1)
 
     def nodes_deflection(self, node_loads: np.ndarray) -> np.ndarray:
         """The nodes' deflections (mm, flat) under their loads (N, flat): profile
@@ -428,8 +423,8 @@ class StructureOperator:
     the half-space's influence."""
 
     def __init__(self, members: list[MemberLoading], shape: tuple[int, int], cell: float,
-                 active: np.ndarray, reference: tuple):
-        from scipy.sparse import csr_matrix, hstack
+                 active: np.ndarray, reference: tuple, gather=None):
+        from scipy.sparse import csr_matrix
 
         self.members, self.shape, self.cell = members, shape, cell
         self.active = np.flatnonzero(active.ravel())
@@ -437,18 +432,32 @@ class StructureOperator:
         #: the teeth's centre lines (pressure.InfluenceOperator), where the slices' bending
         #: is measured from
         self.reference = reference
-        # both members' node weights on the whole grid (no rows off the material), and the
-        # transpose stored as rows too: one product each way per application
-        gather = hstack([m.gather for m in members], format="csr")
-        counts = np.zeros(int(np.prod(shape)) + 1, dtype=gather.indptr.dtype)
-        counts[self.active + 1] = np.diff(gather.indptr)
-        self._gather = csr_matrix((gather.data, gather.indices, np.cumsum(counts)),
-                                  shape=(len(counts) - 1, gather.shape[1]))
-        self._spread = self._gather.T.tocsr()
-        self._split = np.cumsum([m.gather.shape[1] for m in members])[:-1]
+        # both members' node weights on the whole grid (no rows off the material; `gather`
+        # where a larger grid's are given): one product each way per application (its
+        # transpose a CSC view, as fast as a stored CSR transpose: 0.20 against 0.23 ms on
+        # 37,000 cells)
+        sizes = [m.shape[0] * m.shape[1] for m in members]
+        if gather is None:
+            offsets = np.cumsum([0] + sizes[:-1])
+            nodes = np.concatenate([m.nodes + o for m, o in zip(members, offsets)], axis=1)
+            weights = np.concatenate([m.weights for m in members], axis=1)
+            counts = np.zeros(int(np.prod(shape)) + 1, dtype=np.int64)
+            counts[self.active + 1] = nodes.shape[1]
+            gather = csr_matrix((weights.ravel(), nodes.ravel(), np.cumsum(counts)),
+                                shape=(len(counts) - 1, sum(sizes)))
+        self._gather = gather
+        self._split = np.cumsum(sizes)[:-1]
+
+    def window(self, rows: slice, cols: slice) -> "StructureOperator":
+        """The operator on the part [rows, cols] of the grid (for loads there alone)."""
+        cells = np.arange(self.shape[0] * self.shape[1]).reshape(self.shape)[rows, cols]
+        active = np.zeros(self.shape[0] * self.shape[1], bool)
+        active[self.active] = True
+        return StructureOperator(self.members, cells.shape, self.cell,
+                                 active[cells], self.reference, self._gather[cells.ravel()])
 
     def __call__(self, p: np.ndarray) -> np.ndarray:
-        loads = self._spread @ (np.asarray(p, float).ravel() * self.cell)
+        loads = self._gather.T @ (np.asarray(p, float).ravel() * self.cell)
         deflections = np.concatenate([m.nodes_deflection(q) for m, q in
                                       zip(self.members, np.split(loads, self._split))])
         return (self._gather @ deflections).reshape(self.shape)
@@ -521,7 +530,8 @@ def _extent(field, z: np.ndarray) -> float:
     material cells: z fitted as a plane over the cells, |∂z/∂x|·dx + |∂z/∂y|·dy."""
     X, Y = np.meshgrid(field.x, field.y, indexing="ij")
     m = field.material
-    A = np.column_stack([X[m], Y[m], np.ones(z.size)])
-    (a, b, _), *_ = np.linalg.lstsq(A, z, rcond=None)
+    # least squares by its normal equations about the means (2 × 2)
+    A = np.stack([X[m] - X[m].mean(), Y[m] - Y[m].mean()])
+    a, b = np.linalg.solve(A @ A.T, A @ (z - z.mean()))
     dx, dy = field.spacing
     return float(abs(a) * dx + abs(b) * dy)

@@ -117,37 +117,56 @@ class InfluenceOperator:
     """
 
     def __init__(self, shape: tuple[int, int], dx: float, dy: float,
-                 reference: tuple = (), E_star: float = 1.0):
+                 reference: tuple = (), E_star: float = 1.0, quadrant: np.ndarray | None = None):
         n0, n1 = (int(s) for s in shape)
         self.shape, self.dx, self.dy = (n0, n1), float(dx), float(dy)
-        # the circulant's size: 2n or the next even length the FFT factors fast (a length
-        # with a large prime factor, 2·964 = 8·241, transforms 4-5 times slower); the
-        # kernel is laid out on it as for a grid of half its size
+        self.reference, self.E_star = reference, E_star
         # the real transform runs along the longer axis (on the grid's short rows only),
         # the complex one along the shorter: 20-40 % faster on a long contact's grid; on one
         # thread (scipy's default): these transforms are too small for threads to pay (the
         # bundled spur case 3.85 s single-threaded, 4.64 s on both cores)
         self._real_axis = 0 if n0 >= n1 else 1
-        self.padded = tuple(_even_fast_length(2 * n, axis == self._real_axis)
-                            for axis, n in enumerate((n0, n1)))
-        self.kernel = self.coefficients(self.padded[0] // 2, self.padded[1] // 2, self.dx,
-                                        self.dy, reference, E_star)
-        self._spectrum = {np.float64: np.ascontiguousarray(sfft.rfftn(
-            self.kernel, axes=(1 - self._real_axis, self._real_axis)).real)}
-        # the circulant's spectrum is positive for this kernel; the guard only keeps the
-        # preconditioner finite
-        spectrum = self._spectrum[np.float64]
-        self._inverse = {np.float64: 1.0 / np.maximum(spectrum, 1e-12 * spectrum.max())}
+        #: the DC-FFT circulant's size (2n per axis, made fast)
+        self.padded = self._lengths(2)
+        #: the preconditioner's circulant size (n per axis, made fast)
+        self.wrapped = self._lengths(1)
+        need = tuple(n // 2 + 1 for n in self.padded)
+        if quadrant is None or quadrant.shape[0] < need[0] or quadrant.shape[1] < need[1]:
+            quadrant = self.quadrant(need[0] - 1, need[1] - 1, dx, dy, reference, E_star)
+        #: the coefficients of offsets k, l >= 0 (at least the padded circulant's half)
+        self._quadrant = quadrant
+        self._spectrum = {np.float64: self._kernel_spectrum(self.padded)}
+        self._inverse: dict = {}
+
+    def part(self, shape: tuple[int, int]) -> "InfluenceOperator":
+        """The operator of a part of this grid, `shape` cells (its coefficients taken from
+        this operator's)."""
+        return InfluenceOperator(shape, self.dx, self.dy, self.reference, self.E_star,
+                                 self._quadrant)
+
+    def _lengths(self, factor: int) -> tuple[int, int]:
+        """A circulant's size: factor·n per axis, or the next even length the FFT factors
+        fast (a length with a large prime factor, 2·964 = 8·241, transforms 4-5 times
+        slower)."""
+        return tuple(_even_fast_length(factor * n, axis == self._real_axis)
+                     for axis, n in enumerate(self.shape))
+
+    def _kernel_spectrum(self, lengths: tuple[int, int]) -> np.ndarray:
+        """The spectrum (real: the kernel is even) of the kernel laid out on the `lengths`
+        circulant as for a grid of half its size, in the transforms' axis order."""
+        kernel = _wrap_around(self._quadrant[:lengths[0] // 2 + 1, :lengths[1] // 2 + 1])
+        return np.ascontiguousarray(sfft.rfftn(
+            kernel, axes=(1 - self._real_axis, self._real_axis)).real)
 
     @staticmethod
-    def coefficients(n0: int, n1: int, dx: float, dy: float, reference: tuple = (),
-                     E_star: float = 1.0) -> np.ndarray:
-        """Influence coefficients (mm per MPa, E* = 1 MPa) on the 2n0 × 2n1 wrap-around grid:
-        index k <= n0 is the offset k·dx, index k > n0 the offset (k - 2n0)·dx.
+    def quadrant(n0: int, n1: int, dx: float, dy: float, reference: tuple = (),
+                 E_star: float = 1.0) -> np.ndarray:
+        """Influence coefficients (mm per MPa, E* = 1 MPa) of the offsets k·dx, l·dy,
+        0 <= k <= n0, 0 <= l <= n1 ((n0 + 1) × (n1 + 1)).
 
-        F is evaluated once on the cell corners (k - 1/2)·dx, (l - 1/2)·dy of the quadrant
-        k, l >= 0; the double difference of neighbours is Johnson eq (3.25) for each cell, and
-        the quadrant is mirrored (K is even in both axes). `reference`: see the class."""
+        F is evaluated once on the cell corners (k - 1/2)·dx, (l - 1/2)·dy; the double
+        difference of neighbours is Johnson eq (3.25) for each cell. `reference`: see the
+        class."""
         xs = (np.arange(n0 + 2) - 0.5) * dx
         ys = (np.arange(n1 + 2) - 0.5) * dy
         F = _antiderivative(xs[:, None], ys[None, :])
@@ -158,38 +177,59 @@ class InfluenceOperator:
             G = E / (2.0 * (1.0 + nu))
             quadrant = quadrant - E_star * dx * dy / (4.0 * math.pi * G) * (
                 depth ** 2 / rho ** 3 + 2.0 * (1.0 - nu) / rho)
-        half = np.concatenate([quadrant, quadrant[-2:0:-1]], axis=0)
-        return np.concatenate([half, half[:, -2:0:-1]], axis=1)
+        return quadrant
 
-    def _spectra(self, single: bool):
+    @staticmethod
+    def coefficients(n0: int, n1: int, dx: float, dy: float, reference: tuple = (),
+                     E_star: float = 1.0) -> np.ndarray:
+        """Influence coefficients (mm per MPa, E* = 1 MPa) on the 2n0 × 2n1 wrap-around grid:
+        index k <= n0 is the offset k·dx, index k > n0 the offset (k - 2n0)·dx (the
+        quadrant mirrored: K is even in both axes)."""
+        return _wrap_around(InfluenceOperator.quadrant(n0, n1, dx, dy, reference, E_star))
+
+    def _spectra(self, single: bool, inverse: bool):
+        """(dtype, spectrum) in float32 or float64: the DC-FFT circulant's, or with inverse
+        the preconditioner's (1/spectrum of the `wrapped` circulant: positive for this
+        kernel, the guard only keeps it finite); each computed on first use."""
         key = np.float32 if single else np.float64
-        if key not in self._spectrum:
-            self._spectrum[key] = self._spectrum[np.float64].astype(np.float32)
-            self._inverse[key] = self._inverse[np.float64].astype(np.float32)
-        return key, self._spectrum[key], self._inverse[key]
+        store = self._inverse if inverse else self._spectrum
+        if inverse and np.float64 not in store:
+            spectrum = self._kernel_spectrum(self.wrapped)
+            store[np.float64] = 1.0 / np.maximum(spectrum, 1e-12 * spectrum.max())
+        if key not in store:
+            store[key] = store[np.float64].astype(np.float32)
+        return key, store[key]
 
-    def _convolve(self, p, spectrum, dtype) -> np.ndarray:
+    def _convolve(self, p, spectrum, dtype, lengths) -> np.ndarray:
         n0, n1 = self.shape
         real, other = self._real_axis, 1 - self._real_axis
-        P = sfft.rfft(np.asarray(p, dtype=dtype), n=self.padded[real], axis=real)
-        P = sfft.fft(P, n=self.padded[other], axis=other, overwrite_x=True)
+        P = sfft.rfft(np.asarray(p, dtype=dtype), n=lengths[real], axis=real)
+        P = sfft.fft(P, n=lengths[other], axis=other, overwrite_x=True)
         P *= spectrum
         U = sfft.ifft(P, axis=other, overwrite_x=True)
         U = U[:n0] if other == 0 else U[:, :n1]
-        return sfft.irfft(U, n=self.padded[real], axis=real)[:n0, :n1]
+        return sfft.irfft(U, n=lengths[real], axis=real)[:n0, :n1]
 
     def __call__(self, p: np.ndarray, single: bool = False) -> np.ndarray:
         """Displacement (mm, for E* = 1 MPa) under the pressure p (MPa) on the grid; single:
         the transforms in float32 (relative error about 1e-7)."""
-        dtype, spectrum, _ = self._spectra(single)
-        return self._convolve(p, spectrum, dtype)
+        dtype, spectrum = self._spectra(single, inverse=False)
+        return self._convolve(p, spectrum, dtype, self.padded)
 
     def approximate_inverse(self, u: np.ndarray, single: bool = False) -> np.ndarray:
-        """Pressure (MPa, E* = 1 MPa) whose padded cyclic displacement is u: the inverse of
-        the L0 × L1 circulant, restricted to the grid. An approximate inverse of K, used
-        as the preconditioner (Zhao, Vollebregt & Oosterlee 2014)."""
-        dtype, _, inverse = self._spectra(single)
-        return self._convolve(u, inverse, dtype)
+        """Pressure (MPa, E* = 1 MPa) whose periodic displacement on the grid is u: the
+        inverse of the kernel's circulant of the grid's own size (`wrapped`). An
+        approximate inverse of K, used as the preconditioner (a circulant preconditioner of
+        the Toeplitz matrix, Strang 1986; with FFTs, Zhao, Vollebregt & Oosterlee 2014)."""
+        dtype, inverse = self._spectra(single, inverse=True)
+        return self._convolve(u, inverse, dtype, self.wrapped)
+
+
+def _wrap_around(quadrant: np.ndarray) -> np.ndarray:
+    """The coefficients of the offsets k, l >= 0 ((n0 + 1) × (n1 + 1)) mirrored onto the
+    2n0 × 2n1 wrap-around grid (K is even in both axes)."""
+    half = np.concatenate([quadrant, quadrant[-2:0:-1]], axis=0)
+    return np.concatenate([half, half[:, -2:0:-1]], axis=1)
 
 
 def _even_fast_length(n: int, real: bool) -> int:
@@ -502,16 +542,17 @@ class _System:
     `structure`; the preconditioner each grid's circulant inverse. Loads are p·cell, cell
     the area of a grid's cells (mm²)."""
 
-    def __init__(self, grids: list[_Checked], E_star: float, single: bool):
+    def __init__(self, grids: list[_Checked], E_star: float, single: bool, ops=None):
+        self.grids, self.E_star = grids, E_star
         self.compliance, self.single = 1.0 / E_star, single
         self.h = np.concatenate([g.h.ravel() for g in grids])
         self.m = np.concatenate([g.m.ravel() for g in grids])
         self.shapes = [g.h.shape for g in grids]
         bounds = np.cumsum([0] + [g.h.size for g in grids])
         self.slices = [slice(int(a), int(b)) for a, b in zip(bounds[:-1], bounds[1:])]
-        self.ops = [influence_operator(tuple(int(k) for k in g.h.shape), g.dx, g.dy,
-                                       g.reference, E_star if g.reference else 1.0)
-                    for g in grids]
+        self.ops = ops or [influence_operator(tuple(int(k) for k in g.h.shape), g.dx, g.dy,
+                                              g.reference, E_star if g.reference else 1.0)
+                           for g in grids]
         self.structures = [g.structure for g in grids]
         areas = [g.dx * g.dy for g in grids]
         #: the cells' areas: one number for one grid (or equal cells), else per cell
@@ -565,10 +606,55 @@ class _System:
                 out[s] = op.approximate_inverse(e, self.single).ravel()
         return out[where] * self.cell(where)
 
-    def error(self, p: np.ndarray, u: np.ndarray) -> tuple[float, float]:
-        """(relative gap error, approach) of the state p, u (see :func:`_state`)."""
-        approach, _, _, error = _state(self.h + u, np.flatnonzero(p > 0.0), self.m)
-        return error / float(u[self.m].max()), approach
+    def error(self, p: np.ndarray, u: np.ndarray) -> tuple[float, float, np.ndarray]:
+        """(relative gap error, approach, busy) of the state p, u (see :func:`_state`); busy:
+        the cells in contact or penetrating (flat bool)."""
+        contact = np.flatnonzero(p > 0.0)
+        approach, _, join, error = _state(self.h + u, contact, self.m)
+        busy = np.zeros(self.h.size, bool)
+        busy[contact] = busy[join] = True
+        return error / float(u[self.m].max()), approach, busy
+
+    def windowed(self, windows: list) -> tuple["_System", np.ndarray]:
+        """The system on the windows ((rows, cols) slices per grid, None to leave a grid
+        out), and the flat indices of its cells in this system's vector."""
+        grids, ops, inside = [], [], []
+        for g, op, s, shape, window in zip(self.grids, self.ops, self.slices, self.shapes,
+                                           windows):
+            if window is None:
+                continue
+            rows, cols = window
+            grids.append(_Checked(g.h[rows, cols], g.dx, g.dy, g.m[rows, cols],
+                                  None if g.structure is None else g.structure.window(rows, cols),
+                                  g.reference))
+            ops.append(op.part(grids[-1].h.shape))
+            inside.append(np.arange(s.start, s.stop).reshape(shape)[rows, cols].ravel())
+        return _System(grids, self.E_star, self.single, ops), np.concatenate(inside)
+
+
+#: a shared solve iterates on a window of each grid: the box about its cells in contact and
+#: penetrating, enlarged by WINDOW_SHARE of its sides and WINDOW_CELLS cells each way; the
+#: whole grids are checked after every pass and a window widened where they need it (a
+#: line contact's field is several contact widths wide: the transforms shrink with it)
+WINDOW_SHARE, WINDOW_CELLS = 0.1, 3
+
+
+def _window(busy: np.ndarray, old: tuple[slice, slice] | None) -> tuple[slice, slice] | None:
+    """The window (rows, cols) of a grid about its `busy` cells (2-D bool), holding the
+    previous window `old` (None: none); None where neither has a cell. It holds all the
+    grid's pressure (the busy cells hold the contact): the pass starts from p and u as
+    they are."""
+    if not busy.any():
+        return old
+    bounds = []
+    for axis, n in enumerate(busy.shape):
+        cells = np.flatnonzero(busy.any(axis=1 - axis))
+        pad = WINDOW_CELLS + math.ceil(WINDOW_SHARE * (cells[-1] + 1 - cells[0]))
+        low, high = max(int(cells[0]) - pad, 0), min(int(cells[-1]) + 1 + pad, n)
+        if old is not None:
+            low, high = min(low, old[axis].start), max(high, old[axis].stop)
+        bounds.append(slice(low, high))
+    return tuple(bounds)
 
 
 def _dot(a: np.ndarray, b: np.ndarray) -> float:
@@ -721,16 +807,21 @@ def solve_shared(grids: list[Grid], loads_N, E_star_MPa: float, *, tol: float = 
     starts = [None] * len(grids) if starts is None else list(starts)
     p = np.concatenate([_start(g.h, g.dx, g.dy, g.m, w, E_star, start, warm_start).ravel()
                         for g, w, start in zip(checked, loads, starts)])     # carries W
-    iterations = 0
+    iterations, windows = 0, [None] * len(grids)
     while True:
-        u = system.displacement(p, single=False)             # float64, afresh
-        error, approach = system.error(p, u)
+        u = system.displacement(p, single=False)             # float64, afresh, everywhere
+        error, approach, busy = system.error(p, u)
         if error < tol:
             break
         if iterations >= max_iter:
             raise RuntimeError(f"solve_contact: relative gap error {error:.3g} after "
                                f"{iterations} iterations, above tol = {tol:g}")
-        p, steps = _ccg(system, p, u, W, tol, max_iter - iterations)
+        windows = [_window(busy[s].reshape(shape), old)
+                   for s, shape, old in zip(system.slices, system.shapes, windows)]
+        part, inside = system.windowed(windows)
+        solved, steps = _ccg(part, p[inside], u[inside], W, tol, max_iter - iterations)
+        p = np.zeros(p.size)
+        p[inside] = solved
         iterations += steps
     out = []
     for k, ((h, dx, dy, m, _, _), s) in enumerate(zip(checked, system.slices)):
