@@ -152,11 +152,17 @@ class InfluenceOperator:
                      for axis, n in enumerate(self.shape))
 
     def _kernel_spectrum(self, lengths: tuple[int, int]) -> np.ndarray:
-        """The spectrum (real: the kernel is even) of the kernel laid out on the `lengths`
-        circulant as for a grid of half its size, in the transforms' axis order."""
-        kernel = _wrap_around(self._quadrant[:lengths[0] // 2 + 1, :lengths[1] // 2 + 1])
-        return np.ascontiguousarray(sfft.rfftn(
-            kernel, axes=(1 - self._real_axis, self._real_axis)).real)
+        """The spectrum of the kernel laid out on the `lengths` circulant as for a grid of
+        half its size, in the transforms' layout (the real transform's axis halved): the
+        kernel is even, so its spectrum is real and is the type-I DCT of its quadrant (the
+        DFT of an even sequence of 2N points, for frequencies 0..N), mirrored along the
+        complex transform's axis."""
+        spectrum = sfft.dctn(self._quadrant[:lengths[0] // 2 + 1, :lengths[1] // 2 + 1],
+                             type=1)
+        other = 1 - self._real_axis
+        mirror = np.flip(spectrum, axis=other).take(range(1, spectrum.shape[other] - 1),
+                                                    axis=other)
+        return np.concatenate([spectrum, mirror], axis=other)
 
     @staticmethod
     def quadrant(n0: int, n1: int, dx: float, dy: float, reference: tuple = (),
@@ -185,7 +191,9 @@ class InfluenceOperator:
         """Influence coefficients (mm per MPa, E* = 1 MPa) on the 2n0 × 2n1 wrap-around grid:
         index k <= n0 is the offset k·dx, index k > n0 the offset (k - 2n0)·dx (the
         quadrant mirrored: K is even in both axes)."""
-        return _wrap_around(InfluenceOperator.quadrant(n0, n1, dx, dy, reference, E_star))
+        quadrant = InfluenceOperator.quadrant(n0, n1, dx, dy, reference, E_star)
+        half = np.concatenate([quadrant, quadrant[-2:0:-1]], axis=0)
+        return np.concatenate([half, half[:, -2:0:-1]], axis=1)
 
     def _spectra(self, single: bool, inverse: bool):
         """(dtype, spectrum) in float32 or float64: the DC-FFT circulant's, or with inverse
@@ -223,13 +231,6 @@ class InfluenceOperator:
         the Toeplitz matrix, Strang 1986; with FFTs, Zhao, Vollebregt & Oosterlee 2014)."""
         dtype, inverse = self._spectra(single, inverse=True)
         return self._convolve(u, inverse, dtype, self.wrapped)
-
-
-def _wrap_around(quadrant: np.ndarray) -> np.ndarray:
-    """The coefficients of the offsets k, l >= 0 ((n0 + 1) × (n1 + 1)) mirrored onto the
-    2n0 × 2n1 wrap-around grid (K is even in both axes)."""
-    half = np.concatenate([quadrant, quadrant[-2:0:-1]], axis=0)
-    return np.concatenate([half, half[:, -2:0:-1]], axis=1)
 
 
 def _even_fast_length(n: int, real: bool) -> int:
