@@ -27,11 +27,14 @@ Method:
   once per grid (:func:`influence_operator`, cached by shape, dx, dy).
 - Solver: the constrained conjugate gradient method of Polonsky & Keer, Wear 231 (1999)
   206-219, with the load constraint, preconditioned on the contact set by the inverse of
-  the DC-FFT circulant (an FFT approximate inverse of the Toeplitz influence matrix, as in
-  Zhao, Vollebregt & Oosterlee, Numer. Linear Algebra Appl. 21 (2014) 256-274; its use
-  inside the constrained iteration is ours), and started from the Hertz ellipse fitted to
-  the gap (:func:`hertz_start`), or from the rigid interference where that ellipse lies
-  mostly off the material (:func:`interference_start`).
+  the kernel's periodic circulant of the grid's own size (an FFT approximate inverse of
+  the Toeplitz influence matrix, as in Zhao, Vollebregt & Oosterlee, Numer. Linear
+  Algebra Appl. 21 (2014) 256-274; its use inside the constrained iteration is ours),
+  started from the Hertz ellipse fitted to the gap (:func:`hertz_start`), or from the
+  rigid interference where that ellipse lies mostly off the material
+  (:func:`interference_start`). It iterates on a window of the grid about the cells in
+  contact and penetrating, and checks the whole grid after each pass (a window too small
+  is widened).
 
 Units: mm, N, MPa.
 """
@@ -133,7 +136,8 @@ class InfluenceOperator:
         need = tuple(n // 2 + 1 for n in self.padded)
         if quadrant is None or quadrant.shape[0] < need[0] or quadrant.shape[1] < need[1]:
             quadrant = self.quadrant(need[0] - 1, need[1] - 1, dx, dy, reference, E_star)
-        #: the coefficients of offsets k, l >= 0 (at least the padded circulant's half)
+        #: the coefficients of offsets k, l >= 0 (at least the padded circulant's half; a
+        #: part of the grid takes its own from them)
         self._quadrant = quadrant
         self._spectrum = {np.float64: self._kernel_spectrum(self.padded)}
         self._inverse: dict = {}
@@ -540,8 +544,8 @@ class _Checked(NamedTuple):
 class _System:
     """The grids of a shared solve as one flattened vector (the grids' cells one after the
     other): the influence is block diagonal, each grid's own half-space (DC-FFT) plus its
-    `structure`; the preconditioner each grid's circulant inverse. Loads are p·cell, cell
-    the area of a grid's cells (mm²)."""
+    `structure`; the preconditioner each grid's periodic circulant's inverse. Loads are
+    p·cell, cell the area of a grid's cells (mm²)."""
 
     def __init__(self, grids: list[_Checked], E_star: float, single: bool, ops=None):
         self.grids, self.E_star = grids, E_star
@@ -599,7 +603,7 @@ class _System:
         return out
 
     def precondition(self, values: np.ndarray, where: np.ndarray) -> np.ndarray:
-        """The preconditioned residual on `where`, as loads: each grid's circulant inverse
+        """The preconditioned residual on `where`, as loads: each grid's approximate inverse
         of the residual `values` (mm), times its cells' area."""
         out = np.zeros(self.h.size)
         for (s, e), op in zip(self._blocks(values, where), self.ops):
@@ -699,7 +703,7 @@ def _ccg(system: _System, p, u, load, tol, max_iter):
     grids share one approach (their gaps are measured from one datum) and one load. The
     iteration runs in loads f = p·cell (so that grids of different cells are one symmetric
     system). Per step, on the working set S ∪ J: residual e = g - approach (zero mean on S,
-    negative on J), preconditioned residual z = P·M·e with M each grid's circulant inverse
+    negative on J), preconditioned residual z = P·M·e with M each grid's approximate inverse
     (times its cell area) and P the removal of the mean on S ∪ J (a direction that keeps
     the load), direction t = z + (G/G_old)·t (G = e·z), or t = z when cells join (Polonsky
     & Keer's δ = 0), r = K t, exact line search tau = e·t / r·t, f -= tau·t, negative
