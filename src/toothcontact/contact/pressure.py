@@ -519,8 +519,9 @@ class Grid:
     """One gap field of a shared solve (see :func:`solve_shared`): the gap (mm; x along axis
     0 in steps dx_mm, y along axis 1 in steps dy_mm), the material mask (None: everywhere),
     a further linear displacement `structure` p (MPa) -> u (mm) of its bodies (the teeth's
-    bending), and the depths its compression is measured to (`reference`, see
-    InfluenceOperator)."""
+    bending: a contact.compliance.StructureOperator, called on the grid and on a part of it
+    by its `window(rows, cols)`), and the depths its compression is measured to
+    (`reference`, see InfluenceOperator)."""
 
     gap_mm: np.ndarray
     dx_mm: float
@@ -555,9 +556,10 @@ class _System:
         self.shapes = [g.h.shape for g in grids]
         bounds = np.cumsum([0] + [g.h.size for g in grids])
         self.slices = [slice(int(a), int(b)) for a, b in zip(bounds[:-1], bounds[1:])]
-        self.ops = ops or [influence_operator(tuple(int(k) for k in g.h.shape), g.dx, g.dy,
-                                              g.reference, E_star if g.reference else 1.0)
-                           for g in grids]
+        #: each grid's half-space (`ops`: given for windows, taken from their grids')
+        self.ops = ops if ops is not None else [
+            influence_operator(tuple(int(k) for k in g.h.shape), g.dx, g.dy, g.reference,
+                               E_star if g.reference else 1.0) for g in grids]
         self.structures = [g.structure for g in grids]
         areas = [g.dx * g.dy for g in grids]
         #: the cells' areas: one number for one grid (or equal cells), else per cell
