@@ -4,9 +4,10 @@
    pressure grid, interference on) with this tree's code beside the first release's
    (commit 8744259, taken from git and run in a subprocess of this run), best of
    `--repeat`, each as it runs by default on this machine (the first release's transforms
-   on every core, this tree's positions), and this tree's on one thread (what a sweep
-   worker gets on a machine it fills); and the physical limit of the solves, the time
-   spent inside the FFT library (pocketfft's transforms, by cProfile, on one thread).
+   on every core, this tree's positions in forked processes), and this tree's on one core
+   (what a sweep worker gets on a machine it fills); and the physical limit of the solves,
+   the time spent inside the FFT library (pocketfft's transforms, by cProfile, on one
+   core).
 2. Scale: a `--samples` Monte Carlo of the same case (slope normal 0.8 ± 0.3 mrad, crown
    radius uniform 3000-5000 mm, Latin hypercube) on a local Dask cluster of 1 and of 2
    workers: wall time, samples per second, speed-up; the two tables must be identical.
@@ -39,20 +40,20 @@ ROOT = HERE.parent
 CASE = "spur_crowned_20_60"
 FIRST_RELEASE = "8744259"
 
-#: runs inside the interpreter for one source tree: prints JSON {best_s, one_thread_s,
+#: runs inside the interpreter for one source tree: prints JSON {best_s, one_worker_s,
 #: fft_s}: the best time as the tree runs by default (the first release: its transforms on
-#: every core; now: the positions on every core), on one thread where the tree can be told
-#: (None for the first release), and the time inside the FFT library on one thread
-#: (cProfile sees only the thread it runs in)
+#: every core; now: the positions on every core, in forked processes), on one worker where
+#: the tree can be told (None for the first release), and the time inside the FFT library
+#: on one worker (cProfile sees only the thread it runs in)
 PROBE = r"""
 import cProfile, contextlib, json, pstats, sys, time
 from pathlib import Path
 from toothcontact import analyses
 from toothcontact.case import load_case
 try:
-    from toothcontact.contact.loaded import solve_threads
+    from toothcontact.parallel import workers
 except ImportError:
-    solve_threads = None
+    workers = None
 case = load_case(Path(sys.argv[1]) / "CASE.toml")[0]
 
 def best(context):
@@ -64,7 +65,7 @@ def best(context):
             found = min(found or 1e9, time.perf_counter() - start)
     return found
 
-one = (lambda: solve_threads(1)) if solve_threads else contextlib.nullcontext
+one = (lambda: workers(1)) if workers else contextlib.nullcontext
 profile = cProfile.Profile()
 with one():
     profile.runcall(analyses.analyse, case)
@@ -72,7 +73,7 @@ stats = pstats.Stats(profile).stats
 fft = sum(tt for (path, _, name), (_, _, tt, _, _) in stats.items()
           if "pocketfft" in path or name.startswith("<built-in method scipy.fft._pocketfft"))
 print(json.dumps({"best_s": best(contextlib.nullcontext),
-                  "one_thread_s": best(one) if solve_threads else None, "fft_s": fft}))
+                  "one_worker_s": best(one) if workers else None, "fft_s": fft}))
 """
 
 SWEEP = """kind = "sweep"
@@ -112,9 +113,9 @@ def per_sample(repeat: int) -> dict:
     now = probe(ROOT / "src", ROOT / "cases", repeat)
     return {"case": CASE, "first_release": FIRST_RELEASE, "before_s": before["best_s"],
             "now_s": now["best_s"], "speed_up": before["best_s"] / now["best_s"],
-            "now_one_thread_s": now["one_thread_s"],
-            "one_thread_speed_up": before["best_s"] / now["one_thread_s"],
-            "now_fft_s": now["fft_s"], "now_fft_share": now["fft_s"] / now["one_thread_s"]}
+            "now_one_worker_s": now["one_worker_s"],
+            "one_worker_speed_up": before["best_s"] / now["one_worker_s"],
+            "now_fft_s": now["fft_s"], "now_fft_share": now["fft_s"] / now["one_worker_s"]}
 
 
 def sweep_file(folder: Path, samples: int) -> Path:
@@ -199,11 +200,11 @@ def main() -> None:
         print(f"{'per sample (' + CASE + ')':44} {'first release':>14} {'now':>8} {'speed-up':>9}")
         print(f"{'full loaded analysis, interference on':44} {s['before_s']:13.2f}s "
               f"{s['now_s']:7.2f}s {s['speed_up']:8.2f}x   ({s.get('commit', '?')})")
-        if s.get("now_one_thread_s"):
-            print(f"{'  on one thread (a sweep worker)':44} {'':14} "
-                  f"{s['now_one_thread_s']:7.2f}s {s['one_thread_speed_up']:8.2f}x")
+        if s.get("now_one_worker_s"):
+            print(f"{'  on one core (a sweep worker)':44} {'':14} "
+                  f"{s['now_one_worker_s']:7.2f}s {s['one_worker_speed_up']:8.2f}x")
         print(f"{'  of which inside the FFT library (limit)':44} {'':14} {s['now_fft_s']:7.2f}s "
-              f"({s['now_fft_share']:.0%} of one thread's)")
+              f"({s['now_fft_share']:.0%} of one core's)")
     if sc:
         print(f"\n{sc['samples']}-sample Monte Carlo {'wall':>10} {'samples/s':>10}"
               f"   ({sc.get('commit', '?')})")

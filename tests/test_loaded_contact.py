@@ -5,6 +5,7 @@ changes."""
 
 import math
 
+import numpy as np
 import pytest
 from scipy.optimize import brentq
 
@@ -13,7 +14,11 @@ from toothcontact.analytic import crown
 from toothcontact.analytic.hertz import compliance, hertz_point
 from toothcontact.case import parse_case
 from toothcontact.contact import loaded as loaded_module
+from toothcontact.contact.compliance import PairCompliance, tooth_compliance
 from toothcontact.contact.loaded import loaded_cycle
+from toothcontact.gearset import gear_pair
+from toothcontact import parallel
+from toothcontact.parallel import workers
 
 STEEL = compliance(206000.0, 0.3, 206000.0, 0.3)
 
@@ -36,7 +41,7 @@ def half_space(aligned):
     analysis with the loaded keys of this solve)."""
     solved, failed = loaded_cycle(aligned.cycle, STEEL, 128)
     assert not failed
-    return [{**row, **(contact.summary() if contact else {"bem_load_N": 0.0})}
+    return [{**row, **(contact.summary if contact else {"bem_load_N": 0.0})}
             for row, contact in zip(aligned.sections["positions"], solved)]
 
 
@@ -156,7 +161,7 @@ def test_designed_crown_has_no_edge_load_and_a_flatter_one_has(slope):
                       if r["roll_deg"] == pytest.approx(-4.5) and r["rigid_contact"])
         assert row["contact_radius_pinion_mm"] == pytest.approx(30.0, abs=0.01)
         solved, _ = loaded_cycle(result.cycle, STEEL, 256)
-        found[scale], bending[scale] = {**row, **solved[k].summary()}, row
+        found[scale], bending[scale] = {**row, **solved[k].summary}, row
     designed, flat = found[1.0], found[1.2]
     assert bending[1.0]["edge_pressure_MPa"] > 2 * designed["edge_pressure_MPa"]
     assert bending[1.0]["edge_loaded"]
@@ -183,7 +188,7 @@ def test_a_position_the_solver_cannot_answer_keeps_every_other_result(monkeypatc
         return solve(grids, loads, E_star, **options)
 
     monkeypatch.setattr(loaded, "solve_shared", fail_first_position)
-    with loaded.solve_threads(1):                   # the first position is the first call
+    with workers(1):                                # the first position is the first call
         result = analyse(parse_case(spur({"radius": "4000 mm"}, 0.0, positions=3, grid=64)))
     rows = result.sections["positions"]
     first = rows[0]["roll_deg"]
@@ -202,18 +207,25 @@ def test_a_position_the_solver_cannot_answer_keeps_every_other_result(monkeypatc
                                                                     for r in rows)
 
 
-def test_the_positions_solved_on_threads_answer_as_on_one(aligned):
-    """The positions of a cycle are independent solves: on one thread and on three the
-    loaded rows are identical (every key, exactly)."""
+def test_the_positions_answer_alike_in_order_in_processes_and_on_threads(aligned, monkeypatch):
+    """The positions of a cycle are independent solves: in order on one worker, on three
+    forked processes and on three threads, the loaded rows are identical (every key,
+    exactly), and so are the line loads along the face (which the processes hand back)."""
+    pair = gear_pair(parse_case(spur({"radius": "4000 mm"}, 0.0)))
+    teeth = PairCompliance(tooth_compliance(pair.pinion, 206000.0, 0.3),
+                           tooth_compliance(pair.gear, 206000.0, 0.3))
     keys = loaded_module.RESULT_KEYS
-    rows = {}
-    for threads in (1, 3):
-        with loaded_module.solve_threads(threads):
-            solved, failed = loaded_cycle(aligned.cycle, STEEL, 64)
+    edges = np.linspace(-15.0, 15.0, 7)
+    rows, lines = {}, {}
+    for label, count, fork in (("in order", 1, True), ("processes", 3, True),
+                               ("threads", 3, False)):
+        monkeypatch.setattr(parallel, "can_fork", lambda fork=fork: fork)
+        with workers(count):
+            solved, failed = loaded_cycle(aligned.cycle, STEEL, 64, teeth)
         assert not failed
-        rows[threads] = [{k: v for k, v in c.summary().items() if k in keys} if c else None
-                         for c in solved]
-    assert rows[1] == rows[3]
-    with pytest.raises(ValueError, match="count: 0 must be an integer >= 1"):
-        with loaded_module.solve_threads(0):
-            pass
+        rows[label] = [{k: v for k, v in c.summary.items() if k in keys} if c else None
+                       for c in solved]
+        lines[label] = [c.line_load(edges) for c in solved if c is not None]
+    assert rows["in order"] == rows["processes"] == rows["threads"]
+    for other in ("processes", "threads"):
+        assert all(np.array_equal(a, b) for a, b in zip(lines["in order"], lines[other]))

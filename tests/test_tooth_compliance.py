@@ -10,7 +10,7 @@ import numpy as np
 import pytest
 
 from toothcontact.analytic.stiffness import face_load_factor, foundation_compliance, mesh_stiffness
-from toothcontact.contact.compliance import FaceCoupling, ToothCompliance, cantilever
+from toothcontact.contact.compliance import FaceCoupling, FaceLoad, ToothCompliance, cantilever
 from toothcontact.surfaces.involute import CylindricalGear
 
 E, NU = 206000.0, 0.3
@@ -168,3 +168,28 @@ def test_iso_mesh_stiffness_and_face_load_factor():
     assert face_load_factor(10.0, 16.0, 320.0) == pytest.approx(1.25)
     assert face_load_factor(80.0, 16.0, 320.0) == pytest.approx(math.sqrt(8.0))
     assert face_load_factor(40.0, 16.0, 320.0) == pytest.approx(2.0)
+
+
+@pytest.mark.parametrize("extent", [0.04, 2.0])
+def test_the_line_load_spreads_each_cells_load_over_the_face_it_spans(extent):
+    """FaceLoad.line_load (cumulative sums over the cells sorted by their start) against
+    the direct sum of each cell's load times its covered share of every strip, on random
+    face positions under a random pressure: cells much shorter than a strip and cells
+    spanning several; to 1e-12 of the largest line load. Strips covering every cell hold
+    the whole load."""
+    rng = np.random.default_rng(3)
+    shape, cell = (30, 20), 0.01
+    material = rng.random(shape) > 0.2
+    z = rng.uniform(-6.0, 6.0, int(material.sum()))
+    p = rng.random(shape) * 100.0
+    order = np.argsort(z, kind="stable")
+    face = FaceLoad(material, order, z[order] - 0.5 * extent, extent, cell)
+    edges = np.sort(rng.uniform(-8.0, 8.0, 15))
+    loads = p[material] * cell
+    below = np.clip((edges[:, None] - z[None, :]) / extent + 0.5, 0.0, 1.0) @ loads
+    expected = np.diff(below) / np.diff(edges)
+    found = face.line_load(p, edges)
+    assert np.max(np.abs(found - expected)) < 1e-12 * np.max(np.abs(expected))
+    whole = np.array([-8.0, -1.0, 0.5, 8.0])
+    assert np.sum(face.line_load(p, whole) * np.diff(whole)) == pytest.approx(loads.sum(),
+                                                                              rel=1e-12)

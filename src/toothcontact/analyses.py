@@ -698,7 +698,7 @@ def _loaded_sections(cycle, C_E: float, grid: int, teeth, bending: str,
     result.loaded = loaded
     for k, (row, contact) in enumerate(zip(rows, loaded)):
         row.update(unsolved("failed", failed[k]) if k in failed else
-                   unsolved("unloaded") if contact is None else contact.summary())
+                   unsolved("unloaded") if contact is None else contact.summary)
     summary = result.sections["summary"]
     summary.update(
         load_sharing="one rigid rotation for all pairs of a position; each pair's approach "

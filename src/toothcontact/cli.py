@@ -40,7 +40,9 @@ def _guarded(action):
 
 class _Progress:
     """A rich progress display on stderr for work that takes more than a moment; silent
-    when stderr is not a terminal (pipes, logs, tests)."""
+    when stderr is not a terminal (pipes, logs, tests). Redrawn at each stage and step,
+    with no refresh thread of its own: another thread would keep an analysis from forking
+    its workers (toothcontact.parallel)."""
 
     def __init__(self, total: int | None, label: str):
         from rich.console import Console
@@ -52,7 +54,8 @@ class _Progress:
         if total is not None:
             columns += [BarColumn(), MofNCompleteColumn(), TimeRemainingColumn()]
         self._progress = Progress(*columns, TimeElapsedColumn(), console=console,
-                                  transient=True, disable=not console.is_terminal)
+                                  transient=True, auto_refresh=False,
+                                  disable=not console.is_terminal)
         self._task = self._progress.add_task(label, total=total)
         self._label = label
 
@@ -64,14 +67,14 @@ class _Progress:
         return self._progress.__exit__(*exc)
 
     def stage(self, what: str) -> None:
-        self._progress.update(self._task, description=f"{self._label}: {what}")
+        self._progress.update(self._task, description=f"{self._label}: {what}", refresh=True)
 
     def advance(self) -> None:
-        self._progress.advance(self._task)
+        self._progress.update(self._task, advance=1, refresh=True)
 
     def total(self, total: int) -> None:
         """The amount of work, once it is known."""
-        self._progress.update(self._task, total=total)
+        self._progress.update(self._task, total=total, refresh=True)
 
 
 def _wrote(written) -> str:

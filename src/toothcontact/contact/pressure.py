@@ -640,10 +640,12 @@ class _System:
 
 
 #: a shared solve iterates on a window of each grid: the box about its cells in contact and
-#: penetrating, enlarged by WINDOW_SHARE of its sides and WINDOW_CELLS cells each way; the
-#: whole grids are checked after every pass and a window widened where they need it (a
-#: line contact's field is several contact widths wide: the transforms shrink with it)
-WINDOW_SHARE, WINDOW_CELLS = 0.1, 3
+#: penetrating, enlarged by WINDOW_CELLS cells each way; the whole grids are checked after
+#: every pass and a window widened where they need it (a line contact's field is several
+#: contact widths wide: the transforms shrink with it). Two cells: the bundled spur case's
+#: full-grid solves took 20 % less time than with 3 cells plus a tenth of the box's sides,
+#: in as many passes (one per solve)
+WINDOW_CELLS = 2
 
 
 def _window(busy: np.ndarray, old: tuple[slice, slice] | None) -> tuple[slice, slice] | None:
@@ -656,8 +658,8 @@ def _window(busy: np.ndarray, old: tuple[slice, slice] | None) -> tuple[slice, s
     bounds = []
     for axis, n in enumerate(busy.shape):
         cells = np.flatnonzero(busy.any(axis=1 - axis))
-        pad = WINDOW_CELLS + math.ceil(WINDOW_SHARE * (cells[-1] + 1 - cells[0]))
-        low, high = max(int(cells[0]) - pad, 0), min(int(cells[-1]) + 1 + pad, n)
+        low = max(int(cells[0]) - WINDOW_CELLS, 0)
+        high = min(int(cells[-1]) + 1 + WINDOW_CELLS, n)
         if old is not None:
             low, high = min(low, old[axis].start), max(high, old[axis].stop)
         bounds.append(slice(low, high))

@@ -24,15 +24,16 @@ RETRIES = 2
 
 
 def sample_record(number: int, inputs: dict, raw: dict, folder: str | None,
-                  positions: bool = False, threads: int = 1) -> tuple[dict, list[dict]]:
-    """One sample analysed (on a worker, its positions solved on `threads` threads): its
+                  positions: bool = False, cores: int = 1) -> tuple[dict, list[dict]]:
+    """One sample analysed (on a worker, its positions solved on `cores` cores, by threads:
+    a Dask worker's process may not fork, see toothcontact.parallel): its
     record, `sample`, each varied input (the case's value in core units, or its text),
     `status` ("ok" or the error) and the summary's figures (the case's `summary` under its
     own names; numbers, flags and texts); and, if `positions`, the result's rows per mesh
     position and pair (their table cells, with `sample`), else []."""
     from ..analyses import analyse
     from ..case import parse_case
-    from ..contact.loaded import solve_threads
+    from ..parallel import workers
 
     record: dict = {"sample": number}
     rows: list[dict] = []
@@ -41,7 +42,7 @@ def sample_record(number: int, inputs: dict, raw: dict, folder: str | None,
                           base=None if folder is None else Path(folder))
         for field in inputs:
             record[f"input:{field}"] = _value(case, field)
-        with solve_threads(threads):
+        with workers(cores):
             sections = analyse(case).sections
         record.update(_cells(sections.get("summary", {})))
         if positions:
@@ -80,8 +81,8 @@ class Workers:
     """Where samples run: an existing Dask scheduler at `scheduler`, else a LocalCluster of
     `workers` processes (the machine's cores) started at its first use and closed with
     this (a context manager); one cluster serves every sweep an optimisation runs. A
-    sample solves its positions on its worker's share of the local cores (`threads`), on
-    one thread on a deployment's workers (sized there, one per core)."""
+    sample solves its positions on its worker's share of the local cores (`cores`), on
+    one core on a deployment's workers (sized there, one per core)."""
 
     def __init__(self, scheduler: str | None = None, workers: int | None = None):
         self.scheduler, self.workers = scheduler, workers
@@ -101,14 +102,14 @@ class Workers:
 
     def _local(self) -> tuple[int, int]:
         """(workers, cores) of the local cluster: `workers`, else one per core."""
-        from ..contact.loaded import machine_cores
+        from ..parallel import machine_cores
 
         cores = machine_cores()
         return self.workers or cores, cores
 
     @property
-    def threads(self) -> int:
-        """Threads per sample."""
+    def cores(self) -> int:
+        """Cores per sample."""
         if self.scheduler is not None:
             return 1
         workers, cores = self._local()
@@ -140,7 +141,7 @@ def run(samples: list[Sample], folder: Path | None, out: Path, workers: Workers,
         futures = workers.client.map(
             sample_record, [s.sample for s in todo], [s.inputs for s in todo],
             [s.raw for s in todo], [None if folder is None else str(folder)] * len(todo),
-            [positions] * len(todo), [workers.threads] * len(todo), retries=RETRIES,
+            [positions] * len(todo), [workers.cores] * len(todo), retries=RETRIES,
             pure=False)
         for future in as_completed(futures):
             record, rows = future.result()
