@@ -14,7 +14,8 @@ here are small).
 
 Forking is safe only where no other thread can hold a lock the child needs. Processes are
 therefore used only where:
-- the platform forks;
+- the platform is Linux (macOS's system libraries are not safe to fork, which is why its
+  default start method is spawn; Windows does not fork);
 - this process is not a daemon (a Dask worker's process may have no children);
 - no other Python thread runs (a progress display's refresh thread, a Dask client).
 Elsewhere the tasks run on threads.
@@ -24,6 +25,7 @@ from __future__ import annotations
 
 import multiprocessing
 import os
+import sys
 import threading
 from collections.abc import Callable
 from concurrent.futures import ProcessPoolExecutor, ThreadPoolExecutor
@@ -56,7 +58,7 @@ def machine_cores() -> int:
 
 def can_fork() -> bool:
     """Whether worker processes may be forked here (see the module)."""
-    return ("fork" in multiprocessing.get_all_start_methods()
+    return (sys.platform.startswith("linux")
             and not multiprocessing.current_process().daemon
             and threading.active_count() == 1)
 
