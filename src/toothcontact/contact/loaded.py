@@ -14,9 +14,10 @@ contact problem (pressure.solve_shared: their grids one block-diagonal system wi
 approach and one load), solved once: the split of the load follows from it as the contact
 set does. With the teeth's bending it is solved first on coarser grids (`coarse_steps`: a
 line contact's field keeps every cell across it), then on the full grids from that solution,
-the bending part of the system on both (holding the coarse solve's bending fixed on the full grid instead, as an
-earlier version did, left the bundled helical pair's largest pressure 23 % high: the full
-grid moves load toward relieved tips and between the pairs, and the bending must follow).
+the bending part of the system on both (holding the coarse solve's bending fixed on the
+full grid instead, as an earlier version did, left the bundled helical pair's largest
+pressure 23 % high: the full grid moves load toward relieved tips and between the pairs,
+and the bending must follow).
 
 The pressure at a sharp face end is singular: the raw peak grows as the grid is refined. The
 edge is therefore reported as the pressure averaged over a strip `EDGE_STRIP` wide at the
