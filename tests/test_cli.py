@@ -27,7 +27,7 @@ def test_every_bundled_case_runs(case, tmp_path):
     result = runner.invoke(app, ["run", str(case), "--out", str(out)])
     assert result.exit_code in (0, 1), result.output
     document = strict_json((out / "result.json").read_text())
-    assert all(c["kind"] in ("design", "source", "method") for c in document["checks"])
+    assert all(c["kind"] in ("design", "source", "method", "solver") for c in document["checks"])
     page = (out / "report.html").read_text()     # the report opens with its key results
     assert page.index('id="key-results"') < page.index('id="design-checks"')
     failed = [c for c in document["checks"] if not c["ok"] and c["kind"] == "design"]

@@ -9,6 +9,8 @@ in contact gives the pressure (Johnson eq 4.45 with the profile radii of the con
 
 import math
 
+import numpy as np
+
 import pytest
 from pairs import STEEL, spur_cycle
 
@@ -39,7 +41,8 @@ def test_slope_cuts_the_contact_line_at_the_end_it_closes(slope, end):
         assert r["contact_model"] == "line"
         length = DELTA / abs(slope)
         assert r["contact_length_mm"] == pytest.approx(length, rel=5e-3)
-        assert sign * r["face_position_mm"] == pytest.approx(15.0, abs=0.05)
+        # the line's middle: half its length inside the closed end
+        assert sign * r["face_position_mm"] == pytest.approx(15.0 - 0.5 * length, abs=0.1)
         assert r["edge_contact"] and r["edge_contact_at"].endswith(f"end_{end}")
         margins = r["edge_margins_mm"]
         assert min(margins[f"pinion_end_{end}"], margins[f"gear_end_{end}"]) == -30.0
@@ -54,12 +57,18 @@ def test_slope_cuts_the_contact_line_at_the_end_it_closes(slope, end):
 
 
 def test_slope_moves_the_line_toward_the_end_it_closes():
-    """The middle of the part in contact lies half its length inside the end the slope
-    closes (e1 runs along the face toward end B)."""
+    """The middle of the part in contact (the row's face position) lies half its length
+    inside the end the slope closes (e1 runs along the face toward end B), where the least
+    separation is: the contact point plus the pattern's centre."""
     _, cyc = cycle(slope=0.0005)
+    contact = cyc.pinion.evaluate(np.asarray(cyc.contacts.pinion_u),
+                                  np.asarray(cyc.contacts.pinion_v), order=1).points[:, 2]
     for k, r in enumerate(cyc.rows):
-        middle = r["face_position_mm"] + cyc.pattern_centre[k][0]
-        assert middle == pytest.approx(15.0 - 0.5 * r["contact_length_mm"], abs=0.1)
+        assert r["face_position_mm"] == pytest.approx(15.0 - 0.5 * r["contact_length_mm"],
+                                                      abs=0.1)
+        assert contact[k] == pytest.approx(15.0, abs=0.05)
+        assert contact[k] + cyc.pattern_centre[k][0] == pytest.approx(r["face_position_mm"],
+                                                                      abs=0.05)
 
 
 def test_aligned_uncrowned_pair_touches_over_the_whole_face_without_edge_contact():

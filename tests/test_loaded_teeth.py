@@ -103,5 +103,12 @@ def test_a_slope_loads_the_face_as_isos_linear_misalignment(aligned):
         if sum(r["roll_deg"] == roll and r["bem_load_N"] > 0 for r in rows) == 1:
             assert line[0] < level + gradient * face[0]          # end A: softer
             assert line[-1] > level + gradient * face[-1]        # end B: the edge peak
-    assert tilted.sections["summary"]["K_H_beta"] == max(section["K_H_beta"])
+    summary = tilted.sections["summary"]
+    assert summary["K_H_beta_instantaneous"] == max(section["K_H_beta"])
+    # ISO's K_Hβ: the cycle's mean line load, largest over mean (the positions' mean load)
+    mean_line = np.mean(section["line_load_N_per_mm"], axis=0)
+    assert section["mean_line_load_N_per_mm"] == pytest.approx(mean_line, abs=1e-3)
+    assert summary["K_H_beta"] == pytest.approx(mean_line.max() / (summary["normal_load_N"] / width),
+                                                rel=1e-3)
+    assert summary["K_H_beta"] <= summary["K_H_beta_instantaneous"]
     assert math.isfinite(tilted.sections["summary"]["iso_K_H_beta_linear"])

@@ -128,10 +128,12 @@ def test_a_helical_pair_pulled_apart_is_refused_not_given_a_negative_contact_rat
 
 
 def test_a_tiny_load_on_a_worm_set_is_answered(tmp_path):
-    """1e-9 N·m on the wheel (a broadcast error before): a complete strict-JSON result."""
+    """1e-9 N·m on the wheel (a broadcast error before): a complete strict-JSON result. The
+    loaded contact, nanometres across, may find no line of its field meeting both flanks:
+    then its rows say why and the run exits 4 (incomplete), never with a traceback."""
     raw = edited("worm_eps_oversized_hob", {"load.output_torque": "1e-9 N*m"})
     result, out = run(raw, tmp_path)
-    assert result.exit_code in (0, 1), result.output
+    assert result.exit_code in (0, 1, 4), result.output
     document = strict(out / "result.json")
     assert document["positions"]
 

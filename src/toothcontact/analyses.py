@@ -28,7 +28,9 @@ class Check:
     """A pass/fail statement about the result. kind "design": about the design (a failed one
     is flagged at the top of the report and exits the run with 1); "source": whether a
     source's own printed numbers agree with each other (a misprint is the source's, not the
-    design's); "method": a self-check of the method (two routes to the same number)."""
+    design's); "method": a self-check of the method (two routes to the same number);
+    "solver": whether a solver answered everywhere (a failed one leaves the results
+    incomplete: its rows say why, and the run exits with 4)."""
 
     name: str
     ok: bool
@@ -688,7 +690,8 @@ def _loaded_sections(cycle, C_E: float, grid: int, teeth, bending: str,
     summary, and the checks that every contact was solved and none is edge-loaded."""
     if not grid:
         return
-    from .contact.loaded import EDGE_LOAD_RATIO, EDGE_STRIP, loaded_cycle, unsolved
+    from .contact.loaded import (EDGE_PRESSURE_RATIO, EDGE_STRIP, END_LOAD_RATIO,
+                                 loaded_cycle, unsolved)
 
     rows = cycle.rows
     try:
@@ -710,7 +713,7 @@ def _loaded_sections(cycle, C_E: float, grid: int, teeth, bending: str,
         "loaded contact solved at every contact", not failed,
         f"{len(failed)} of {len(rows)} contacts not solved"
         + (f", first at roll {rows[min(failed)]['roll_deg']:.2f} deg: {failed[min(failed)]}"
-           if failed else "")))
+           if failed else ""), kind="solver"))
     answered = [r for r in rows if r["bem_status"] != "failed"]
     if not answered:
         return
@@ -726,22 +729,28 @@ def _loaded_sections(cycle, C_E: float, grid: int, teeth, bending: str,
         max_edge_load_fraction=max(r["edge_load_fraction"] for r in answered),
         edge_loaded_contacts=len(edged),
         end_loaded_contacts=sum(bool(r["end_loaded"]) for r in answered),
+        max_end_load_ratio=max(r["end_load_ratio"] for r in answered),
         edge_pressure_note=f"edge_pressure_MPa is the pressure averaged over a {EDGE_STRIP} mm "
                            "strip at the edge, and bem_p_max_MPa the larger of it and the peak "
                            f"more than {EDGE_STRIP} mm inside the edges: both converge as the "
                            "grid is refined; bem_raw_peak_MPa, the largest cell pressure, grows "
-                           "without bound at a sharp edge and is not a design value; a contact "
-                           f"is edge_loaded when its edge pressure exceeds {EDGE_LOAD_RATIO:g} "
-                           "of bem_p_max_MPa at any flank edge (tip, root or face end), "
-                           "end_loaded when at a face end (what a lead crown is for)")
+                           "without bound at a sharp edge and is not a design value; free face "
+                           "ends are quarter-spaces (mirror-pressure correction); a contact is "
+                           "end_loaded when its load per mm of face in the strip at a face end "
+                           f"exceeds {END_LOAD_RATIO:g} times its mean over its length in contact "
+                           "(end_load_ratio: what a lead crown is for), edge_loaded when "
+                           "end-loaded or when the pressure at a tip, root or form edge exceeds "
+                           f"{EDGE_PRESSURE_RATIO:g} times the contact's interior peak")
     result.checks.append(Check(
-        "loaded contact: no edge load (half-space solution)", not edged,
-        f"highest edge pressure {worst['edge_pressure_MPa']:.0f} MPa averaged over "
-        f"{EDGE_STRIP} mm ({worst['edge_pressure_at']}), "
+        "loaded contact: no edge load", not edged,
+        f"{len(edged)} of {len(answered)} contacts edge-loaded; highest edge pressure "
+        f"{worst['edge_pressure_MPa']:.0f} MPa averaged over {EDGE_STRIP} mm "
+        f"({worst['edge_pressure_at']}), "
         f"{worst['edge_pressure_MPa'] / max(worst['bem_p_max_MPa'], 1e-300):.2f} of the "
         f"contact's peak {worst['bem_p_max_MPa']:.0f} MPa, at roll {worst['roll_deg']:.2f} deg "
-        f"pair {worst['pair']}; {100 * worst['edge_load_fraction']:.2f} % of its load in the "
-        f"strip; edge-loaded above {EDGE_LOAD_RATIO:g}"))
+        f"pair {worst['pair']}; largest end load ratio "
+        f"{max(r['end_load_ratio'] for r in answered):.2f} (end-loaded above "
+        f"{END_LOAD_RATIO:g})"))
 
 
 def _reach_check(cycle, result: Result) -> None:
@@ -776,9 +785,14 @@ def _load_distribution(case: schema.SpurCase, pair, result: Result) -> None:
     """The mesh's load along the face from the loaded contacts (their line loads, all pairs
     of a position summed on one face grid of the pinion) and what follows from it, beside
     ISO 6336-1's figures for the same pair:
-    - load_distribution: face_mm, and per position roll_deg, line_load_N_per_mm, K_H_beta;
-    - summary: K_H_beta, the largest over the cycle of the position's largest line load
-      over its mean W/b (ISO 6336-1 §7's definition; b the common face width);
+    - load_distribution: face_mm, and per position roll_deg, line_load_N_per_mm, K_H_beta
+      (that position's largest line load over W/b), and mean_line_load_N_per_mm (the
+      line load averaged over the mesh cycle's positions);
+    - summary: K_H_beta, ISO 6336-1's face load factor: the largest over the face of the
+      line load averaged over the mesh cycle, over the mean W/b (b the common face width);
+      the contact lines' sweep across the face within the cycle, which ISO assigns to
+      K_H_alpha, averages out; K_H_beta_instantaneous, the largest over the cycle of a
+      position's largest line load over W/b, beside it;
       mesh_stiffness_N_per_mm_um, the mean over the cycle of W/(D - s_min)/b·cos²β_b (D the
       position's loaded approach, s_min its least unloaded separation; the cos²β_b makes it
       ISO's transverse force over transverse deflection), the model's counterpart of c_γα; single_stiffness_N_per_mm_um, the largest of it at positions
@@ -799,7 +813,7 @@ def _load_distribution(case: schema.SpurCase, pair, result: Result) -> None:
 
     end = 0.5 * pair.pinion.face_width - EDGE_STRIP
     edges = np.linspace(-end, end, FACE_STRIPS + 1)
-    rolls, lines, factors, stiffness, single = [], [], [], [], []
+    rolls, lines, loads, factors, stiffness, single = [], [], [], [], [], []
     for roll, ks in positions.items():
         solved = [k for k in ks if loaded[k] is not None]
         if not solved or any(rows[k]["bem_status"] == "failed" for k in ks):
@@ -808,6 +822,7 @@ def _load_distribution(case: schema.SpurCase, pair, result: Result) -> None:
         load = sum(loaded[k].solution.load_N for k in solved)
         rolls.append(roll)
         lines.append(line)
+        loads.append(load)
         factors.append(float(line.max() / (load / width)))
         lead = max(solved, key=lambda k: loaded[k].solution.load_N)
         closing = loaded[lead].solution.approach_mm - min(rows[k]["separation_mm"] for k in ks)
@@ -817,14 +832,18 @@ def _load_distribution(case: schema.SpurCase, pair, result: Result) -> None:
                 single.append(stiffness[-1])
     if not rolls:
         return
+    # the positions divide one mesh cycle evenly: their mean is the cycle's mean
+    mean_line = np.mean(lines, axis=0)
     result.sections["load_distribution"] = {
         "face_mm": (0.5 * (edges[1:] + edges[:-1])).round(4).tolist(), "roll_deg": rolls,
         "line_load_N_per_mm": [line.round(3).tolist() for line in lines],
+        "mean_line_load_N_per_mm": mean_line.round(3).tolist(),
         "K_H_beta": factors,
         "note": f"line loads along the pinion's face (N/mm of face, along the contact normal) "
                 f"on {FACE_STRIPS} strips between {EDGE_STRIP} mm from each face end (the edge "
                 "pressure covers those), face_mm their centres, all tooth pairs of a position "
-                f"summed; K_H_beta is the largest over the mean W/b on b = {width:g} mm"}
+                f"summed; K_H_beta is the largest over the mean W/b on b = {width:g} mm, "
+                "at each position; mean_line_load_N_per_mm their mean over the cycle"}
     summary = result.sections["summary"]
     iso_single = single_stiffness(pair.pinion.teeth, -pair.gear.teeth if pair.gear.internal
                                   else pair.gear.teeth, pair.pinion.profile_shift,
@@ -834,7 +853,8 @@ def _load_distribution(case: schema.SpurCase, pair, result: Result) -> None:
     slope = (case.misalignment.slope + summary.get("shaft_bending_slope_rad", 0.0)
              + summary.get("shaft_torsion_slope_rad", 0.0))
     summary.update(
-        K_H_beta=max(factors),
+        K_H_beta=float(mean_line.max() / (np.mean(loads) / width)),
+        K_H_beta_instantaneous=max(factors),
         mesh_stiffness_N_per_mm_um=model_mesh,
         single_stiffness_N_per_mm_um=max(single) if single else None,
         iso_single_stiffness_N_per_mm_um=iso_single,

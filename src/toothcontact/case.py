@@ -272,10 +272,14 @@ class ShaftSpec(Model):
 
 
 class Member(Model):
-    """One gear of the pair: its shift, face width and flank modifications (both flanks)."""
+    """One gear of the pair: its shift, face width, tip diameter and flank modifications (both
+    flanks)."""
 
     profile_shift: float = Field(0.0, ge=-1.5, le=1.5, description="x, in [-1.5, 1.5]")
     face_width: Length | None = None
+    tip_diameter: Length | None = Field(
+        None, description="the tip diameter d_a as drawn, e.g. '82.46 mm' (a ring's: its "
+                          "inner diameter); default from rack.addendum and the profile shift")
     crown: CrownSpec | None = None
     profile_crown: ProfileCrownSpec | None = None
     tip_relief: TipReliefSpec | None = None

@@ -14,7 +14,7 @@ app = typer.Typer(add_completion=False, no_args_is_help=True,
 
 #: exit codes: 0 done, every design check passed; 1 done, a design check failed (the results
 #: are complete); 2 input refused (one line names the field); 3 a bug in toothcontact
-EXIT_CHECK_FAILED, EXIT_BAD_INPUT, EXIT_BUG = 1, 2, 3
+EXIT_CHECK_FAILED, EXIT_BAD_INPUT, EXIT_BUG, EXIT_INCOMPLETE = 1, 2, 3, 4
 
 
 def _fail(message: str, code: int) -> None:
@@ -103,7 +103,8 @@ def run(case: Path = typer.Argument(..., help="case file (TOML), or the name of 
                                       help="render the 3D pictures (spur, spline, worm)")):
     """Analyse CASE: writes result.json, report.md, report.html, plots and pictures.
 
-    Exit 0: done; 1: done, but a design check failed; 2: the input was refused; 3: a bug."""
+    Exit 0: done; 1: done, but a design check failed; 2: the input was refused; 3: a bug;
+    4: done, but a solver could not answer some contacts (the results are incomplete)."""
     from . import runner
 
     with _Progress(None, case.stem) as progress:
@@ -116,9 +117,14 @@ def run(case: Path = typer.Argument(..., help="case file (TOML), or the name of 
             typer.echo(f"  warning: the {name} could not be made here: {stage['reason']}")
     for check in failed:
         typer.echo(f"  check failed: {check['name']}: {check['detail']}")
+    unanswered = [c for c in document["checks"] if not c["ok"] and c["kind"] == "solver"]
+    for check in unanswered:
+        typer.echo(f"  incomplete: {check['name']}: {check['detail']}")
     for check in document["checks"]:
-        if not check["ok"] and check["kind"] != "design":
+        if not check["ok"] and check["kind"] not in ("design", "solver"):
             typer.echo(f"  note ({check['kind']}): {check['name']}: {check['detail']}")
+    if unanswered:
+        raise typer.Exit(EXIT_INCOMPLETE)
     if failed:
         raise typer.Exit(EXIT_CHECK_FAILED)
 

@@ -165,10 +165,11 @@ def gear_pair(case: SpurCase, line_load=None) -> GearPair:
                   dedendum=case.rack.dedendum, root_radius=rack_root_radius(case))
     other_hand = case.hand if internal else ("left" if case.hand == "right" else "right")
     pinion = CylindricalGear(z1, face_width=case.pinion.face_width or case.face_width,
-                             hand=case.hand, profile_shift=case.pinion.profile_shift, **common)
+                             hand=case.hand, profile_shift=case.pinion.profile_shift,
+                             tip_diameter=case.pinion.tip_diameter, **common)
     gear = CylindricalGear(abs(z2), face_width=case.gear.face_width or case.face_width,
                            hand=other_hand, profile_shift=case.gear.profile_shift,
-                           internal=internal, **common)
+                           internal=internal, tip_diameter=case.gear.tip_diameter, **common)
     alpha_t = pinion.transverse_pressure_angle
     sign = -1.0 if internal else 1.0
     x_sum = case.pinion.profile_shift + sign * case.gear.profile_shift
@@ -191,6 +192,7 @@ def gear_pair(case: SpurCase, line_load=None) -> GearPair:
         center = abs(r_sum) * math.cos(alpha_t) / math.cos(alpha_w)
     thinning = _thinning(case, center, pinion)
     pinion, gear = replace(pinion, thinning=thinning), replace(gear, thinning=thinning)
+    check_tip_diameters(pinion, gear)
     check_proportions(pinion, gear, center if case.center_distance is None else None)
     d = case.deflection
     deflection = None if d is None else Deflection(d.slope, d.bending, tuple(d.table))
@@ -199,8 +201,10 @@ def gear_pair(case: SpurCase, line_load=None) -> GearPair:
         deflection = _with_shafts(deflection, shafts, pinion.face_width)
     pair = GearPair(pinion, gear, modifications(case.pinion, pinion, "pinion"),
                     modifications(case.gear, gear, "gear"), center, alpha_w, deflection, shafts)
-    check_mesh(pair, "center_distance" if case.center_distance is not None else
-               "teeth / pinion.profile_shift / gear.profile_shift / rack.addendum")
+    tips = "".join(f" / {name}.tip_diameter" for name in ("pinion", "gear")
+                   if getattr(case, name).tip_diameter is not None)
+    check_mesh(pair, ("center_distance" if case.center_distance is not None else
+                      "teeth / pinion.profile_shift / gear.profile_shift / rack.addendum") + tips)
     return pair
 
 
@@ -359,11 +363,71 @@ def check_proportions(pinion: CylindricalGear, gear: CylindricalGear,
     members = {"pinion": pinion, "gear": gear}
     for name, gap in tip_clearances(pinion, gear, center).items():
         other = "gear" if name == "pinion" else "pinion"
+        member = members[name]
+        if gap < 0 and member.tip_diameter is not None:    # a ring's tip must grow, a gear's shrink
+            limit = member.tip_diameter + (2.0 if member.internal else -2.0) * abs(gap)
+            raise ValueError(f"{name}.tip_diameter: {member.tip_diameter:.4g} mm "
+                             f"puts the {name}'s tip circle {-gap:.3g} mm past the {other}'s "
+                             f"root circle at the zero-backlash centre distance {center:.4g} mm: "
+                             f"allowed {'from' if member.internal else 'up to'} {limit:.4g} mm, "
+                             "or give a center_distance")
         if gap < 0:
             raise ValueError(f"{name}.profile_shift: {members[name].profile_shift:g} "
                              f"puts the {name}'s tip circle {-gap:.3g} mm past the {other}'s "
                              f"root circle at the zero-backlash centre distance {center:.4g} mm: "
                              f"lower the shift, or give a center_distance")
+
+
+def tip_diameter_range(gear: CylindricalGear) -> tuple[float, float, str, str]:
+    """The tip diameters (mm) the member can be made with, (low, high, why low, why high):
+    an external gear's tip circle lies above its form circle (where the generated involute
+    begins) and at most where the top land falls to MIN_TOP_LAND·m_n; a ring's (its inner
+    diameter) lies below its form circle (where the shaper-cut involute ends toward the
+    root) and at least on its base circle and where its top land (the tooth thins inward)
+    is MIN_TOP_LAND·m_n."""
+    from .surfaces.generation import generate_ring_side, generate_side
+
+    land = MIN_TOP_LAND * gear.normal_module
+    pointed = f"a top land of {MIN_TOP_LAND:g}·m_n = {land:.3g} mm"
+    rb = gear.base_radius
+
+    def excess(r):          # top land less the least, at tip radius r
+        return tip_thickness(replace(gear, tip_diameter=2.0 * r)) - land
+
+    if gear.internal:       # the tooth thins inward: pointed toward the base circle
+        form = generate_ring_side(gear).form_radius
+        if excess(rb) >= 0:
+            return 2 * rb, 2 * form, "the base diameter", "the form diameter"
+        low = brentq(excess, rb, form) if excess(form) > 0 else form
+        return 2 * low, 2 * form, pointed, "the form diameter"
+    form = max(generate_side(gear).form_radius, rb)
+    high = form * 1.01 + gear.normal_module
+    while excess(high) > 0:
+        high += gear.normal_module
+    top = brentq(excess, form, high) if excess(form) > 0 else form
+    return 2 * form, 2 * top, "the form diameter", pointed
+
+
+def check_tip_diameters(pinion: CylindricalGear, gear: CylindricalGear) -> None:
+    """Refuse a given tip diameter (`tip_diameter`) the member cannot be made with
+    (tip_diameter_range): the message names the field, the value and the allowed range."""
+    for name, member in (("pinion", pinion), ("gear", gear)):
+        d = member.tip_diameter
+        if d is None:
+            continue
+        low, high, why_low, why_high = tip_diameter_range(member)
+        if member.internal:
+            if not low < d < high:
+                raise ValueError(
+                    f"{name}.tip_diameter: {d:.4g} mm (the ring's inner diameter) must lie "
+                    f"above {low:.4g} mm ({why_low}) and below {high:.4g} mm ({why_high} of "
+                    f"the {member.teeth}-tooth ring); allowed ({low:.4g}, {high:.4g}) mm")
+        elif not low < d <= high:
+            kind = f"{member.teeth}-tooth {name}"
+            raise ValueError(
+                f"{name}.tip_diameter: {d:.4g} mm must lie above {low:.4g} mm ({why_low} of "
+                f"the {kind}) and at most {high:.4g} mm ({why_high}); allowed "
+                f"({low:.4g}, {high:.4g}] mm")
 
 
 def tip_clearances(pinion: CylindricalGear, gear: CylindricalGear,

@@ -1131,10 +1131,13 @@ def pressure_on_flank(cycle, loaded: list, patch: Patch, refine: int = 4):
 
 def loaded_edges(cycle) -> dict[str, float]:
     """Edges of the loaded contacts' fields that carry load (the row's edge_loaded, or more
-    than 1 % of its load in the edge strip), with the largest edge pressure (MPa)."""
+    than 1 % of its load in the edge strip), with the largest edge pressure (MPa). A row
+    the solver could not answer (its keys None) flags nothing."""
     out = {}
     for row in cycle.rows:
-        flagged = row.get("edge_loaded", row.get("edge_load_fraction", 0.0) > 0.01)
+        flagged = row.get("edge_loaded")
+        if flagged is None:
+            flagged = (row.get("edge_load_fraction") or 0.0) > 0.01
         if flagged and row.get("edge_pressure_at"):
             edge = row["edge_pressure_at"]
             out[edge] = max(out.get(edge, 0.0), float(row.get("edge_pressure_MPa", 0.0)))

@@ -92,10 +92,10 @@ class ContactCycle:
     #: D/turn_slope to the lag
     turn_slope: np.ndarray
 
-    #: per row, the semi-axes (mm, along the A axis and across) of the pattern the row's
-    #: pair would make under its position's equal share: the rows' Hertz ellipse or contact
-    #: line, also for a pair kept beyond the approach (which carries none); the loaded
-    #: contact's fields are sized on them
+    #: per row, the semi-axes (mm, along the A axis and across, about pattern_centre) of the
+    #: pattern the row's pair would make under its position's equal share: the rows' Hertz
+    #: ellipse or contact line, also for a pair kept beyond the approach (which carries
+    #: none); the loaded contact's fields are sized on them
     pattern_semi_axes: np.ndarray
     #: per position (as phis), the least separation (mm) of the facing pairs not kept (inf
     #: where none): a loaded approach beyond it would bring in a pair the cycle left out
@@ -182,8 +182,7 @@ def parallel_cycle(mesh, pinion: Flank, gear: Flank, normal_load: float,
         lag = -np.sign(slope[P]) * delta[P]
         rows, planes, angle, centre = _pair_results(pinion, gear, pf, gf, np.degrees(phis[P]), pairs[J],
                                             lag, contacts, gaps[keep], share, C_E, settings)
-        semi_axes = np.array([[r["a_mm"] + math.hypot(*c), r["b_mm"]]
-                              for r, c in zip(rows, centre)])
+        semi_axes = np.array([[r["a_mm"], r["b_mm"]] for r in rows])
         for row, rigid in zip(rows, touching):
             row["rigid_contact"] = bool(rigid)
             if not rigid:
@@ -266,7 +265,7 @@ def _pair_results(pinion, gear, pf, gf, roll_deg, pairs, delta, cp: ContactPoint
     its size, pressure and edge margins, and the rigid pattern's size; with the tangent
     planes, the angles of the A axes and the centre of each contact's pattern in its plane
     ((K, 2), mm along e1 and e2: the middle of a contact line's part in contact, 0 for an
-    ellipse)."""
+    ellipse); a contact line's face_position_mm is its middle's."""
     p_uv, g_uv = (cp.pinion_u, cp.pinion_v), (cp.gear_u, cp.gear_v)
     planes = tangent_planes(pinion, pf, *p_uv)
     analytic = analytic_gaps(pinion, gear, pf, gf, planes, p_uv, g_uv)
@@ -313,6 +312,11 @@ def _pair_results(pinion, gear, pf, gf, roll_deg, pairs, delta, cp: ContactPoint
                               settings.approach, 2 * max(settings.field_grid, 100) + 1)
         length[along], width[along], centre[along] = lines.length, lines.width, lines.centre
         angle = np.where(area, 0.0, angle)
+        # a contact line's place on the face is its middle (on a flat line, round-off alone
+        # puts the least separation anywhere along it)
+        middle = planes_at(planes, along).at(centre[along, :1], centre[along, 1:])
+        points = points.copy()
+        points[along, 2] = pf[along].to_local(middle)[:, 0, 2]
         for i, k in enumerate(along):
             margins[k] = lines.margins[i]
     rows = []

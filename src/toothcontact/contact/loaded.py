@@ -27,22 +27,36 @@ Units: mm, N, MPa.
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass
 
 import numpy as np
 
 from ..parallel import parallel_map
 from .compliance import FaceLoad, PairCompliance
-from .field import GapField, contact_fields, pattern_semi_axes
+from .field import GapField, contact_fields, pattern_semi_axes, snapped_to_face_ends
 from .local import face_length
-from .pressure import ContactSolution, EdgeLoad, Grid, GridEdgeError, solve_shared
+from .pressure import (ContactSolution, EdgeLoad, FreeEnd, Grid, GridEdgeError,
+                       free_end_factor, solve_shared)
 
 #: width (mm) of the strip at an edge over which the edge pressure is averaged
 EDGE_STRIP = 0.1
-#: a contact is edge-loaded when its strip-averaged edge pressure exceeds this share of its
-#: peak: an ellipse that just reaches an edge averages about 0.1 of its peak over the strip
-#: (sqrt(2·0.05/a) for a ≈ 10 mm), one cut by a few tenths of a millimetre well over 0.25
-EDGE_LOAD_RATIO = 0.25
+#: a contact is end-loaded when its load per mm of face in the strip at a face end exceeds
+#: END_LOAD_RATIO times its mean load per mm of face over its length in contact: the end
+#: carries more than its share, as under a crown too mild for the misalignment or an
+#: uncrowned face tilted onto its end. Two members ending flush and aligned carry
+#: 0.7-0.8 of the mean at their free ends (3D finite elements, tests/test_free_end.py):
+#: not end-loaded; a pattern cut at its middle by the end carries 1.3-1.5.
+END_LOAD_RATIO = 1.0
+#: a contact is edge-loaded at a tip, root or form edge when its pressure averaged over the
+#: strip there exceeds EDGE_PRESSURE_RATIO times its peak more than EDGE_STRIP inside every
+#: edge: the edge raises the pressure (a corner contact), not a contact that merely
+#: reaches it while relieved
+EDGE_PRESSURE_RATIO = 1.0
+#: a contact carrying less than this share of its position's load is judged by neither
+#: criterion (a pair just touching at a corner, a few newtons of thousands: its ratios say
+#: nothing about the design; its pressure stays in bem_p_max_MPa)
+EDGE_LEAST_SHARE = 0.02
 #: longest cell (mm) of a loaded contact's grid along a long contact, where the grid's size
 #: allows: a third of the edge strip, which then averages over three cells or more
 CELL = EDGE_STRIP / 3.0
@@ -63,7 +77,7 @@ GAP_TOLERANCE, COARSE_TOLERANCE = 1e-5, 1e-3
 #: carries them as None, with bem_status "unloaded" (the other pairs of its position carry
 #: the load) or "failed" and the reason in bem_reason
 RESULT_KEYS = ("bem_status", "bem_load_N", "bem_p_max_MPa", "edge_loaded", "end_loaded",
-               "bem_area_mm2",
+               "end_load_ratio", "bem_area_mm2",
                "bem_approach_mm", "bem_grid", "edge_pressure_MPa", "edge_load_fraction",
                "edge_pressure_at", "edge_strip_mm", "bem_raw_peak_MPa", "bem_iterations",
                "bem_relative_error", "bem_reason")
@@ -75,7 +89,8 @@ def unsolved(status: str, reason: str | None = None) -> dict:
     row = dict.fromkeys(RESULT_KEYS)
     if status == "unloaded":
         row.update(bem_load_N=0.0, bem_p_max_MPa=0.0, bem_area_mm2=0.0, edge_pressure_MPa=0.0,
-                   edge_load_fraction=0.0, edge_loaded=False, end_loaded=False)
+                   edge_load_fraction=0.0, edge_loaded=False, end_loaded=False,
+                   end_load_ratio=0.0)
     return {**row, "bem_status": status, "bem_reason": reason}
 
 
@@ -98,23 +113,34 @@ class LoadedContact:
         return self.face.line_load(self.solution.pressure_MPa, edges)
 
 
-def summarise(field: GapField, s: ContactSolution) -> dict:
+def summarise(field: GapField, s: ContactSolution, position_load: float | None = None) -> dict:
     """The result keys of a loaded contact (RESULT_KEYS); the most loaded edge is named by
     the flank edge it is (e.g. "gear_tip", "pinion_end_B"). Where the material runs on to
     the field's border there is no edge (the contact never reaches that border: the solver
     widens the field until it does not); with no flank edge in the field the edge keys are
-    zero and edge_pressure_at is "none"."""
+    zero and edge_pressure_at is "none". end_load_ratio: the largest over the face ends of
+    the load per mm of face in the end's strip over the contact's mean (END_LOAD_RATIO);
+    edge_loaded: end-loaded, or a tip, root or form edge pressed harder than the contact's
+    interior (EDGE_PRESSURE_RATIO); neither for a contact carrying less than
+    EDGE_LEAST_SHARE of `position_load` (N; None: the contact's own load)."""
     named = flank_edges(field, s)
-    name, worst = max(named, key=lambda item: item[1].edge_pressure_MPa,
-                      default=("none", None))
+    # the first of the edges within 0.1 % of the highest (two ends of a flush, aligned
+    # pair press alike, to the solver's tolerance)
+    highest = max((e.edge_pressure_MPa for _, e in named), default=0.0)
+    name, worst = next(((n, e) for n, e in named if e.edge_pressure_MPa >= (1 - 1e-3) * highest),
+                       ("none", None))
     edge_pressure = worst.edge_pressure_MPa if worst is not None and worst.load_N > 0 else 0.0
     interior = _interior_peak(field, s)
-    limit = EDGE_LOAD_RATIO * max(interior, edge_pressure)
-    loaded = [n for n, e in named if e.load_N > 0 and e.edge_pressure_MPa > limit]
+    end_ratio = max((_end_load_ratio(e, s) for n, e in named if _is_face_end(n)), default=0.0)
+    profile = [n for n, e in named if not _is_face_end(n) and e.load_N > 0
+               and e.edge_pressure_MPa > EDGE_PRESSURE_RATIO * interior]
+    judged = s.load_N >= EDGE_LEAST_SHARE * (position_load or s.load_N)
+    end_loaded = judged and end_ratio > END_LOAD_RATIO
+    profile = profile if judged else []
     return {"bem_status": "solved", "bem_load_N": s.load_N,
             "bem_p_max_MPa": max(interior, edge_pressure),
-            "edge_loaded": bool(loaded),
-            "end_loaded": any("_end_" in n for n in loaded),
+            "edge_loaded": bool(profile) or end_loaded,
+            "end_loaded": end_loaded, "end_load_ratio": end_ratio,
             "bem_area_mm2": s.area_mm2, "bem_approach_mm": s.approach_mm,
             "bem_grid": list(s.pressure_MPa.shape),
             "edge_pressure_MPa": edge_pressure,
@@ -122,6 +148,20 @@ def summarise(field: GapField, s: ContactSolution) -> dict:
             "edge_pressure_at": name, "edge_strip_mm": EDGE_STRIP,
             "bem_raw_peak_MPa": s.peak_pressure_MPa, "bem_iterations": s.iterations,
             "bem_relative_error": s.relative_error, "bem_reason": None}
+
+
+def _is_face_end(name: str) -> bool:
+    return name.endswith(("_end_A", "_end_B"))
+
+
+def _end_load_ratio(edge: EdgeLoad, s: ContactSolution) -> float:
+    """The load per mm along the edge's axis in its strip over the contact's mean load per
+    mm over its extent in contact along that axis."""
+    if edge.load_N <= 0.0:
+        return 0.0
+    step = s.dx_mm if edge.axis == 0 else s.dy_mm
+    length = float((s.pressure_MPa > 0.0).any(axis=1 - edge.axis).sum()) * step
+    return (edge.load_N / edge.width_mm) / (s.load_N / length)
 
 
 def flank_edges(field: GapField, s: ContactSolution) -> list[tuple[str, EdgeLoad]]:
@@ -177,8 +217,11 @@ def loaded_cycle(cycle, C_E: float, points: int = 128, teeth: PairCompliance | N
     positions: dict[float, list[int]] = {}
     for k, row in enumerate(rows):
         positions.setdefault(row["roll_deg"], []).append(k)
-    fields = contact_fields(cycle, range(len(rows)), points, _Pair.MARGIN,   # one batch
-                            largest_cell=CELL)
+    every = np.arange(len(rows))
+    fields = snapped_to_face_ends(cycle, every, contact_fields(   # one batch
+        cycle, every, points, _Pair.MARGIN,
+        np.minimum(pattern_semi_axes(cycle, every), field_reach(cycle, every)[:, None]),
+        largest_cell=CELL))
     groups = list(positions.values())
 
     def position(index: int):
@@ -187,15 +230,20 @@ def loaded_cycle(cycle, C_E: float, points: int = 128, teeth: PairCompliance | N
         load), or the reason it could not be solved."""
         ks = groups[index]
         load = sum(rows[k]["normal_load_N"] for k in ks)
+        # a pair kept beyond the approach whose field holds no material of both flanks
+        # carries nothing there (its field has no cell to solve on)
+        solvable = [k for k in ks if rows[k].get("rigid_contact", True)
+                    or fields[k].material.any()]
         try:
-            pairs = [_Pair(cycle, k, points, fields[k], teeth) for k in ks]
-            solutions = _share(pairs, load, 1.0 / C_E)
+            pairs = [_Pair(cycle, k, points, fields[k], teeth) for k in solvable]
+            solutions = dict(zip(solvable, zip(pairs, _share(pairs, load, 1.0 / C_E))))
         except (ValueError, RuntimeError) as exc:
             return str(exc)
         return [(None if pair.field is fields[k] else pair.field,
                  None if pair.structure is None else pair.structure.face_load(), solution,
-                 None if solution is None else summarise(pair.field, solution))
-                for k, pair, solution in zip(ks, pairs, solutions)]
+                 None if solution is None else summarise(pair.field, solution, load))
+                if k in solutions else (None, None, None, None)
+                for k, (pair, solution) in ((k, solutions.get(k, (None, None))) for k in ks)]
 
     for ks, answer in zip(groups, parallel_map(position, len(groups))):
         if isinstance(answer, str):
@@ -222,24 +270,23 @@ class _Pair:
         self.cycle, self.k, self.points, self.teeth = cycle, k, points, teeth
         #: whether the pair touches without load (else it is kept beyond the approach)
         self.rigid_contact = cycle.rows[k].get("rigid_contact", True)
-        self.semi_axes = self.MARGIN * pattern_semi_axes(cycle, [k])[0]
-        #: the largest semi-axis a field needs: the flanks' length along the face, a box
-        #: that covers them whole about any point of them, and a little more (REACH), so
-        #: that the flanks end inside it even about a point at one end
-        self.largest = self.REACH * max(
-            float(face_length(getattr(cycle, m), cycle.contact_uv(m, k))[0])
-            for m in ("pinion", "gear"))
+        #: the largest semi-axis a field needs (see field_reach)
+        self.largest = float(field_reach(cycle, [k])[0])
+        self.semi_axes = self.MARGIN * np.minimum(pattern_semi_axes(cycle, [k])[0],
+                                                  self.largest)
         self.growth = (np.array([1.6, 1.6]) if cycle.rows[k]["contact_model"] == "ellipse"
                        else np.array([2.5, 1.3]))
         self._use(field)
 
     def _use(self, field: GapField) -> None:
-        """Solve on `field` from now on (its structure operators built)."""
+        """Solve on `field` from now on (its structure operators and free ends built)."""
         self.field = field
         self.steps = coarse_steps(field.gap.shape)
         self.structure = None if self.teeth is None else self.teeth.operator(self.cycle, field)
         self.coarse_structure = (None if self.structure is None
                                  else self.structure.coarsened(self.steps))
+        reference = () if self.structure is None else self.structure.reference
+        self.free_ends = free_ends(field, _member_ends(self.teeth), reference)
 
     def grow(self) -> None:
         """Widen the field (the loaded contact reached its edge); ValueError where it
@@ -249,8 +296,8 @@ class _Pair:
             raise ValueError(f"the loaded contact at roll {self.cycle.rows[self.k]['roll_deg']:.3f} "
                              "deg outgrows its gap field (the surfaces end around it)")
         self.semi_axes = grown
-        self._use(contact_fields(self.cycle, [self.k], self.points, 1.0,
-                                 self.semi_axes[None], CELL)[0])
+        self._use(snapped_to_face_ends(self.cycle, [self.k], contact_fields(
+            self.cycle, [self.k], self.points, 1.0, self.semi_axes[None], CELL))[0])
 
     def grid(self, coarse: bool = False) -> Grid:
         """The field as the solver's grid, with the teeth's bending where there is a tooth
@@ -259,9 +306,11 @@ class _Pair:
         reference = () if self.structure is None else self.structure.reference
         if coarse:
             s0, s1 = self.steps
+            ends = tuple(FreeEnd(e.axis, -(-e.index // self.steps[e.axis]), e.side, e.weight,
+                                 e.reach_mm) for e in self.free_ends)
             return Grid(f.gap[::s0, ::s1], s0 * dx, s1 * dy, f.material[::s0, ::s1],
-                        self.coarse_structure, reference)
-        return Grid(f.gap, dx, dy, f.material, self.structure, reference)
+                        self.coarse_structure, reference, ends)
+        return Grid(f.gap, dx, dy, f.material, self.structure, reference, self.free_ends)
 
     def refined(self, coarse: ContactSolution | None) -> np.ndarray | None:
         """The coarse solution's pressure interpolated (bilinearly) on the full grid, the
@@ -274,6 +323,100 @@ class _Pair:
         at = np.meshgrid(np.arange(n0) / s0, np.arange(n1) / s1, indexing="ij")
         p = map_coordinates(coarse.pressure_MPa, at, order=1, mode="nearest")
         return np.where(self.field.material, p, 0.0)
+
+
+#: a free end's mirror term acts within this many reference depths of the end (the
+#: compression measured to a depth fades within a few depths: Boussinesq's d²/ρ³; the FZG
+#: C-type gear's end-to-mid pressure is 0.774 with 1 depth, 0.768 with 2, 3, 4 and 6)
+FREE_END_REACH = 2.0
+#: an end face is taken as crossing the grid along one axis where its normal lies within
+#: this angle (deg) of that axis (a spur or helical face end is square to the face
+#: direction x; a misalignment turns it by a fraction of a degree)
+FREE_END_ANGLE = 15.0
+
+
+def free_ends(field: GapField, weights: dict[str, float], reference: tuple
+              ) -> tuple[FreeEnd, ...]:
+    """The free end faces (pressure.FreeEnd) of both members that cross a contact's field
+    where its compression is measured to the teeth's reference depths (`reference`, the
+    tooth model's): each member's face ends ("pinion_end_A", ...) where the field reaches
+    past them, the mirror weighted by `weights` (per member: its φ times its share of the
+    composite compliance, see _member_ends), acting within FREE_END_REACH reference depths of the
+    end. An end oblique to both axes by more than FREE_END_ANGLE is left as a half-space;
+    so is every end without a reference (half-spaces that run on: Hertz's idealisation,
+    whose approach is measured from infinity, where a mirror's far field would shift it)."""
+    if not reference:
+        return ()
+    reach = FREE_END_REACH * max(depth for depth, _, _ in reference)
+    spacing = field.spacing
+    ends = []
+    for name, beyond in field.beyond.items():
+        member, _, edge = name.partition("_")
+        if edge not in ("end_A", "end_B") or member not in weights:
+            continue
+        gx, gy = (np.median(g[field.material]) for g in
+                  np.gradient(np.nan_to_num(field.inside[name]), *spacing))
+        angle = math.degrees(math.atan2(min(abs(gx), abs(gy)), max(abs(gx), abs(gy))))
+        if angle > FREE_END_ANGLE:
+            continue
+        axis = 0 if abs(gx) >= abs(gy) else 1
+        outside = beyond if axis == 0 else beyond.T
+        lines = outside.any(axis=0) & (~outside).any(axis=0)
+        if not lines.any():
+            continue
+        low = (gx if axis == 0 else gy) > 0          # material on the high side of the end
+        cells = outside[:, lines]
+        index = (np.argmin(cells, axis=0) if low
+                 else cells.shape[0] - np.argmin(cells[::-1], axis=0))
+        # the outermost line's end: no material cell lies beyond the mirror plane (one left
+        # outside it would carry a half-space's end spike)
+        ends.append(FreeEnd(axis, int(index.min() if low else index.max()),
+                            "low" if low else "high", weights[member], reach))
+    return _merged(ends)
+
+
+def _merged(ends: list[FreeEnd]) -> tuple[FreeEnd, ...]:
+    """The ends with those of both members that lie within a cell of each other (flush
+    ends) taken as one, at the outer of the two, their weights summed: one mirror
+    convolution instead of two."""
+    out: list[FreeEnd] = []
+    for end in ends:
+        twin = next((k for k, o in enumerate(out) if (o.axis, o.side) == (end.axis, end.side)
+                     and abs(o.index - end.index) <= 1), None)
+        if twin is None:
+            out.append(end)
+            continue
+        o = out[twin]
+        index = min(o.index, end.index) if o.side == "low" else max(o.index, end.index)
+        out[twin] = FreeEnd(o.axis, index, o.side, o.weight + end.weight,
+                            max(o.reach_mm, end.reach_mm))
+    return tuple(out)
+
+
+def _member_ends(teeth: PairCompliance | None) -> dict[str, float]:
+    """Each member's free-end weight: its φ (pressure.free_end_factor of its Poisson's
+    ratio) times its share (1 - ν²)/E of the composite compliance (steel's φ and equal
+    shares without a tooth model)."""
+    if teeth is None:
+        return {"pinion": 0.5 * free_end_factor(0.3), "gear": 0.5 * free_end_factor(0.3)}
+    c = {name: (1.0 - t.nu ** 2) / t.E for name, t in teeth.members.items()}
+    return {name: free_end_factor(teeth.members[name].nu) * value / sum(c.values())
+            for name, value in c.items()}
+
+
+def field_reach(cycle, rows) -> np.ndarray:
+    """The largest semi-axis (mm, (K,)) a loaded-contact field of the given rows needs: the
+    flanks' length along the face (a box that covers them whole about any point of them)
+    and a little more (_Pair.REACH), so that the flanks end inside it even about a point at
+    one end. The patterns the fields are sized on are held to it: a pair kept beyond the
+    approach at a point of nearly no relative curvature has a pattern (its Hertz line at
+    the position's share) of hundreds of metres, whose grid's cells, of kilometres,
+    stalled the shared solve of its position."""
+    rows = np.atleast_1d(np.asarray(rows, int))
+    return _Pair.REACH * np.max([face_length(getattr(cycle, m), (
+        np.asarray(getattr(cycle.contacts, f"{m}_u"))[rows],
+        np.asarray(getattr(cycle.contacts, f"{m}_v"))[rows])) for m in ("pinion", "gear")],
+        axis=0)
 
 
 def coarse_steps(shape: tuple[int, int]) -> tuple[int, int]:

@@ -82,6 +82,17 @@ def _antiderivative(s: np.ndarray, t: np.ndarray) -> np.ndarray:
     return a + b
 
 
+def _depth_antiderivative(s: np.ndarray, t: np.ndarray, depth: float, nu: float) -> np.ndarray:
+    """H(s, t) (mm) with ∂²H/∂s∂t = d²/ρ³ + 2(1-ν)/ρ, ρ² = s² + t² + d² (d = depth > 0,
+    mm): Boussinesq's displacement at depth d (Johnson eq 3.21b) integrated over a
+    rectangle by the double difference of H at its corners, from ∫∫ d²/ρ³ = d·atan(st/(dρ))
+    and ∫∫ 1/ρ = s·asinh(t/sqrt(s² + d²)) + t·asinh(s/sqrt(t² + d²)) - d·atan(st/(dρ))."""
+    rho = np.sqrt(s * s + t * t + depth * depth)
+    return (2.0 * (1.0 - nu) * (s * np.arcsinh(t / np.hypot(s, depth))
+                                + t * np.arcsinh(s / np.hypot(t, depth)))
+            - (1.0 - 2.0 * nu) * depth * np.arctan(s * t / (depth * rho)))
+
+
 def rectangle_displacement(x, y, half_x: float, half_y: float, E_star: float = 1.0):
     """Normal surface displacement (mm) at (x, y) (mm) of the two bodies together under a
     uniform pressure of 1 MPa on the rectangle |x'| <= half_x, |y'| <= half_y (mm), composite
@@ -113,8 +124,10 @@ class InfluenceOperator:
     is then the compression between the surface and the point at that depth (mm) below the
     load in each body (E in MPa), not the surface's sinking relative to infinity: K less
     E_star times the bodies' Boussinesq displacement at their depths (Johnson eq 3.21b,
-    u_z = F/(4πG)·[d²/ρ³ + 2(1-ν)/ρ], ρ² = r² + d², taken at each cell's centre: the depth
-    is many cells). A line contact's approach relative to infinity grows without bound
+    u_z = F/(4πG)·[d²/ρ³ + 2(1-ν)/ρ], ρ² = r² + d², integrated over each loaded cell as
+    the surface term is: :func:`_depth_antiderivative`; taken at the cell's centre instead,
+    a cell large against the depth, 7.7 × 33.5 mm at 4 mm, made the kernel negative
+    definite). A line contact's approach relative to infinity grows without bound
     with the contact's length; measured to a depth it does not (Weber's contact flattening
     of a tooth measures it to the tooth's centre line).
     """
@@ -141,12 +154,18 @@ class InfluenceOperator:
         self._quadrant = quadrant
         self._spectrum = {np.float64: self._kernel_spectrum(self.padded)}
         self._inverse: dict = {}
+        self._parts: dict = {}
 
     def part(self, shape: tuple[int, int]) -> "InfluenceOperator":
         """The operator of a part of this grid, `shape` cells (its coefficients taken from
-        this operator's)."""
-        return InfluenceOperator(shape, self.dx, self.dy, self.reference, self.E_star,
-                                 self._quadrant)
+        this operator's; kept for the next call with the same shape)."""
+        shape = (int(shape[0]), int(shape[1]))
+        if shape not in self._parts:
+            if len(self._parts) >= 32:
+                self._parts.clear()
+            self._parts[shape] = InfluenceOperator(shape, self.dx, self.dy, self.reference,
+                                                   self.E_star, self._quadrant)
+        return self._parts[shape]
 
     def _lengths(self, factor: int) -> tuple[int, int]:
         """A circulant's size: factor·n per axis, or the next even length the FFT factors
@@ -181,12 +200,11 @@ class InfluenceOperator:
         ys = (np.arange(n1 + 2) - 0.5) * dy
         F = _antiderivative(xs[:, None], ys[None, :])
         quadrant = np.diff(np.diff(F, axis=0), axis=1) / math.pi    # (n0 + 1, n1 + 1)
-        r2 = ((np.arange(n0 + 1) * dx) ** 2)[:, None] + ((np.arange(n1 + 1) * dy) ** 2)[None, :]
         for depth, E, nu in reference:
-            rho = np.sqrt(r2 + depth ** 2)
+            H = _depth_antiderivative(xs[:, None], ys[None, :], depth, nu)
             G = E / (2.0 * (1.0 + nu))
-            quadrant = quadrant - E_star * dx * dy / (4.0 * math.pi * G) * (
-                depth ** 2 / rho ** 3 + 2.0 * (1.0 - nu) / rho)
+            quadrant = quadrant - E_star / (4.0 * math.pi * G) * np.diff(np.diff(H, axis=0),
+                                                                       axis=1)
         return quadrant
 
     @staticmethod
@@ -514,14 +532,112 @@ class GridEdgeError(ValueError):
         self.grid = grid
 
 
+#: the mirror-pressure factor φ of a free end face (Guilbault 2011) by Poisson's ratio: the
+#: quarter-space's surface displacement is the half-space's plus φ times the half-space
+#: displacement of the pressure mirrored about the end face. φ = 1 is a plain mirror (the
+#: end face a frictionless symmetry plane: no shear on it, but the normal stress a rigid
+#: smooth wall would hold); freeing that stress makes the end more compliant still, φ > 1.
+#: Derived here, not taken from the literature: the least-squares fit of the mirror term
+#: (with a constant, which a contact's rigid approach takes up) to 3D finite-element
+#: surface displacements of an elastic block with a free end under a square patch 0.5 to 4
+#: patch widths from the end, against the same block running on (tests/fe_reference.py,
+#: benchmarks/fe_quarter_space.py: residual 3-5 % of the free end's excess; measured from
+#: infinity instead the fit gives 1.60, 1.74, 1.90, 2.11, with residual 5-7 %)
+FREE_END_FACTORS = ((0.25, 1.29), (0.30, 1.42), (0.35, 1.57), (0.40, 1.75))
+
+
+def free_end_factor(nu: float) -> float:
+    """φ (FREE_END_FACTORS) for Poisson's ratio nu, linear between the table's ratios and
+    held at its ends."""
+    ratios, factors = zip(*FREE_END_FACTORS)
+    return float(np.interp(nu, ratios, factors))
+
+
+@dataclass(frozen=True)
+class FreeEnd:
+    """A free end face of one of the two bodies, crossing a grid along `axis` (0: its x):
+    there the body is a quarter-space, not a half-space that runs on.
+
+    Its displacement gains φ times the half-space displacement, at the same point, of the
+    pressure mirrored about the end face: Hetényi's overlapping half-spaces (J. Appl. Mech.
+    37 (1970) 70-76: a mirror image cancels the shear the half-space leaves on the end
+    plane) condensed into one mirror term with a factor, as Guilbault's fast quarter-space
+    correction does (J. Tribology 133 (2011) 031402). The mirror term is a Hankel operator
+    along `axis` (it depends on x_i + x_j): symmetric, computed by one convolution of the
+    mirrored strip.
+
+    index: along `axis`, the first cell of the body's material (side "low": the end lies
+        before it) or one past its last (side "high");
+    weight: φ times the body's share of the composite compliance (φ for two bodies ending
+        flush, each its own share);
+    reach_mm: the mirror acts between cells within reach_mm of the end, both tapered to zero
+        over its outer half (with a reference depth the kernel fades within a few depths;
+        on half-spaces the reach should span the contact)."""
+
+    axis: int
+    index: int
+    side: str
+    weight: float
+    reach_mm: float
+
+    def shifted(self, rows: slice, cols: slice) -> "FreeEnd":
+        """The same end on a part of the grid starting at (rows.start, cols.start)."""
+        start = (rows, cols)[self.axis].start or 0
+        return FreeEnd(self.axis, self.index - start, self.side, self.weight, self.reach_mm)
+
+    def taper(self, count: int, step: float) -> np.ndarray:
+        """Weights of the `count` cells inward from the end (step mm each): 1 to half the
+        reach, a cosine down to 0 at the reach."""
+        d = (np.arange(count) + 0.5) * step / self.reach_mm
+        return np.where(d <= 0.5, 1.0, np.where(d < 1.0, 0.5 + 0.5 * np.cos(2.0 * math.pi * (d - 0.5)),
+                                                 0.0))
+
+    def add_mirror(self, u: np.ndarray, p: np.ndarray, op: "InfluenceOperator",
+                   spacing: tuple[float, float], single: bool) -> None:
+        """Adds the mirror term of the pressure p (MPa, the grid's shape) to the displacement
+        u (mm for E* = 1 MPa, the grid's shape; in place), `op` the grid's half-space."""
+        step = spacing[self.axis]
+        width = max(int(math.ceil(self.reach_mm / step)), 1)
+        if self.axis == 1:
+            u, p = u.T, p.T
+        n = p.shape[0]
+        # cells [lo, hi) within the reach, inward from the end; their depths from it
+        if self.side == "low":
+            lo, hi = max(self.index, 0), min(self.index + width, n)
+            depth = np.arange(lo, hi) - self.index
+        else:
+            lo, hi = max(self.index - width, 0), min(self.index, n)
+            depth = self.index - 1 - np.arange(lo, hi)
+        if hi <= lo:
+            return
+        taper = self.taper(width, step)[depth][:, None]
+        strip = p[lo:hi] * taper
+        if not strip.any():
+            return
+        # the strip and its mirror on one line of cells: the mirror of cell i is
+        # 2·index - 1 - i; `reach` cells from the end to the strip's far side, each way
+        reach = int(depth.max()) + 1
+        line = np.zeros((2 * reach, p.shape[1]))
+        if self.side == "low":
+            line[reach - 1 - depth] = strip            # mirrors, before the end
+            take = reach + depth
+        else:
+            line[reach + depth] = strip                # mirrors, past the end
+            take = reach - 1 - depth
+        part = op.part(line.shape if self.axis == 0 else line.T.shape)
+        image = part(line, single) if self.axis == 0 else part(line.T, single).T
+        u[lo:hi] += self.weight * taper * image[take]
+
+
 @dataclass(frozen=True)
 class Grid:
     """One gap field of a shared solve (see :func:`solve_shared`): the gap (mm; x along axis
     0 in steps dx_mm, y along axis 1 in steps dy_mm), the material mask (None: everywhere),
     a further linear displacement `structure` p (MPa) -> u (mm) of its bodies (the teeth's
     bending: a contact.compliance.StructureOperator, called on the grid and on a part of it
-    by its `window(rows, cols)`), and the depths its compression is measured to
-    (`reference`, see InfluenceOperator)."""
+    by its `window(rows, cols)`), the depths its compression is measured to
+    (`reference`, see InfluenceOperator), and the free end faces of its bodies that cross
+    it (`free_ends`, :class:`FreeEnd`: there a body is a quarter-space)."""
 
     gap_mm: np.ndarray
     dx_mm: float
@@ -529,6 +645,7 @@ class Grid:
     mask: np.ndarray | None = None
     structure: object = None
     reference: tuple = ()
+    free_ends: tuple = ()
 
 
 class _Checked(NamedTuple):
@@ -540,6 +657,7 @@ class _Checked(NamedTuple):
     m: np.ndarray
     structure: object
     reference: tuple
+    free_ends: tuple = ()
 
 
 class _System:
@@ -597,10 +715,13 @@ class _System:
         system's)."""
         single = self.single if single is None else single
         out = np.zeros(self.h.size)
-        for (s, q), op, structure in zip(self._blocks(values, where), self.ops,
-                                         self.structures):
+        for (s, q), op, structure, grid in zip(self._blocks(values, where), self.ops,
+                                               self.structures, self.grids):
             if q is not None:
-                u = op(q, single).ravel() * self.compliance
+                u = op(q, single)
+                for end in grid.free_ends:
+                    end.add_mirror(u, q, op, (grid.dx, grid.dy), single)
+                u = u.ravel() * self.compliance
                 out[s] = u if structure is None else u + structure(q).ravel()
         return out
 
@@ -633,7 +754,8 @@ class _System:
             rows, cols = window
             grids.append(_Checked(g.h[rows, cols], g.dx, g.dy, g.m[rows, cols],
                                   None if g.structure is None else g.structure.window(rows, cols),
-                                  g.reference))
+                                  g.reference,
+                                  tuple(end.shifted(rows, cols) for end in g.free_ends)))
             ops.append(op.part(grids[-1].h.shape))
             inside.append(np.arange(s.start, s.stop).reshape(shape)[rows, cols].ravel())
         return _System(grids, self.E_star, self.single, ops), np.concatenate(inside)
@@ -805,7 +927,7 @@ def solve_shared(grids: list[Grid], loads_N, E_star_MPa: float, *, tol: float = 
     W = _positive("loads_N (their sum)", sum(loads), "N")
     E_star = _positive("E_star_MPa", E_star_MPa, "MPa")
     checked = [_Checked(*_check_grid(g.gap_mm, g.dx_mm, g.dy_mm, g.mask), g.structure,
-                        tuple(g.reference)) for g in grids]
+                        tuple(g.reference), tuple(g.free_ends)) for g in grids]
     tol = _positive("tol", tol, "(relative gap error)")
     if not (isinstance(max_iter, (int, np.integer)) and max_iter >= 1):
         raise ValueError(f"max_iter: {max_iter!r} must be an integer >= 1")
@@ -833,7 +955,7 @@ def solve_shared(grids: list[Grid], loads_N, E_star_MPa: float, *, tol: float = 
         p[inside] = solved
         iterations += steps
     out = []
-    for k, ((h, dx, dy, m, _, _), s) in enumerate(zip(checked, system.slices)):
+    for k, ((h, dx, dy, m, *_), s) in enumerate(zip(checked, system.slices)):
         pk, uk = p[s].reshape(h.shape), u[s].reshape(h.shape)
         S = pk > 0.0
         if not S.any():

@@ -37,7 +37,9 @@ class CylindricalGear:
     positive x moves the profile away from the axis, thinning the tooth), addendum,
     dedendum and root_radius coefficients of the basic rack (× m_n), face_width (mm),
     thinning: the transverse tooth-thickness allowance on the reference circle (arc mm, taken
-    off both flanks alike; the gear's share of a pair's backlash)."""
+    off both flanks alike; the gear's share of a pair's backlash), tip_diameter: the tip
+    circle's diameter d_a as drawn (mm; a ring's inner diameter), or None for the rack's:
+    d ± 2·(h_a ∓ x)·m_n."""
 
     teeth: int
     normal_module: float
@@ -51,6 +53,7 @@ class CylindricalGear:
     root_radius: float = 0.38
     internal: bool = False
     thinning: float = 0.0
+    tip_diameter: float | None = None
 
     def __post_init__(self):
         problems = []
@@ -70,6 +73,9 @@ class CylindricalGear:
             problems.append("root radius coefficient must lie in [0, dedendum)")
         if not self.thinning >= 0:
             problems.append(f"thinning {self.thinning} must be >= 0")
+        if self.tip_diameter is not None and not (math.isfinite(self.tip_diameter)
+                                                  and self.tip_diameter > 0):
+            problems.append(f"tip diameter {self.tip_diameter} must be > 0")
         if problems:
             raise ValueError("; ".join(problems))
 
@@ -118,6 +124,10 @@ class CylindricalGear:
 
     @property
     def tip_radius(self) -> float:
+        """Radius of the tip circle (mm): half the given tip_diameter, else from the rack's
+        addendum and the profile shift, r ± (h_a ∓ x)·m_n (a ring's: its inner radius)."""
+        if self.tip_diameter is not None:
+            return 0.5 * self.tip_diameter
         m, x = self.normal_module, self.profile_shift
         if self.internal:
             return self.pitch_radius - (self.addendum - x) * m
