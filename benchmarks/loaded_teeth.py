@@ -1,11 +1,12 @@
-"""The loaded contact with tooth bending along the face (issue 14) beside the loaded contact
-it replaced (ISO 6336-1's c' spread over the face, commit a7404bb), on the bundled spur
-cases, in one run: the loaded stage's time (analyses._loaded_sections, the load sharing
-and every pressure solve) and the whole analysis without the interference check, best of
-`--repeat`. The earlier code is taken from git (`git archive`) and run in a subprocess of
-this run. Prints a table and writes benchmarks/loaded_teeth.json.
+"""The loaded contact beside an earlier commit's, on the bundled spur cases, in one run: the
+loaded stage's time (analyses._loaded_sections, the load sharing and every pressure solve)
+and the whole analysis without the interference check, best of `--repeat`. The earlier
+code is taken from git (`git archive`) and run in a subprocess of this run. Prints a table
+and writes benchmarks/<out>: loaded_teeth.json records the tooth bending along the face
+(issue 14) beside the code it replaced (a7404bb); loaded_free_ends.json the free face ends
+and snapped fields (issue 27) beside 25866f5.
 
-    .venv/bin/python benchmarks/loaded_teeth.py [--repeat 3] [--before a7404bb]
+    .venv/bin/python benchmarks/loaded_teeth.py [--repeat 3] [--before a7404bb] [--out F]
 """
 
 from __future__ import annotations
@@ -67,6 +68,7 @@ def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--repeat", type=int, default=3)
     parser.add_argument("--before", default="a7404bb")
+    parser.add_argument("--out", default="loaded_teeth.json")
     args = parser.parse_args()
     with tempfile.TemporaryDirectory() as tmp:
         archive = subprocess.run(["git", "-C", str(ROOT), "archive", args.before, "src"],
@@ -85,7 +87,7 @@ def main() -> None:
               f"{r['loaded_ratio']:6.2f} {r['before_analysis_s']:16.2f} {r['now_analysis_s']:6.2f}")
     record = {"before": args.before, "repeat": args.repeat, "machine": platform.platform(),
               "python": platform.python_version(), "rows": rows}
-    (HERE / "loaded_teeth.json").write_text(json.dumps(record, indent=2) + "\n")
+    (HERE / args.out).write_text(json.dumps(record, indent=2) + "\n")
 
 
 if __name__ == "__main__":

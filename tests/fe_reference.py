@@ -25,6 +25,7 @@ __all__ = [
     "graded_axis", "block_mesh", "stiffness", "love_rectangle_uz",
     "BlockSolver", "SurfaceResult", "PunchResult",
     "surface_displacement", "surface_displacements", "flat_punch_line_load",
+    "CylinderResult", "cylinder_end_line_load",
 ]
 
 
@@ -405,3 +406,240 @@ def flat_punch_line_load(a, length, end_free=True, nu=0.3, E=210000.0, delta=1e-
     q = F / trib
     q_mid = float(q[np.argmin(np.abs(xp + half))])
     return PunchResult(xp, q, q / q_mid, float(F.sum()), delta, s.n_dofs, F, q_mid)
+
+
+# ----------------------------------------------------------------------------- cylinder (Hertz)
+
+@dataclass
+class CylinderResult:
+    """Rigid cylinder on a block (see cylinder_end_line_load). Along x: nodes x (mm) on
+    [-length, 0], line load q (N/mm, whole width, nodal reactions over their tributary
+    lengths), q_norm = q / q_mid, node_force (N, whole width, per x node); q_mid at x =
+    -length/2. Across y (mm, y >= 0, the candidate nodes): top-surface pressure p_mid and
+    p_end (MPa, nodal reaction over tributary area) at mid-length and at x = 0. b_hertz,
+    p0_hertz: the Hertz half-width and peak pressure of the target line load (= q_mid to
+    1e-7; rigid cylinder, E* = E / (1 - nu^2)); peak_mid = p_mid[0]; half_width_mid: the
+    last y in contact at mid-length. delta: the approach (mm); iterations: constrained-CG
+    steps per solve (one solve per face-width load tried); reach: the largest y in contact
+    over the face width (below y[-1], the candidates' edge)."""
+    x: np.ndarray
+    q: np.ndarray
+    q_norm: np.ndarray
+    node_force: np.ndarray
+    q_mid: float
+    total: float
+    delta: float
+    y: np.ndarray
+    p_mid: np.ndarray
+    p_end: np.ndarray
+    b_hertz: float
+    p0_hertz: float
+    peak_mid: float
+    half_width_mid: float
+    iterations: list
+    n_dofs: int
+    n_candidates: int
+    reach: float
+
+    def end_average(self, c):
+        """Mean q over x in [-c b, 0] (b = b_hertz; -c b must be a node) over q_mid."""
+        return PunchResult.end_average(self, c * self.b_hertz)
+
+
+def _schur_factor(K, fixed, grid, last):
+    """SuperLU factor of K on the free dofs in nested-dissection order with the dofs `last`
+    put at the end, and the dense Schur complement S (N/mm) of those dofs (the trailing
+    block L_cc U_cc of the factor: diagonal pivots, no permutations). Returns (lu, order, S)."""
+    nd = _nested_dissection(grid.shape)
+    order = (3 * grid.ravel()[nd][:, None] + np.arange(3)).ravel()
+    is_last = np.zeros(K.shape[0], bool)
+    is_last[last] = True
+    order = np.concatenate([order[~fixed[order] & ~is_last[order]], last])
+    A = K[order][:, order].tocsc()
+    lu = spl.splu(A, permc_spec="NATURAL", diag_pivot_thresh=0.0,
+                  options=dict(SymmetricMode=True))
+    m, nc = A.shape[0], len(last)
+    if not (np.array_equal(lu.perm_r, np.arange(m)) and np.array_equal(lu.perm_c, np.arange(m))):
+        raise RuntimeError("SuperLU permuted the dofs: no Schur complement in the trailing block")
+    S = lu.L[m - nc:, m - nc:].toarray() @ lu.U[m - nc:, m - nc:].toarray()
+    return lu, order, 0.5 * (S + S.T)
+
+
+def _signorini_cg(C, gap, W, P, tol=1e-10, max_iter=5000):
+    """Frictionless contact on a compliance C (mm/N, dense SPD) of n nodes: forces P >= 0
+    (N, pressing) summing to W, approach delta (mm), with d = C P the deflection (mm) and
+    the gap s = gap + d - delta >= 0, s = 0 where P > 0. The constrained conjugate gradient
+    of Polonsky & Keer (Wear 231 (1999) 206-219): an active-set iteration inside CG (nodes
+    whose force turns tensile leave the set, nodes that penetrate join it, CG restarts when
+    the set grows). Then the final set is solved exactly (C_AA P_A = delta - gap_A, sum P =
+    W) and the complementarity checked: RuntimeError if it fails. Returns (P, delta, steps)."""
+    n = len(gap)
+    P = np.maximum(np.asarray(P, float), 0.0)
+    P *= W / P.sum()
+    t = np.zeros(n)
+    G_old, restart = 1.0, True
+    for it in range(1, max_iter + 1):
+        I = P > 0
+        g = C @ P + gap
+        g -= g[I].mean()
+        G = g[I] @ g[I]
+        t = np.where(I, g + (0.0 if restart else G / G_old) * t, 0.0)
+        G_old = G
+        r = C @ t
+        r -= r[I].mean()
+        tau = (g[I] @ t[I]) / (r[I] @ t[I])
+        P_old = P.copy()
+        P = np.where(I, P - tau * t, P)
+        P[P < 0] = 0.0
+        J = ~I & (g < 0)                                        # penetrating, no force yet
+        restart = bool(J.any())
+        P[J] -= tau * g[J]
+        P *= W / P.sum()
+        if np.abs(P - P_old).sum() / W < tol:
+            break
+    else:
+        raise RuntimeError(f"constrained CG: no convergence in {max_iter} steps")
+    A = np.nonzero(P > 0)[0]                                    # the exact solve on the set
+    m = len(A)
+    M = np.zeros((m + 1, m + 1))
+    M[:m, :m] = C[np.ix_(A, A)]
+    M[:m, m] = -1.0
+    M[m, :m] = 1.0
+    sol = np.linalg.solve(M, np.concatenate([-gap[A], [W]]))
+    P = np.zeros(n)
+    P[A] = sol[:m]
+    delta = sol[m]
+    s = gap + C @ P - delta
+    if P.min() < -1e-6 * W / m or s.min() < -1e-6 * delta:
+        raise RuntimeError(f"contact set not consistent: min force {P.min():.3g} N, "
+                           f"min gap {s.min():.3g} mm")
+    return np.maximum(P, 0.0), float(delta), it
+
+
+def cylinder_end_line_load(radius=84.0, load=None, length=None, end_free=True, nu=0.3,
+                           E=210000.0, depth=None, width=None, run_on=None, refine=1.0,
+                           growth=0.3, ends=(0.05, 0.1, 0.25, 0.5), y_reach=2.5,
+                           tol=1e-10, outer_max=12):
+    """Rigid frictionless cylinder (radius mm, axis along x, x in [-length, 0]) pressed into
+    the top face z = 0 of an elastic block (bottom z = -depth fixed, y in +-width), the line
+    load at mid-length x = -length/2 brought to `load` (N/mm; default: the load of a Hertz
+    half-width b = 1 mm, w = pi E* b^2 / (4 radius), E* = E / (1 - nu^2)).
+
+    end_free: the block's end face x = 0 is free (it ends flush with the cylinder); else the
+    block runs on to x = run_on. The block always runs on past x = -length to -length -
+    run_on (then the running-on case is symmetric about -length/2 and solved on its half).
+    Defaults length = 10 b, depth = width = run_on = 2 * length (b the Hertz half-width).
+
+    Contact (Signorini, frictionless): the candidate nodes are the top nodes with x in
+    [-length, 0], 0 <= y <= y_reach * b (y >= 0 solved, u_y = 0 on y = 0). Their u_z-dofs
+    are ordered last in one SuperLU factorisation, whose trailing block is their Schur
+    complement S (N/mm): the exact stiffness of the block seen from those dofs, every other
+    node force-free; its inverse C is their compliance. The plain active-set iteration
+    (u_z = -(delta - y^2 / (2 radius)) prescribed on the nodes in contact, the others
+    force-free; those whose reaction pulls leave, those that penetrate the cylinder join,
+    all at once) cycles on this dense compliance, so the set is found by the constrained
+    conjugate gradient (_signorini_cg: the same moves inside CG) at a given load on the
+    face width, then solved exactly on that set and checked (no tensile reaction, no
+    penetration). The face-width load is rescaled until the mid-length line load is `load`
+    (to 1e-7). RuntimeError if the contact reaches y_reach * b.
+
+    Mesh: element size b/16/refine along x at the end face x = 0, b/8/refine across the
+    contact (y in [0, 1.5 b]), at the top and at x = -length, b/2/refine along the middle of
+    the cylinder, growing by growth/sqrt(refine) per mm (b = 1 mm by default) up to a
+    quarter of the block size; nodes at x = -c b for c in ends. Returns a CylinderResult.
+    """
+    E_star = E / (1 - nu**2)
+    load = np.pi * E_star / (4 * radius) if load is None else float(load)
+    b = np.sqrt(4 * load * radius / (np.pi * E_star))
+    length = 10 * b if length is None else float(length)
+    depth = 2 * length if depth is None else depth
+    width = 2 * length if width is None else width
+    run_on = 2 * length if run_on is None else run_on
+    h_end, h_c, h_in = b / 16 / refine, b / 8 / refine, b / 4 / refine
+    g = growth / np.sqrt(refine)
+    half = length / 2
+    h_far = max(depth, width, run_on) / 4
+    breaks = [-c * b for c in ends] + [-half]
+    zones = [(0.0, 0.0, h_end), (-length, 0.0, 2 * h_in), (-length, -length, h_c)]
+    if end_free:
+        x = graded_axis(-length - run_on, 0.0, zones, h_far=h_far, growth=g, breaks=breaks)
+    else:
+        x = graded_axis(-half, run_on, zones, h_far=h_far, growth=g, breaks=breaks)
+    y = graded_axis(0.0, width, [(0.0, 1.5 * b, h_c)], h_far=h_far, growth=g,
+                    breaks=[y_reach * b])
+    z = graded_axis(-depth, 0.0, [(0.0, 0.0, h_c)], h_far=h_far, growth=g)
+
+    mesh = block_mesh(x, y, z)
+    p = mesh.p
+    grid = np.empty((len(x), len(y), len(z)), int)
+    grid[np.searchsorted(x, p[0] - 1e-9 * (1 + abs(p[0]))),
+         np.searchsorted(y, p[1] - 1e-9 * (1 + abs(p[1]))),
+         np.searchsorted(z, p[2] - 1e-9 * (1 + abs(p[2])))] = np.arange(p.shape[1])
+    K = stiffness(mesh, E, nu)
+    fixed = np.zeros(K.shape[0], bool)
+    for c in range(3):
+        fixed[3 * grid[:, :, 0].ravel() + c] = True
+    fixed[3 * grid[:, 0, :].ravel() + 1] = True                 # y = 0 symmetry
+    if not end_free:
+        fixed[3 * grid[0, :, :].ravel()] = True                 # x = -length/2 symmetry
+    ix = np.nonzero((x >= -length - 1e-9 * (1 + length)) & (x <= 1e-12))[0]
+    iy = np.nonzero(y <= y_reach * b * (1 + 1e-9))[0]
+    nodes = grid[np.ix_(ix, iy, [len(z) - 1])][:, :, 0]          # (nx_c, ny_c)
+    lu, order, S = _schur_factor(K, fixed, grid, 3 * nodes.ravel() + 2)
+    C = np.linalg.inv(S)                                        # compliance (mm/N)
+    C = 0.5 * (C + C.T)
+
+    xc, yc = x[ix], y[iy]
+    nxc, nyc = len(xc), len(yc)
+    trib_y = np.empty(nyc)
+    trib_y[0] = 0.5 * (y[1] - y[0])
+    trib_y[1:] = 0.5 * (y[iy[1:] + 1] - y[iy[1:] - 1])
+    trib_x = np.empty(nxc)
+    left = np.where(ix > 0, x[np.maximum(ix - 1, 0)], x[ix])
+    right = np.where(ix < len(x) - 1, x[np.minimum(ix + 1, len(x) - 1)], x[ix])
+    trib_x[:] = 0.5 * (right - left)                            # half at the ends of x
+    k_mid = int(np.argmin(np.abs(xc + half)))
+    k_end = nxc - 1
+    curv = np.tile(yc**2 / (2 * radius), nxc)                   # gap at delta = 0 (mm)
+    w_mid = np.zeros(nxc * nyc)                                 # q_mid = w_mid . P (N/mm,
+    w_mid[k_mid * nyc:(k_mid + 1) * nyc] = 2.0 / trib_x[k_mid]  # whole width; on the plane
+    #                                     x = -length/2: half the force on half the length)
+
+    # the load W on the face width (half of it: y >= 0) that gives q_mid = load
+    P0 = np.where(curv <= b**2 / (2 * radius), 1.0, 0.0)       # start: Hertz at mid-length
+    W = load * length / 2
+    iterations = []
+    for _ in range(outer_max):
+        P, delta, its = _signorini_cg(C, curv, W, P0 * W / P0.sum(), tol)
+        iterations.append(its)
+        q = w_mid @ P
+        if abs(q / load - 1) < 1e-7:
+            break
+        W *= load / q
+        P0 = P
+    else:
+        raise RuntimeError(f"mid-length line load {q} N/mm, not {load}, after {outer_max} solves")
+    Pg = P.reshape(nxc, nyc)
+    if Pg[:, -1].max() > 0:
+        raise RuntimeError("the contact reaches the candidates' edge y_reach * b")
+    reach = float(yc[np.nonzero(Pg.max(axis=0) > 0)[0].max()])
+
+    F = 2 * Pg.sum(axis=1)                                      # whole width per x node
+    pressure = Pg / (trib_x[:, None] * trib_y[None, :])
+    q_mid = float(F[k_mid] / trib_x[k_mid])
+    xp = xc.copy()
+    if not end_free:                                            # mirror about -length/2
+        F = np.concatenate([F[:0:-1], [2 * F[0]], F[1:]])
+        xp = np.concatenate([-length - xc[:0:-1], xc])
+    trib = np.empty_like(xp)
+    trib[1:-1] = 0.5 * (xp[2:] - xp[:-2])
+    trib[0] = 0.5 * (xp[1] - xp[0])
+    trib[-1] = 0.5 * (xp[-1] - xp[-2])
+    q = F / trib
+    in_mid = np.nonzero(Pg[k_mid] > 0)[0]
+    return CylinderResult(
+        x=xp, q=q, q_norm=q / q_mid, node_force=F, q_mid=q_mid, total=float(F.sum()),
+        delta=float(delta), y=yc, p_mid=pressure[k_mid], p_end=pressure[k_end],
+        b_hertz=float(b), p0_hertz=float(2 * load / (np.pi * b)),
+        peak_mid=float(pressure[k_mid, 0]), half_width_mid=float(yc[in_mid.max()]),
+        iterations=iterations, n_dofs=lu.shape[0], n_candidates=nxc * nyc, reach=reach)

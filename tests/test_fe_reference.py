@@ -110,3 +110,25 @@ def test_mirror_exact_for_a_frictionless_wall():
         d = res(x) - runon(x)
         phi = (m @ d) / (m @ m)
         assert lo < phi < hi
+
+
+def test_cylinder_line_contact_at_a_free_end():
+    """(d) A rigid cylinder (R = 84 mm, 10b long, b = 1 mm: w = 2158 N/mm, p0 = 1374 MPa)
+    on a block 10 mm deep and wide, coarse (elements b/6 across, b/12 at the end face):
+    the contact set solved exactly on the condensed top (no tension, no penetration), the
+    mid-length peak pressure within 5 % of Hertz, the end of the cylinder loaded more where
+    the block runs on past it (> 1.5 of mid-length over the last 0.5b) and less where the
+    block ends flush with it (< 1). Finer and larger: benchmarks/fe_cylinder_end.py."""
+    kw = dict(depth=10.0, width=10.0, run_on=10.0, refine=0.75)
+    free = fr.cylinder_end_line_load(end_free=True, **kw)
+    running = fr.cylinder_end_line_load(end_free=False, **kw)
+    for res in (free, running):
+        assert res.q_mid == pytest.approx(2157.69, rel=1e-4)
+        assert res.peak_mid == pytest.approx(res.p0_hertz, rel=0.05)
+        assert res.half_width_mid == pytest.approx(res.b_hertz, abs=0.25)
+        assert res.reach < res.y[-1]
+        assert res.total == pytest.approx(res.node_force.sum())
+    for c in (0.05, 0.1, 0.25, 0.5):
+        assert free.end_average(c) < 1.0
+        assert running.end_average(c) > 1.5
+    assert free.p_end[0] < free.peak_mid < running.p_end[0]

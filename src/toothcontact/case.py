@@ -231,6 +231,12 @@ class TipReliefSpec(Model):
     shape: Literal["linear", "parabolic"] = "linear"
 
 
+class TipEdgeSpec(Model):
+    radius: quantity("length", low=0.0) = Field(
+        description="radius of the rounding that breaks the tip edge, e.g. '0.3 mm' (none "
+                    "given, or '0 mm': a sharp edge)")
+
+
 class EndReliefSpec(Model):
     amount: Length = Field(description="drop at each face end, e.g. '8 um'")
     length: Length = Field(description="length from each end, e.g. '3 mm'")
@@ -283,6 +289,7 @@ class Member(Model):
     crown: CrownSpec | None = None
     profile_crown: ProfileCrownSpec | None = None
     tip_relief: TipReliefSpec | None = None
+    tip_edge: TipEdgeSpec | None = None
     end_relief: EndReliefSpec | None = None
     shaft: ShaftSpec | None = None
 

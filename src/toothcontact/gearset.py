@@ -17,7 +17,8 @@ from scipy.optimize import brentq
 
 from .analytic.spur_mesh import SpurMesh
 from .case import CrownSpec, Member, SplineCase, SpurCase, WormCase
-from .modify import Deflection, EndRelief, FlankModifications, LeadCrown, ProfileCrown, TipRelief
+from .modify import (Deflection, EndRelief, FlankModifications, LeadCrown, ProfileCrown,
+                     TipEdge, TipRelief)
 from .surfaces.involute import CylindricalGear, inv
 from .surfaces.spline import InvoluteSpline
 from .surfaces.wheel import BlankError, WormWheelFlank
@@ -478,6 +479,7 @@ def modifications(member: Member, gear: CylindricalGear, name: str) -> FlankModi
             raise ValueError(f"{name}.tip_relief.start_diameter: {tip.start_diameter:.4g} mm must "
                              f"lie between the base diameter {lo:.4g} mm and the tip {hi:.4g} mm")
     return FlankModifications(
+        tip_edge=tip_edge(member, gear, name),
         lead_crown=None if crown is None else LeadCrown(crown.radius, crown.height, crown.shape,
                                                         crown.center),
         profile_crown=None if member.profile_crown is None else ProfileCrown(
@@ -486,6 +488,44 @@ def modifications(member: Member, gear: CylindricalGear, name: str) -> FlankModi
             tip.amount, float(gear.base_radius * gear.roll_angle(0.5 * tip.start_diameter)), tip.shape),
         end_relief=None if member.end_relief is None else EndRelief(
             member.end_relief.amount, member.end_relief.length, member.end_relief.shape))
+
+
+def tip_edge(member: Member, gear: CylindricalGear, name: str) -> TipEdge | None:
+    """The member's tip edge rounding ([member.tip_edge] radius; None where none is given
+    or it is '0 mm': a sharp edge), checked to fit the tooth: it starts on the involute
+    above the form circle (inside it on a ring), and its tangent length, on the flank and
+    on the tip land alike, leaves room for the other flank's on the top land."""
+    if member.tip_edge is None or member.tip_edge.radius == 0.0:
+        return None
+    from .surfaces.generation import generate_ring_side, generate_side
+
+    radius = member.tip_edge.radius
+    form = (generate_ring_side(gear) if gear.internal else generate_side(gear)).form_radius
+    edge = _fitting_tip_edge(gear, form, radius)
+    if edge is None:
+        lo, hi = 0.0, gear.tip_radius        # the largest that fits, by bisection
+        for _ in range(60):
+            mid = 0.5 * (lo + hi)
+            lo, hi = (mid, hi) if _fitting_tip_edge(gear, form, mid) else (lo, mid)
+        raise ValueError(f"{name}.tip_edge.radius: {radius:.4g} mm must be at most {lo:.3g} mm: "
+                         "the rounding must start on the involute "
+                         f"{'inside' if gear.internal else 'above'} the form diameter "
+                         f"{2 * form:.4g} mm and leave room on the top land "
+                         f"({tip_thickness(gear):.3g} mm) for the other flank's")
+    return edge
+
+
+def _fitting_tip_edge(gear: CylindricalGear, form: float, radius: float) -> TipEdge | None:
+    """The rounding of `radius` (mm) on the gear's tip if it fits (see tip_edge), else None."""
+    try:
+        edge = TipEdge.on(radius, gear.base_radius, gear.tip_radius, gear.internal)
+    except ValueError:
+        return None
+    start = math.hypot(edge.start, gear.base_radius)
+    alpha_a = math.acos(min(gear.base_radius / gear.tip_radius, 1.0))
+    tangent = radius * math.tan(0.5 * (0.5 * math.pi - alpha_a))
+    on_flank = start < form if gear.internal else start > form
+    return edge if on_flank and 2.0 * tangent <= tip_thickness(gear) else None
 
 
 @dataclass(frozen=True)

@@ -10,6 +10,7 @@ curvature change of a modification is exactly its second derivative.
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass
 
 import numpy as np
@@ -96,6 +97,52 @@ class TipRelief:
 
 
 @dataclass(frozen=True)
+class TipEdge:
+    """The tip edge broken by a rounding of `radius` (mm) tangent to the flank and to the tip
+    circle, as the drop it cuts from the involute run on to the tip.
+
+    On an involute of base radius r_b the arc length from the base circle is s²/(2·r_b)
+    (s = r_b·t the roll length), and the flank meets the tip circle turning by
+    θ = 90° - α_a (α_a the pressure angle at the tip: the flank leans α_a off the radius,
+    the tip land is square to it). A rounding tangent to both starts ρ·tan(θ/2) before the
+    corner along the flank and departs from the flank's tangent there as a circle; its
+    curvature relative to the involute's (1/s at roll length s, convex on an external
+    gear, concave on a ring's) is what the drop adds, so that the flank's own curvature
+    across the rounding is 1/ρ. The drop is taken along the flank normal (the rounding's
+    departure at its start is second order: the contact, a few micrometres deep, stays
+    on it); the flank ends at the tip circle, where the drop is ρ·(1 - cos(θ/2)) (tens of
+    micrometres), and the rest of the rounding, turning onto the tip land, is left off."""
+
+    radius: float
+    start: float
+    base_radius: float
+    internal: bool = False
+
+    @classmethod
+    def on(cls, radius: float, base_radius: float, tip_radius: float,
+           internal: bool = False) -> "TipEdge":
+        """The rounding of `radius` (mm) on a flank of base radius and tip radius (mm); on a
+        ring (internal) the tip is the flank's inner end."""
+        alpha_a = math.acos(min(base_radius / tip_radius, 1.0))
+        s_tip = math.sqrt(max(tip_radius**2 - base_radius**2, 0.0))
+        tangent = radius * math.tan(0.5 * (0.5 * math.pi - alpha_a))
+        # the rounding's start, the tangent length back from the tip along the flank
+        start_arc = 0.5 * s_tip**2 / base_radius + (tangent if internal else -tangent)
+        if not start_arc > 0.0:
+            raise ValueError(f"tip edge radius {radius:g} mm: the rounding would start below "
+                             "the base circle")
+        return cls(radius, math.sqrt(2.0 * base_radius * start_arc), base_radius, internal)
+
+    def drop(self, s, s_tip: float):
+        """The drop (mm) at roll length s (mm; s_tip the tip's)."""
+        toward = 1.0 if s_tip >= self.start else -1.0
+        beyond = (value(s) - self.start) * toward > 0.0
+        arc = where(beyond, toward * (s * s - self.start**2) / (2.0 * self.base_radius), 0.0 * s)
+        relative = 1.0 / self.radius + (1.0 if self.internal else -1.0) / self.start
+        return where(beyond, _arc_drop(arc, 1.0 / relative, "circular"), 0.0 * s)
+
+
+@dataclass(frozen=True)
 class EndRelief:
     """End relief of `amount` at both face ends over `length` (mm) from each end."""
 
@@ -154,6 +201,7 @@ class FlankModifications:
     tip_relief: TipRelief | None = None
     end_relief: EndRelief | None = None
     deflection: Deflection | None = None
+    tip_edge: TipEdge | None = None
 
     def drop(self, w, s, face_width: float, s_form: float, s_tip: float):
         total = 0.0 * w + 0.0 * s
@@ -167,9 +215,11 @@ class FlankModifications:
             total = total + self.profile_crown.drop(s, s_form, s_tip)
         if self.tip_relief is not None:
             total = total + self.tip_relief.drop(s, s_tip)
+        if self.tip_edge is not None:
+            total = total + self.tip_edge.drop(s, s_tip)
         return total
 
     @property
     def empty(self) -> bool:
         return all(m is None for m in (self.lead_crown, self.profile_crown, self.tip_relief,
-                                       self.end_relief, self.deflection))
+                                       self.end_relief, self.deflection, self.tip_edge))

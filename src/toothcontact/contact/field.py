@@ -144,12 +144,15 @@ class GapField:
 
 def gap_fields(pinion: Flank, gear: Flank, pinion_frames: Frame, gear_frames: Frame,
                planes: TangentPlanes, pinion_uv, gear_uv, half: np.ndarray,
-               shape, samples: int = 25, centre: np.ndarray | None = None) -> list[GapField]:
+               shape, samples: int = 25, centre: np.ndarray | None = None,
+               snap: bool = False) -> list[GapField]:
     """The gap fields of K contacts (frames and planes stacked (K,), parameters (K,)), each
     over centre[k] + [-half[k, 0], half[k, 0]] × [-half[k, 1], half[k, 1]] mm (centre (K, 2)
     in the plane from the contact point, default 0; the contact must lie inside) on `shape`
     points (one (nx, ny) for all, or one per contact, (K, 2)): the exact samples of all of
-    them in one ray solve per flank, then per contact the splines."""
+    them in one ray solve per flank, then per contact the splines. snap: the points along x
+    moved (by less than a cell) and respaced so that the face ends crossing a field lie on
+    cell boundaries (see snapped_points)."""
     half = np.asarray(half, float).reshape(-1, 2)
     centre = np.zeros_like(half) if centre is None else np.asarray(centre, float).reshape(-1, 2)
     shapes = np.broadcast_to(np.asarray(shape, int), half.shape)
@@ -162,12 +165,9 @@ def gap_fields(pinion: Flank, gear: Flank, pinion_frames: Frame, gear_frames: Fr
     grid = (samples, samples)
     pinion_normals = pinion_frames.vectors_to_local(planes.normal[:, None, :])[:, 0]
     gear_normals = gear_frames.vectors_to_local(planes.normal[:, None, :])[:, 0]
+    names = [f"{member}_{name}" for member in ("pinion", "gear") for name in ("u", "v")]
     for k in range(len(half)):
         nx, ny = (int(n) for n in shapes[k])
-        fine = (np.linspace(-1.0, 1.0, nx), np.linspace(-1.0, 1.0, ny))
-        to_fine = (_cardinal_splines(samples, nx), _cardinal_splines(samples, ny))
-        # each fine point's nearest sample: where it did not meet both surfaces, none exists
-        ix, iy = (np.rint((f + 1.0) * 0.5 * (samples - 1)).astype(int) for f in fine)
         reach = min(float(np.max(half[k])), FAR)
         # the sample nearest the contact point, from which the flanks are followed
         at = tuple(int(np.clip(np.rint((-c / h + 1.0) * 0.5 * (samples - 1)), 0, samples - 1))
@@ -177,39 +177,68 @@ def gap_fields(pinion: Flank, gear: Flank, pinion_frames: Frame, gear_frames: Fr
         if not met.any():
             raise ValueError("no line of the gap field meets both flanks")
         # the gap, and both flanks' parameters (to place their edges in the field)
-        names = [f"{member}_{name}" for member in ("pinion", "gear") for name in ("u", "v")]
         samples_ = [(hg.s - hp.s)[k]] + [getattr(hits, name)[k] for hits in (hp, hg)
                                          for name in ("u", "v")]
-        carried = to_fine[0] @ smooth_fill(np.stack([q.reshape(grid) for q in samples_]),
-                                           met) @ to_fine[1].T
-        exists = met[np.ix_(ix, iy)]
-        parameters = dict(zip(names, carried[1:]))
-        beyond, inside = {"beyond_surface": ~exists}, {}
-        for member, flank in (("pinion", pinion), ("gear", gear)):
-            for name, (low, high) in zip(("u", "v"), flank.domain):
-                value = parameters[f"{member}_{name}"]
-                for edge, within in ((flank.edges[name + "0"], value - low),
-                                     (flank.edges[name + "1"], high - value)):
-                    if (within < 0).any():
-                        beyond[f"{member}_{edge}"] = within < 0
-                        inside[f"{member}_{edge}"] = within
-        material = exists & ~np.logical_or.reduce(list(beyond.values()))
-        out.append(GapField(centre[k, 0] + half[k, 0] * fine[0],
-                            centre[k, 1] + half[k, 1] * fine[1],
-                            np.where(exists, carried[0], np.nan), material, beyond, parameters,
-                            inside))
+        filled = smooth_fill(np.stack([q.reshape(grid) for q in samples_]), met)
+        points = (np.linspace(-1.0, 1.0, nx), np.linspace(-1.0, 1.0, ny))
+        field = _spline_field(filled, met, points, centre[k], half[k], pinion, gear, names)
+        if snap:
+            moved = snapped_points(field, centre[k, 0], half[k, 0])
+            if moved is not None:
+                field = _spline_field(filled, met, (moved, points[1]), centre[k], half[k],
+                                      pinion, gear, names)
+        out.append(field)
     return out
 
 
+def _spline_field(filled: np.ndarray, met: np.ndarray, points, centre, half, pinion: Flank,
+                  gear: Flank, names: list[str]) -> GapField:
+    """One contact's field at `points` (x, y in units of the half-sides about the centre)
+    from its samples (`filled`: the gap and the flanks' parameters on the samples, `met`:
+    where both surfaces exist), by the tensor-product cubic splines."""
+    samples = met.shape[0]
+    to_fine = [_cardinal_splines(samples, p) for p in points]
+    # each point's nearest sample: where it did not meet both surfaces, none exists
+    ix, iy = (np.clip(np.rint((p + 1.0) * 0.5 * (samples - 1)), 0, samples - 1).astype(int)
+              for p in points)
+    carried = to_fine[0] @ filled @ to_fine[1].T
+    exists = met[np.ix_(ix, iy)]
+    parameters = dict(zip(names, carried[1:]))
+    beyond, inside = {"beyond_surface": ~exists}, {}
+    for member, flank in (("pinion", pinion), ("gear", gear)):
+        for name, (low, high) in zip(("u", "v"), flank.domain):
+            value = parameters[f"{member}_{name}"]
+            for edge, within in ((flank.edges[name + "0"], value - low),
+                                 (flank.edges[name + "1"], high - value)):
+                if (within < 0).any():
+                    beyond[f"{member}_{edge}"] = within < 0
+                    inside[f"{member}_{edge}"] = within
+    material = exists & ~np.logical_or.reduce(list(beyond.values()))
+    return GapField(centre[0] + half[0] * points[0], centre[1] + half[1] * points[1],
+                    np.where(exists, carried[0], np.nan), material, beyond, parameters, inside)
+
+
+def _cardinal_splines(samples: int, points: np.ndarray) -> np.ndarray:
+    """(len(points), samples) matrix taking values at `samples` equally spaced nodes on
+    [-1, 1] to their interpolating cubic spline (not-a-knot) at `points` (on [-1, 1], or a
+    little beyond: the spline continued): a tensor-product spline on a grid is M_x·F·M_yᵀ.
+    Equally spaced points on [-1, 1] (the common case) are kept."""
+    if (len(points) > 1 and points[0] == -1.0 and points[-1] == 1.0
+            and np.allclose(np.diff(points), 2.0 / (len(points) - 1), rtol=0, atol=1e-15)):
+        return _equally_spaced_splines(samples, len(points))
+    return _spline_matrix(samples, points)
+
+
 @lru_cache(maxsize=16)
-def _cardinal_splines(samples: int, points: int) -> np.ndarray:
-    """(points, samples) matrix taking values at `samples` equally spaced nodes on [-1, 1] to
-    their interpolating cubic spline (not-a-knot) at `points` equally spaced points: a
-    tensor-product spline on a grid is M_x·F·M_yᵀ."""
+def _equally_spaced_splines(samples: int, count: int) -> np.ndarray:
+    return _spline_matrix(samples, np.linspace(-1.0, 1.0, count))
+
+
+def _spline_matrix(samples: int, points: np.ndarray) -> np.ndarray:
     from scipy.interpolate import make_interp_spline
 
     unit = np.linspace(-1.0, 1.0, samples)
-    return make_interp_spline(unit, np.eye(samples), k=3)(np.linspace(-1.0, 1.0, points))
+    return make_interp_spline(unit, np.eye(samples), k=3)(points)
 
 
 #: height (mm) above the tangent plane beyond which a line's hit is no part of the flank
@@ -290,41 +319,36 @@ def smooth_fill(values: np.ndarray, known: np.ndarray) -> np.ndarray:
 
 
 def contact_fields(cycle, rows, shape, margin=1.3, semi_axes: np.ndarray | None = None,
-                   largest_cell: float | None = None, box: tuple | None = None
-                   ) -> list[GapField]:
+                   largest_cell: float | None = None, snap: bool = False) -> list[GapField]:
     """The gap fields of the given rows of a contact cycle, each over the bounding box of an
     ellipse about the centre of its pattern along its A axis (cycle.pattern_centre: the
     contact point, or a contact line's middle; A axis along the row's axis angle; across
     it the contact point) enlarged by `margin` (scalar
     or one per row): the Hertz ellipse or the contact line, or the semi-axes given ((K, 2),
     mm). Centred on the pattern, a flat contact line's field does not depend on where along
-    it round-off put the contact point. `box`: (centres, half-sides), each (K, 2) mm in the
-    plane, instead. `shape`: (nx, ny) points for
+    it round-off put the contact point. snap: face ends on cell boundaries (gap_fields).
+    `shape`: (nx, ny) points for
     every field, or an int n: n² points each, on cells as square as `square_cells` makes
     them (no longer than `largest_cell`, mm, where it can)."""
     rows = np.atleast_1d(np.asarray(rows, int))
-    if box is None:
-        if semi_axes is None:
-            semi_axes = pattern_semi_axes(cycle, rows)
-        a, b = np.asarray(semi_axes, float).reshape(-1, 2).T
-        angle = np.asarray(cycle.axis_angle, float)[rows]
-        half = np.broadcast_to(np.asarray(margin, float), rows.shape)[:, None] * np.stack(
-            [np.hypot(a * np.cos(angle), b * np.sin(angle)),
-             np.hypot(a * np.sin(angle), b * np.cos(angle))], axis=-1)
-        # the pattern's middle along its A axis (where its ends are measured, continuously);
-        # across it the contact point (a conformal contact's middle across is a mean of cells)
-        direction = np.stack([np.cos(angle), np.sin(angle)], axis=-1)
-        along = np.einsum("ki,ki->k", np.asarray(cycle.pattern_centre, float)[rows], direction)
-        centre = along[:, None] * direction
-    else:
-        centre, half = (np.asarray(b, float).reshape(-1, 2) for b in box)
+    if semi_axes is None:
+        semi_axes = pattern_semi_axes(cycle, rows)
+    a, b = np.asarray(semi_axes, float).reshape(-1, 2).T
+    angle = np.asarray(cycle.axis_angle, float)[rows]
+    half = np.broadcast_to(np.asarray(margin, float), rows.shape)[:, None] * np.stack(
+        [np.hypot(a * np.cos(angle), b * np.sin(angle)),
+         np.hypot(a * np.sin(angle), b * np.cos(angle))], axis=-1)
+    # the pattern's middle along its A axis (where its ends are measured, continuously);
+    # across it the contact point (a conformal contact's middle across is a mean of cells)
+    direction = np.stack([np.cos(angle), np.sin(angle)], axis=-1)
+    along = np.einsum("ki,ki->k", np.asarray(cycle.pattern_centre, float)[rows], direction)
     uv = {m: (np.asarray(getattr(cycle.contacts, f"{m}_u"))[rows],
               np.asarray(getattr(cycle.contacts, f"{m}_v"))[rows]) for m in ("pinion", "gear")}
     if np.ndim(shape) == 0:
         shape = square_cells(half, int(shape), largest_cell)
     return gap_fields(cycle.pinion, cycle.gear, cycle.pinion_frames[rows], cycle.gear_frames[rows],
                       planes_at(cycle.planes, rows), uv["pinion"], uv["gear"], half, shape,
-                      centre=centre)
+                      centre=along[:, None] * direction, snap=snap)
 
 
 #: a face end is snapped to a cell boundary where its crossings of the field's lines lie
@@ -357,37 +381,22 @@ def face_ends(field: GapField) -> dict[str, float]:
     return {side: (max(xs) if side == "low" else min(xs)) for side, xs in found.items() if xs}
 
 
-def snapped_to_face_ends(cycle, rows, fields: list[GapField]) -> list[GapField]:
-    """The fields of the given rows rebuilt (same points) so that the face ends crossing
-    them (face_ends) lie on cell boundaries: both, by the cell's length and the field's
-    place along x, or one, by its place. The material then ends at a whole cell on every
-    line, however the field lies: a face end's pressure does not depend on where a grid
-    would have cut it (before: 3 % between the same case in two unit systems)."""
-    rows = np.atleast_1d(np.asarray(rows, int))
-    todo, centres, halves, shapes = [], [], [], []
-    for k, (row, field) in enumerate(zip(rows, fields)):
-        ends = face_ends(field)
-        if not ends:
-            continue
-        n = len(field.x)
-        dx = field.spacing[0]
-        if len(ends) == 2 and ends["high"] - ends["low"] > 2.0 * dx:
-            cells = max(int(round((ends["high"] - ends["low"]) / dx)), 1)
-            dx = (ends["high"] - ends["low"]) / cells
-        edge = ends.get("low", ends.get("high"))
-        first = edge - dx * (round((edge - field.x[0]) / dx - 0.5) + 0.5)  # first point's x
-        half = 0.5 * dx * (n - 1)
-        todo.append(k)
-        centres.append((first + half, 0.5 * (field.y[0] + field.y[-1])))
-        halves.append((half, 0.5 * (field.y[-1] - field.y[0])))
-        shapes.append(field.gap.shape)
-    if not todo:
-        return fields
-    rebuilt = contact_fields(cycle, rows[todo], np.array(shapes), box=(centres, halves))
-    out = list(fields)
-    for k, field in zip(todo, rebuilt):
-        out[k] = field
-    return out
+def snapped_points(field: GapField, centre: float, half: float) -> np.ndarray | None:
+    """The field's points along x (in half-sides `half` about `centre`, mm) moved so that
+    the face ends crossing it (face_ends) lie on cell boundaries: both, by the cell's length
+    and the points' place, or one, by their place (less than a cell either way); None where
+    no face end crosses it. The material then ends at a whole cell on every line, however
+    the field lies: a face end's pressure does not depend on where a grid would have cut it
+    (before: 3 % between the same case in two unit systems)."""
+    ends = face_ends(field)
+    if not ends:
+        return None
+    n, dx = len(field.x), field.spacing[0]
+    if len(ends) == 2 and ends["high"] - ends["low"] > 2.0 * dx:
+        dx = (ends["high"] - ends["low"]) / max(int(round((ends["high"] - ends["low"]) / dx)), 1)
+    edge = ends.get("low", ends.get("high"))
+    first = edge - dx * (round((edge - field.x[0]) / dx - 0.5) + 0.5)
+    return (first + dx * np.arange(n) - centre) / half
 
 
 #: fewest points along either side of a field cut into square cells (a contact's width

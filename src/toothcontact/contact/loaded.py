@@ -34,7 +34,7 @@ import numpy as np
 
 from ..parallel import parallel_map
 from .compliance import FaceLoad, PairCompliance
-from .field import GapField, contact_fields, pattern_semi_axes, snapped_to_face_ends
+from .field import GapField, contact_fields, pattern_semi_axes
 from .local import face_length
 from .pressure import (ContactSolution, EdgeLoad, FreeEnd, Grid, GridEdgeError,
                        free_end_factor, solve_shared)
@@ -218,10 +218,10 @@ def loaded_cycle(cycle, C_E: float, points: int = 128, teeth: PairCompliance | N
     for k, row in enumerate(rows):
         positions.setdefault(row["roll_deg"], []).append(k)
     every = np.arange(len(rows))
-    fields = snapped_to_face_ends(cycle, every, contact_fields(   # one batch
-        cycle, every, points, _Pair.MARGIN,
-        np.minimum(pattern_semi_axes(cycle, every), field_reach(cycle, every)[:, None]),
-        largest_cell=CELL))
+    fields = contact_fields(cycle, every, points, _Pair.MARGIN,   # one batch
+                            np.minimum(pattern_semi_axes(cycle, every),
+                                       field_reach(cycle, every)[:, None]),
+                            largest_cell=CELL, snap=True)
     groups = list(positions.values())
 
     def position(index: int):
@@ -296,8 +296,8 @@ class _Pair:
             raise ValueError(f"the loaded contact at roll {self.cycle.rows[self.k]['roll_deg']:.3f} "
                              "deg outgrows its gap field (the surfaces end around it)")
         self.semi_axes = grown
-        self._use(snapped_to_face_ends(self.cycle, [self.k], contact_fields(
-            self.cycle, [self.k], self.points, 1.0, self.semi_axes[None], CELL))[0])
+        self._use(contact_fields(self.cycle, [self.k], self.points, 1.0,
+                                 self.semi_axes[None], CELL, snap=True)[0])
 
     def grid(self, coarse: bool = False) -> Grid:
         """The field as the solver's grid, with the teeth's bending where there is a tooth
@@ -306,10 +306,9 @@ class _Pair:
         reference = () if self.structure is None else self.structure.reference
         if coarse:
             s0, s1 = self.steps
-            ends = tuple(FreeEnd(e.axis, -(-e.index // self.steps[e.axis]), e.side, e.weight,
-                                 e.reach_mm) for e in self.free_ends)
+            # the coarse solve only starts the full one: its ends stay half-spaces
             return Grid(f.gap[::s0, ::s1], s0 * dx, s1 * dy, f.material[::s0, ::s1],
-                        self.coarse_structure, reference, ends)
+                        self.coarse_structure, reference)
         return Grid(f.gap, dx, dy, f.material, self.structure, reference, self.free_ends)
 
     def refined(self, coarse: ContactSolution | None) -> np.ndarray | None:
@@ -327,8 +326,9 @@ class _Pair:
 
 #: a free end's mirror term acts within this many reference depths of the end (the
 #: compression measured to a depth fades within a few depths: Boussinesq's d²/ρ³; the FZG
-#: C-type gear's end-to-mid pressure is 0.774 with 1 depth, 0.768 with 2, 3, 4 and 6)
-FREE_END_REACH = 2.0
+#: C-type gear's end-to-mid pressure is 0.762 with 1 depth, 0.757 with 2, and was the same
+#: to 1e-3 from 2 to 6 depths)
+FREE_END_REACH = 1.0
 #: an end face is taken as crossing the grid along one axis where its normal lies within
 #: this angle (deg) of that axis (a spur or helical face end is square to the face
 #: direction x; a misalignment turns it by a fraction of a degree)
