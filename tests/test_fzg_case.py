@@ -232,7 +232,7 @@ def test_flush_face_ends_load_like_the_middle_not_like_a_half_space(loaded):
     middle: the pressure averaged over the 0.1 × 0.1 mm strip at a face end is 0.74 of
     mid-face in an independent 3D finite-element computation of two such bodies (issue 27:
     R = 8.4 mm, 422 N/mm, converged between 0.05 and 0.025 mm elements), against 2.48 on
-    half-spaces that run on past the ends; here within 10 % of 0.74 (0.77, measured). The
+    half-spaces that run on past the ends; here within 10 % of 0.74 (0.76, measured). The
     ends' load per mm of face is under the mean (0.73): not end-loaded, and K_Hβ is 1."""
     total = loaded["summary"]["normal_load_N"]
     single = [r for r in single_pair_rows(loaded)

@@ -123,7 +123,9 @@ def summarise(field: GapField, s: ContactSolution, position_load: float | None =
     edge_loaded: end-loaded, or a tip, root or form edge pressed harder than the contact's
     interior (EDGE_PRESSURE_RATIO); neither for a contact carrying less than
     EDGE_LEAST_SHARE of `position_load` (N; None: the contact's own load)."""
-    named = flank_edges(field, s)
+    # a tip, root or form edge named before a face end: a contact along a tip presses the
+    # face ends' strips as hard where it reaches them
+    named = sorted(flank_edges(field, s), key=lambda item: _is_face_end(item[0]))
     # the first of the edges within 0.1 % of the highest (two ends of a flush, aligned
     # pair press alike, to the solver's tolerance)
     highest = max((e.edge_pressure_MPa for _, e in named), default=0.0)
