@@ -105,3 +105,32 @@ def test_helical_uncrowned_lines_end_at_the_tip_and_form_without_edge_contact():
         assert r["contact_model"] == "line"
         assert not r["edge_contact"]
         assert min(r["edge_margins_mm"].values()) >= 0.0
+
+
+def test_contact_lines_of_one_position_share_its_load_by_their_lengths():
+    """An aligned uncrowned helical pair: the lines in contact at one position run across
+    the flank over different lengths; under one rigid approach each carries the same load
+    per mm, so the normal load is split by their lengths (an equal split put a short line's
+    load on it as on a long one's), and each row's Hertz line contact is that load over its
+    length."""
+    case = {**SPUR, "teeth": [27, 71], "module": "2.5 mm", "helix_angle": "15 deg",
+            "face_width": "40 mm"}
+    _, cyc = cycle(case, positions=5)
+    rows = [r for r in cyc.rows if r["rigid_contact"]]
+    total = sum(r["normal_load_N"] for r in rows if r["roll_deg"] == rows[0]["roll_deg"])
+    shared = 0
+    for roll in {r["roll_deg"] for r in rows}:
+        here = [r for r in rows if r["roll_deg"] == roll]
+        assert math.fsum(r["normal_load_N"] for r in here) == pytest.approx(total, rel=1e-12)
+        if len(here) < 2:
+            continue
+        lengths = [r["contact_length_mm"] for r in here]
+        assert max(lengths) > 1.2 * min(lengths)
+        shared += 1
+        for r in here:
+            assert r["normal_load_N"] / r["contact_length_mm"] == pytest.approx(
+                total / sum(lengths), rel=1e-12)
+            exact = hertz_line(r["normal_load_N"] / r["contact_length_mm"],
+                               0.5 / r["B_analytic_per_mm"], STEEL)
+            assert r["p_max_MPa"] == pytest.approx(exact.p0, rel=1e-12)
+    assert shared >= 3

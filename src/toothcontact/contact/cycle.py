@@ -31,8 +31,9 @@ from .line import contact_lines
 from .local import TangentPlanes, analytic_gaps, face_length, fit_gaps, planes_at, tangent_planes
 from .search import ContactPoints, lowest, refine_minima, separation, solve_transmission_error
 
-LOAD_SHARING_RULE = ("equal split of the normal load among the tooth pairs in contact "
-                     "(rigid_contact)")
+LOAD_SHARING_RULE = ("the normal load split among the tooth pairs in contact (rigid_contact): "
+                     "by their lengths in contact where all are contact lines (one rigid "
+                     "approach, the same stiffness per mm of line), equally otherwise")
 #: allowance (mm) for a pair's grid minimum lying above its true minimum
 CELL_GAP = 0.02
 #: gap (mm) up to which the fit patch reaches: about half the default approach, where the
@@ -182,6 +183,7 @@ def parallel_cycle(mesh, pinion: Flank, gear: Flank, normal_load: float,
         lag = -np.sign(slope[P]) * delta[P]
         rows, planes, angle, centre = _pair_results(pinion, gear, pf, gf, np.degrees(phis[P]), pairs[J],
                                             lag, contacts, gaps[keep], share, C_E, settings)
+        _split_by_length(rows, P, touching, normal_load, C_E)
         semi_axes = np.array([[r["a_mm"], r["b_mm"]] for r in rows])
         for row, rigid in zip(rows, touching):
             row["rigid_contact"] = bool(rigid)
@@ -256,6 +258,25 @@ def _lag_slope(mesh, pinion, gear, phis, pairs, P, J, delta, contacts, step=1e-6
         u, v).s[:, 0] for d in (-step, 0.0, step))
     return np.where(np.isfinite(below) & np.isfinite(above), (above - below) / (2.0 * step),
                     np.where(np.isfinite(above), (above - here) / step, (here - below) / step))
+
+
+def _split_by_length(rows: list[dict], position: np.ndarray, touching: np.ndarray,
+                     normal_load: float, C_E: float) -> None:
+    """Where every pair in contact at a position is a contact line, the position's normal
+    load split among them by their lengths in contact (one rigid approach and the same
+    stiffness per mm of line give each the same line load), and their Hertz line contact
+    (Johnson eqs 4.45) redone with it; an equal split put the load of a pair touching over
+    a few millimetres on it as on one spanning the face (7107 MPa on a final drive)."""
+    for p in np.unique(position[touching]):
+        ks = np.flatnonzero((position == p) & touching)
+        lengths = np.array([rows[k]["contact_length_mm"] for k in ks])
+        if (len(ks) < 2 or any(rows[k]["contact_model"] != "line" for k in ks)
+                or not lengths.min() > 0.0):
+            continue
+        for k, length in zip(ks, lengths):
+            load = float(normal_load * length / lengths.sum())
+            contact = hertz_line(load / length, 0.5 / rows[k]["B_analytic_per_mm"], C_E)
+            rows[k].update(normal_load_N=load, b_mm=contact.b, p_max_MPa=contact.p0)
 
 
 def _pair_results(pinion, gear, pf, gf, roll_deg, pairs, delta, cp: ContactPoints, gaps,

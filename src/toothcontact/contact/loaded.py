@@ -137,12 +137,12 @@ def summarise(field: GapField, s: ContactSolution, position_load: float | None =
     profile = [n for n, e in named if not _is_face_end(n) and e.load_N > 0
                and e.edge_pressure_MPa > EDGE_PRESSURE_RATIO * interior]
     judged = s.load_N >= EDGE_LEAST_SHARE * (position_load or s.load_N)
-    end_loaded = judged and end_ratio > END_LOAD_RATIO
+    end_loaded = bool(judged and end_ratio > END_LOAD_RATIO)
     profile = profile if judged else []
     return {"bem_status": "solved", "bem_load_N": s.load_N,
             "bem_p_max_MPa": max(interior, edge_pressure),
             "edge_loaded": bool(profile) or end_loaded,
-            "end_loaded": end_loaded, "end_load_ratio": end_ratio,
+            "end_loaded": end_loaded, "end_load_ratio": float(end_ratio),
             "bem_area_mm2": s.area_mm2, "bem_approach_mm": s.approach_mm,
             "bem_grid": list(s.pressure_MPa.shape),
             "edge_pressure_MPa": edge_pressure,
