@@ -12,7 +12,9 @@ from toothcontact.contact.local import heights, planes_at
 
 CROWN_RADIUS, FACE = 4000.0, 30.0
 CASE = {"kind": "spur", "teeth": [20, 60], "module": "3 mm", "pressure_angle": "20 deg",
-        "face_width": f"{FACE} mm", "pinion": {"crown": {"radius": f"{CROWN_RADIUS} mm"}}}
+        "face_width": f"{FACE} mm", "pinion": {"crown": {"radius": f"{CROWN_RADIUS} mm"},
+                                                "tip_edge": {"radius": "0 mm"}},
+        "gear": {"tip_edge": {"radius": "0 mm"}}}   # sharp: the involute's closed forms
 
 
 def cycle(slope=0.0, positions=3):

@@ -22,7 +22,10 @@ from toothcontact.mesh import TriangleSurface, load_surface
 # unthinned teeth (no backlash): the files' teeth stand where the exact analysis puts them
 # (a thinned pinion is turned forward by its thinning there, not in the files)
 SPUR = {"kind": "spur", "teeth": [20, 60], "module": "3 mm", "pressure_angle": "20 deg",
-        "face_width": "30 mm", "backlash": "0 mm", "pinion": {"crown": {"radius": "4000 mm"}},
+        "face_width": "30 mm", "backlash": "0 mm",
+        # sharp tips: the facets' path reads a rounding as flank up to the tip circle
+        "pinion": {"crown": {"radius": "4000 mm"}, "tip_edge": {"radius": "0 mm"}},
+        "gear": {"tip_edge": {"radius": "0 mm"}},
         "misalignment": {"slope": "0.0008"}, "load": {"tangential_load": "8000 N"},
         "analysis": {"positions": 5, "interference": False}}
 

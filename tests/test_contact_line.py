@@ -113,8 +113,9 @@ def test_contact_lines_of_one_position_share_its_load_by_their_lengths():
     per mm, so the normal load is split by their lengths (an equal split put a short line's
     load on it as on a long one's), and each row's Hertz line contact is that load over its
     length."""
+    sharp = {"tip_edge": {"radius": "0 mm"}}    # a rounded tip's contact is no line
     case = {**SPUR, "teeth": [27, 71], "module": "2.5 mm", "helix_angle": "15 deg",
-            "face_width": "40 mm"}
+            "face_width": "40 mm", "pinion": sharp, "gear": sharp}
     _, cyc = cycle(case, positions=5)
     rows = [r for r in cyc.rows if r["rigid_contact"]]
     total = sum(r["normal_load_N"] for r in rows if r["roll_deg"] == rows[0]["roll_deg"])

@@ -97,3 +97,46 @@ def test_worm_case_with_load_and_anti_rattle_spring():
     assert summary["normal_load_N"] == pytest.approx(
         w.normal_tooth_load(10000.0, Rp, gamma, alpha_n), rel=1e-12)
     assert doc["positions"] and all(math.isfinite(r["p_max_MPa"]) for r in doc["positions"])
+
+
+PA66_SET = """kind = "worm"
+title = "EPS worm set with a PA66 wheel"
+[worm]
+form = "ZI"
+starts = 2
+axial_module = "2 mm"
+pitch_diameter = "22 mm"
+hand = "right"
+pressure_angle = "20 deg"
+length = "40 mm"
+[wheel]
+teeth = 38
+face_width = "14 mm"
+[wheel_material]
+E = "3 GPa"
+nu = 0.4
+[load]
+output_torque = "40 N*m"
+flank = "left"
+"""
+
+
+def test_a_worm_sets_long_curved_contact_lines_are_not_cut_inside_the_flank(tmp_path):
+    """A worm set's contact lines are long and both flanks curve away from the tangent
+    plane together along them: a field that dropped every hit more than 0.5 mm off the
+    plane cut them inside the flanks, and their loaded contact pressed on that false edge
+    (10 of 19 contacts of this PA66 set peaked at "beyond_surface", 845 MPa against a
+    Hertz 72 MPa). Another branch of the surface is told by a jump between neighbouring
+    samples instead (field.STEEPEST, up to field.LOADED_FAR): the largest loaded pressure
+    is no longer on the false edge (measured 373 MPa at the worm's tip), and 3 of 19
+    contacts still end on it (their fields placed by the rigid search's patterns, which
+    keep FAR)."""
+    from toothcontact.runner import analyse_file
+
+    path = tmp_path / "pa66.toml"
+    path.write_text(PA66_SET)
+    rows = [r for r in analyse_file(path)["positions"] if r.get("bem_load_N")]
+    assert rows
+    worst = max(rows, key=lambda r: r["bem_p_max_MPa"])
+    assert worst["edge_pressure_at"] != "beyond_surface"
+    assert len([r for r in rows if r["edge_pressure_at"] == "beyond_surface"]) <= 3

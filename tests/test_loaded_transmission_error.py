@@ -46,10 +46,11 @@ def case(relief_um: float) -> dict:
            "load": {"tangential_load": f"{LOAD} N"},
            "analysis": {"positions": 9, "pressure_grid": 64, "interference": False,
                         "field_grid": 41}}
-    if relief_um:
-        for member, start in zip(("pinion", "gear"), STARTS):
-            raw[member] = {"tip_relief": {"amount": f"{relief_um} um",
-                                          "start_diameter": f"{start} mm", "shape": "linear"}}
+    for member, start in zip(("pinion", "gear"), STARTS):
+        raw[member] = {"tip_edge": {"radius": "0 mm"}}     # the reference's involute is sharp
+        if relief_um:
+            raw[member]["tip_relief"] = {"amount": f"{relief_um} um",
+                                         "start_diameter": f"{start} mm", "shape": "linear"}
     return raw
 
 

@@ -368,6 +368,7 @@ def spur_geometry_case(case: schema.SpurCase) -> Result:
     result = Result(notes=["crown and relief amounts are measured along the flank normal in the "
                            "transverse plane (ISO 21771); on a helical flank the normal "
                            "displacement is that amount times cos(beta_b)"])
+    result.notes.append(_tip_edge_note(case, pair))
     for name, gear, mods in (("pinion", pair.pinion, pair.pinion_modifications),
                              ("gear", pair.gear, pair.gear_modifications)):
         section = {"teeth": gear.teeth, "internal": gear.internal,
@@ -377,7 +378,8 @@ def spur_geometry_case(case: schema.SpurCase) -> Result:
                    "hand": gear.hand if gear.helix_angle else None,
                    "pitch_diameter_mm": 2 * gear.pitch_radius, "base_diameter_mm": 2 * gear.base_radius,
                    "tip_diameter_mm": 2 * gear.tip_radius, "root_diameter_mm": 2 * gear.root_radius_value,
-                   "tooth_thickness_mm": gear.tooth_thickness}
+                   "tooth_thickness_mm": gear.tooth_thickness,
+                   "tip_edge_radius_mm": None if mods.tip_edge is None else mods.tip_edge.radius}
         if not gear.internal:
             generated = generate_side(gear)
             section["form_diameter_mm"] = 2 * generated.form_radius
@@ -477,6 +479,21 @@ def _spur_contact(case: schema.SpurCase, pair, result: Result) -> None:
         f"{len(changes)} pass(es); the shafts' deflection under the loaded line load differs "
         f"by {1e3 * changes[-1]:.2f} µm from the one analysed (settled below "
         f"{1e3 * SHAFT_TOLERANCE:g} µm)"))
+
+
+def _tip_edge_note(case: schema.SpurCase, pair) -> str:
+    """The tip edges as analysed: each member's rounding, and where it is the default."""
+    from .gearset import DEFAULT_TIP_EDGE_MODULES
+
+    parts = []
+    for name, mods in (("pinion", pair.pinion_modifications), ("gear", pair.gear_modifications)):
+        edge = mods.tip_edge
+        given = getattr(case, name).tip_edge is not None
+        parts.append(f"{name} {'sharp' if edge is None else f'rounded {edge.radius:.3g} mm'}"
+                     + ("" if given else " (default)"))
+    return ("tip edges: " + ", ".join(parts) + f"; the default is {DEFAULT_TIP_EDGE_MODULES:g} "
+            "normal modules, or the largest rounding that fits the tooth ([member.tip_edge] "
+            "radius; '0 mm' for a sharp edge)")
 
 
 def _contact_pass(case: schema.SpurCase, pair, result: Result) -> None:
@@ -691,7 +708,7 @@ def _loaded_sections(cycle, C_E: float, grid: int, teeth, bending: str,
     if not grid:
         return
     from .contact.loaded import (EDGE_PRESSURE_RATIO, EDGE_STRIP, END_LOAD_RATIO,
-                                 loaded_cycle, unsolved)
+                                 loaded_cycle, rounding_starts, unsolved)
 
     rows = cycle.rows
     try:
@@ -718,6 +735,7 @@ def _loaded_sections(cycle, C_E: float, grid: int, teeth, bending: str,
     if not answered:
         return
     edged = [r for r in answered if r["edge_loaded"]]
+    rounded = {f"{member}_tip" for member in rounding_starts(cycle)}
     candidates = edged or answered
     highest = max(r["edge_pressure_MPa"] for r in candidates)
     # the first of those within 0.1 % (a spline's teeth all press alike, to the pressure
@@ -731,7 +749,9 @@ def _loaded_sections(cycle, C_E: float, grid: int, teeth, bending: str,
         end_loaded_contacts=sum(bool(r["end_loaded"]) for r in answered),
         max_end_load_ratio=max(r["end_load_ratio"] for r in answered),
         edge_pressure_note=f"edge_pressure_MPa is the pressure averaged over a {EDGE_STRIP} mm "
-                           "strip at the edge, and bem_p_max_MPa the larger of it and the peak "
+                           "strip at a sharp edge, the largest on the rounding at a rounded tip "
+                           "(a smooth surface: Hertz on its radius), and bem_p_max_MPa the "
+                           "larger of it and the active flank's peak "
                            f"more than {EDGE_STRIP} mm inside the edges: both converge as the "
                            "grid is refined; bem_raw_peak_MPa, the largest cell pressure, grows "
                            "without bound at a sharp edge and is not a design value; free face "
@@ -744,8 +764,10 @@ def _loaded_sections(cycle, C_E: float, grid: int, teeth, bending: str,
     result.checks.append(Check(
         "loaded contact: no edge load", not edged,
         f"{len(edged)} of {len(answered)} contacts edge-loaded; highest edge pressure "
-        f"{worst['edge_pressure_MPa']:.0f} MPa averaged over {EDGE_STRIP} mm "
-        f"({worst['edge_pressure_at']}), "
+        f"{worst['edge_pressure_MPa']:.0f} MPa "
+        + ("on the tip rounding" if worst["edge_pressure_at"] in rounded
+           else f"averaged over {EDGE_STRIP} mm")
+        + f" ({worst['edge_pressure_at']}), "
         f"{worst['edge_pressure_MPa'] / max(worst['bem_p_max_MPa'], 1e-300):.2f} of the "
         f"contact's peak {worst['bem_p_max_MPa']:.0f} MPa, at roll {worst['roll_deg']:.2f} deg "
         f"pair {worst['pair']}; largest end load ratio "
@@ -956,13 +978,12 @@ def _spline_contact(case: schema.SplineCase, pair, result: Result) -> None:
     from .assembly import Misalignment, ParallelMesh
     from .contact.cycle import parallel_cycle
     from .gearset import GearPair, working_flank
-    from .modify import FlankModifications
 
-    coaxial = GearPair(pair.hub, pair.sleeve, pair.hub_modifications, FlankModifications(), 0.0,
-                       case.pressure_angle)
+    coaxial = GearPair(pair.hub, pair.sleeve, pair.hub_modifications, pair.sleeve_modifications,
+                       0.0, case.pressure_angle)
     mesh = ParallelMesh(coaxial, Misalignment(slope=case.misalignment))
     hub = working_flank(pair.hub, pair.hub_modifications, 1)
-    sleeve = working_flank(pair.sleeve, FlankModifications(), mesh.gear_side)
+    sleeve = working_flank(pair.sleeve, pair.sleeve_modifications, mesh.gear_side)
     wt = case.torque / (0.5 * pair.spline.pitch_diameter)
     normal_load = wt / math.cos(case.pressure_angle)
     C_E = hertz.compliance(case.material.E, case.material.nu, case.material.E, case.material.nu)

@@ -233,8 +233,9 @@ class TipReliefSpec(Model):
 
 class TipEdgeSpec(Model):
     radius: quantity("length", low=0.0) = Field(
-        description="radius of the rounding that breaks the tip edge, e.g. '0.3 mm' (none "
-                    "given, or '0 mm': a sharp edge)")
+        description="radius of the rounding that breaks the tip edge, e.g. '0.3 mm'; '0 mm' "
+                    "for a sharp edge; none given: 0.1 normal modules, or the largest that "
+                    "fits the tooth")
 
 
 class EndReliefSpec(Model):
@@ -411,6 +412,9 @@ class SplineCase(CaseInfo, ModuleOrPitch):
     engaged_length: Length
     tooth_thickness: Length = Field(description="hub tooth thickness T_mod at the crown centre")
     clearance: quantity("length") = Field(description="dT: sleeve space width minus T_mod")
+    tip_edge: TipEdgeSpec | None = Field(
+        None, description="the rounding of the hub's and the sleeve's tooth tips (radius); "
+                          "none given: sharp tips")
     crown: CrownSpec | None = Field(None, description="lead crown of the hub teeth, measured in "
                                                       "the tooth-thickness direction (seed 003)")
     material: Material = Field(Material.model_validate(STEEL), description="default steel")

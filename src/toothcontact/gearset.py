@@ -16,7 +16,7 @@ import numpy as np
 from scipy.optimize import brentq
 
 from .analytic.spur_mesh import SpurMesh
-from .case import CrownSpec, Member, SplineCase, SpurCase, WormCase
+from .case import CrownSpec, Member, SplineCase, SpurCase, TipEdgeSpec, WormCase
 from .modify import (Deflection, EndRelief, FlankModifications, LeadCrown, ProfileCrown,
                      TipEdge, TipRelief)
 from .surfaces.involute import CylindricalGear, inv
@@ -479,7 +479,7 @@ def modifications(member: Member, gear: CylindricalGear, name: str) -> FlankModi
             raise ValueError(f"{name}.tip_relief.start_diameter: {tip.start_diameter:.4g} mm must "
                              f"lie between the base diameter {lo:.4g} mm and the tip {hi:.4g} mm")
     return FlankModifications(
-        tip_edge=tip_edge(member, gear, name),
+        tip_edge=tip_edge(member.tip_edge, gear, f"{name}.tip_edge"),
         lead_crown=None if crown is None else LeadCrown(crown.radius, crown.height, crown.shape,
                                                         crown.center),
         profile_crown=None if member.profile_crown is None else ProfileCrown(
@@ -490,29 +490,47 @@ def modifications(member: Member, gear: CylindricalGear, name: str) -> FlankModi
             member.end_relief.amount, member.end_relief.length, member.end_relief.shape))
 
 
-def tip_edge(member: Member, gear: CylindricalGear, name: str) -> TipEdge | None:
-    """The member's tip edge rounding ([member.tip_edge] radius; None where none is given
-    or it is '0 mm': a sharp edge), checked to fit the tooth: it starts on the involute
-    above the form circle (inside it on a ring), and its tangent length, on the flank and
-    on the tip land alike, leaves room for the other flank's on the top land."""
-    if member.tip_edge is None or member.tip_edge.radius == 0.0:
-        return None
+#: the tip edge rounding a member gets where its case gives none, in normal modules: the
+#: edge break "tip edges rounded 0.1·m_n" of a gear drawing (0.3 mm at m_n = 3, 1.4 mm at
+#: 14), or the largest that fits where it does not
+DEFAULT_TIP_EDGE_MODULES = 0.1
+
+
+def tip_edge(spec: TipEdgeSpec | None, gear: CylindricalGear, field: str,
+             default_modules: float = DEFAULT_TIP_EDGE_MODULES) -> TipEdge | None:
+    """A gear's tip edge rounding: the case's `spec` at `field` ('0 mm': a sharp edge, None),
+    else `default_modules`·m_n (0: sharp) or the largest that fits; checked to fit the tooth:
+    it starts on the involute above the form circle (inside it on a ring), and its tangent
+    length, on the flank and on the tip land alike, leaves room for the other flank's on the
+    top land. A given radius that does not fit is refused, naming the largest that does."""
     from .surfaces.generation import generate_ring_side, generate_side
 
-    radius = member.tip_edge.radius
+    given = spec.radius if spec is not None else None
+    radius = default_modules * gear.normal_module if given is None else given
+    if radius == 0.0:
+        return None
     form = (generate_ring_side(gear) if gear.internal else generate_side(gear)).form_radius
     edge = _fitting_tip_edge(gear, form, radius)
-    if edge is None:
-        lo, hi = 0.0, gear.tip_radius        # the largest that fits, by bisection
-        for _ in range(60):
-            mid = 0.5 * (lo + hi)
-            lo, hi = (mid, hi) if _fitting_tip_edge(gear, form, mid) else (lo, mid)
-        raise ValueError(f"{name}.tip_edge.radius: {radius:.4g} mm must be at most {lo:.3g} mm: "
-                         "the rounding must start on the involute "
-                         f"{'inside' if gear.internal else 'above'} the form diameter "
-                         f"{2 * form:.4g} mm and leave room on the top land "
-                         f"({tip_thickness(gear):.3g} mm) for the other flank's")
-    return edge
+    if edge is not None:
+        return edge
+    largest = largest_tip_edge(gear, form)
+    if given is None:
+        return _fitting_tip_edge(gear, form, largest) if largest > 0.0 else None
+    raise ValueError(f"{field}.radius: {radius:.4g} mm must be at most {largest:.3g} mm: "
+                     "the rounding must start on the involute "
+                     f"{'inside' if gear.internal else 'above'} the form diameter "
+                     f"{2 * form:.4g} mm and leave room on the top land "
+                     f"({tip_thickness(gear):.3g} mm) for the other flank's")
+
+
+def largest_tip_edge(gear: CylindricalGear, form: float) -> float:
+    """The largest tip edge rounding (mm, to 0.1 %, rounded down) that fits the gear (see
+    tip_edge); 0 where none does."""
+    lo, hi = 0.0, gear.tip_radius
+    for _ in range(40):
+        mid = 0.5 * (lo + hi)
+        lo, hi = (mid, hi) if _fitting_tip_edge(gear, form, mid) else (lo, mid)
+    return 0.999 * lo
 
 
 def _fitting_tip_edge(gear: CylindricalGear, form: float, radius: float) -> TipEdge | None:
@@ -530,12 +548,23 @@ def _fitting_tip_edge(gear: CylindricalGear, form: float, radius: float) -> TipE
 
 @dataclass(frozen=True)
 class SplinePair:
-    """Hub (external) and sleeve (internal) of a spline, and the hub's modifications."""
+    """Hub (external) and sleeve (internal) of a spline, and their modifications (the hub's
+    crown, both members' tip edges)."""
 
     spline: InvoluteSpline
     hub: CylindricalGear
     sleeve: CylindricalGear
     hub_modifications: FlankModifications
+    sleeve_modifications: FlankModifications
+
+
+#: a spline's teeth are sharp unless the case rounds them: its contact spans the working
+#: depth and ends at the tips, where a rounding's start is a jump in curvature whose pressure
+#: peak lies within micrometres of it, finer than any grid across the depth (the bundled
+#: 18-tooth spline with 0.08 mm roundings: 1981, 2412 and 3058 MPa on 48, 96 and 128 cells
+#: across), while a sharp tip's pressure averaged over the edge strip converges (336 and
+#: 340 MPa on 48 and 96)
+SPLINE_TIP_EDGE_MODULES = 0.0
 
 
 def spline_pair(case: SplineCase) -> SplinePair:
@@ -544,19 +573,22 @@ def spline_pair(case: SplineCase) -> SplinePair:
     cos(alpha), so the flank's crown radius is R / cos(alpha)."""
     spline = InvoluteSpline(case.teeth, case.module_mm, case.pressure_angle, case.tooth_thickness,
                             case.clearance, case.engaged_length, case.root)
-    mods = FlankModifications()
+    crown = None
     if case.crown is not None:
         check_crown_span(case.crown, case.engaged_length, "crown")
         c, scale = case.crown, 1.0 / math.cos(case.pressure_angle)
-        mods = FlankModifications(lead_crown=LeadCrown(
-            None if c.radius is None else c.radius * scale,
-            None if c.height is None else c.height / scale, c.shape, c.center))
+        crown = LeadCrown(None if c.radius is None else c.radius * scale,
+                          None if c.height is None else c.height / scale, c.shape, c.center)
     try:
         hub, sleeve = spline.hub(), spline.sleeve()
     except ValueError as exc:
         raise ValueError(f"teeth / module / pressure_angle / tooth_thickness / clearance: the "
                          f"spline's teeth cannot be built from these proportions ({exc})") from None
-    return SplinePair(spline, hub, sleeve, mods)
+    return SplinePair(spline, hub, sleeve,
+                      FlankModifications(lead_crown=crown, tip_edge=tip_edge(
+                          case.tip_edge, hub, "tip_edge", SPLINE_TIP_EDGE_MODULES)),
+                      FlankModifications(tip_edge=tip_edge(
+                          case.tip_edge, sleeve, "tip_edge", SPLINE_TIP_EDGE_MODULES)))
 
 
 @dataclass(frozen=True)

@@ -67,6 +67,7 @@ def gear_mesh(outline, teeth: int | None = None,
     sag = float(np.max(np.linalg.norm(middle - 0.5 * (points[1:] + points[:-1]), axis=-1)))
     half = 0.5 * chord
     u = np.linspace(u0, u1, max(17, int(np.ceil(16 * np.sqrt(sag / half))) + 1))
+    u = _within_sag(flank, u, half)
 
     def steps(radius: float, angle: float) -> int:   # arc points keeping the sag under half
         return max(2, int(np.ceil(abs(angle) / np.sqrt(8.0 * half / radius))) + 1)
@@ -79,14 +80,16 @@ def gear_mesh(outline, teeth: int | None = None,
         z = np.union1d(z, [-inner, inner])
     first = outline.section(u, 0.0)
     n_tip = steps(gear.tip_radius,
-                  polar_angle(first.flank_plus[0]) - polar_angle(first.flank_minus[-1]))
+                  polar_angle(first.tip_ends[1]) - polar_angle(first.tip_ends[0]))
     n_root = steps(first.root_radius, polar_angle(first.fillet_minus[0]) - first.space_before)
+    edge = outline.modifications.tip_edge     # the rest of a rounding turns up to 45°
+    n_rounding = 2 if edge is None else steps(edge.radius, 0.25 * np.pi)
 
     k = gear.teeth if teeth is None or teeth >= gear.teeth else teeth
     turns = (np.arange(gear.teeth) if k == gear.teeth else np.arange(k) - k // 2) * outline.pitch
     rings = []
     for height in z:
-        tooth = outline.section(u, float(height)).points(n_tip, n_root)[:-1]
+        tooth = outline.section(u, float(height)).points(n_tip, n_root, n_rounding)[:-1]
         rings.append(np.concatenate([tooth @ rotation([0, 0, 1], a).T for a in turns]))
     vertices = np.concatenate(rings)
     n, closed = len(rings[0]), k == gear.teeth
@@ -96,6 +99,22 @@ def gear_mesh(outline, teeth: int | None = None,
     faces = np.concatenate([np.concatenate([np.column_stack([a, b, c]), np.column_stack([a, c, d])])
                             for a, b, c, d in quads])
     return vertices, faces
+
+
+def _within_sag(flank, u: np.ndarray, half: float) -> np.ndarray:
+    """The profile parameters `u` with midpoints added (up to 6 times) where the mid-face
+    profile strays more than `half` (mm) from the chord between neighbours (a tip
+    rounding's tight curve)."""
+    for _ in range(6):
+        v = np.zeros_like(u)
+        points = np.stack(flank.point(u, v), -1)
+        mid = 0.5 * (u[1:] + u[:-1])
+        middle = np.stack(flank.point(mid, np.zeros_like(mid)), -1)
+        sag = np.linalg.norm(middle - 0.5 * (points[1:] + points[:-1]), axis=-1)
+        if not (sag > half).any():
+            break
+        u = np.union1d(u, mid[sag > half])
+    return u
 
 
 def collision_body(vertices: np.ndarray, faces: np.ndarray):

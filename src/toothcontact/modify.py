@@ -134,12 +134,21 @@ class TipEdge:
         return cls(radius, math.sqrt(2.0 * base_radius * start_arc), base_radius, internal)
 
     def drop(self, s, s_tip: float):
-        """The drop (mm) at roll length s (mm; s_tip the tip's)."""
+        """The drop (mm) at roll length s (mm; s_tip the tip's). Past the tip (where a gap
+        field continues the flank) the circle runs on as its own quadratic from the tip, so
+        the continued surface stays smooth and finite."""
         toward = 1.0 if s_tip >= self.start else -1.0
         beyond = (value(s) - self.start) * toward > 0.0
         arc = where(beyond, toward * (s * s - self.start**2) / (2.0 * self.base_radius), 0.0 * s)
-        relative = 1.0 / self.radius + (1.0 if self.internal else -1.0) / self.start
-        return where(beyond, _arc_drop(arc, 1.0 / relative, "circular"), 0.0 * s)
+        radius = 1.0 / (1.0 / self.radius + (1.0 if self.internal else -1.0) / self.start)
+        arc_tip = toward * (s_tip**2 - self.start**2) / (2.0 * self.base_radius)
+        past = value(arc) > arc_tip
+        circle = _arc_drop(where(past, 0.0 * s + arc_tip, arc), radius, "circular")
+        root = math.sqrt(radius**2 - arc_tip**2)
+        run = arc - arc_tip
+        continued = (radius - root + arc_tip / root * run
+                     + 0.5 * radius**2 / root**3 * run * run)
+        return where(beyond, where(past, continued, circle), 0.0 * s)
 
 
 @dataclass(frozen=True)
@@ -223,3 +232,10 @@ class FlankModifications:
     def empty(self) -> bool:
         return all(m is None for m in (self.lead_crown, self.profile_crown, self.tip_relief,
                                        self.end_relief, self.deflection, self.tip_edge))
+
+    @property
+    def profile_breaks(self) -> tuple[float, ...]:
+        """Roll lengths (mm) where the profile's slope or curvature jumps: the starts of the
+        tip relief and of the tip edge rounding (a fitted B-spline needs points close
+        around them)."""
+        return tuple(m.start for m in (self.tip_relief, self.tip_edge) if m is not None)

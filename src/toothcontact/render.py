@@ -518,11 +518,9 @@ def members(pv, case) -> Members | None:
         gear = cylindrical_body(pv, pair.gear, pair.gear_modifications, (shown, 3))
         return Members(pinion[7], gear[shown], pinion[3], gear[3], MEMBER_NAMES[kind])
     if kind == "spline":
-        from .modify import FlankModifications
-
         pair = gearset.spline_pair(case)
         hub = cylindrical_body(pv, pair.hub, pair.hub_modifications, (pair.hub.teeth, 3))
-        sleeve = cylindrical_body(pv, pair.sleeve, FlankModifications(), (5, 3))
+        sleeve = cylindrical_body(pv, pair.sleeve, pair.sleeve_modifications, (5, 3))
         return Members(hub[pair.hub.teeth], sleeve[5], hub[3], sleeve[3], MEMBER_NAMES[kind])
     if kind == "worm":
         parts = gearset.worm_set(case)
@@ -924,11 +922,10 @@ def _nominal_mesh(case):
         return ParallelMesh(gearset.gear_pair(case))
     if case.kind == "spline":
         from .gearset import GearPair
-        from .modify import FlankModifications
-
+    
         pair = gearset.spline_pair(case)
         return ParallelMesh(GearPair(pair.hub, pair.sleeve, pair.hub_modifications,
-                                     FlankModifications(), 0.0, case.pressure_angle))
+                                     pair.sleeve_modifications, 0.0, case.pressure_angle))
     flank = case.load.flank if getattr(case, "load", None) is not None else "left"
     return WormMesh(gearset.worm_set(case).wheel[flank])
 

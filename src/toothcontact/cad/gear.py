@@ -48,7 +48,7 @@ def build_gear(gear: CylindricalGear, modifications: FlankModifications | None =
         twist = abs(gear.twist_per_length) * gear.face_width
         sections = max(7 if outline.curved else 2, int(math.ceil(twist / 0.04)) + 1)
     (u0, u1), (v0, v1) = outline.flanks[1].domain
-    fit_u = np.linspace(u0, u1, profile_points)
+    fit_u = outline.profile_parameters(profile_points)
     fit_v = np.linspace(v0, v1, sections)
 
     params = {"flank": chord_parameters(np.stack(
@@ -76,14 +76,17 @@ def _section_wire(outline: ToothOutline, params: dict, u: np.ndarray, z: float, 
     f = 1.0 - f if gear.internal else f
     g = params["fillet"]
     side_minus = [interpolated(section.fillet_minus, g), interpolated(section.flank_minus, f)]
-    tip = arc(section.flank_minus[-1], section.tip_middle, section.flank_plus[0])
+    start, end = section.tip_ends
+    tip = [arc(start, section.tip_middle, end)]
+    if section.rounding_minus is not None:
+        tip = [arc(*section.rounding_minus), *tip, arc(*section.rounding_plus)]
     side_plus = [interpolated(section.flank_plus, 1.0 - f[::-1]),
                  interpolated(section.fillet_plus, 1.0 - g[::-1])]
     root = section.root_radius
     edges = [half_root_arc(root, section.space_before, section.fillet_minus[0], z), *side_minus,
-             tip, *side_plus,
+             *tip, *side_plus,
              half_root_arc(root, section.space_after, section.fillet_plus[-1], z, reverse=True)]
-    flank_edges = {-1: len(side_minus), 1: len(side_minus) + 2}
+    flank_edges = {-1: len(side_minus), 1: len(side_minus) + len(tip) + 1}
 
     if teeth < gear.teeth and gear.internal:
         raise ValueError("a ring gear is built whole, not as a sector")

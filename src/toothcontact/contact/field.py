@@ -142,17 +142,35 @@ class GapField:
         return out
 
 
+#: height (mm) above the tangent plane beyond which a line's hit is no part of the flank
+#: here but another part of a long surface (a worm thread's next turn, a wheel flank's fold):
+#: far above any contact's gap (a contact line's measure, line.py)
+FAR = 0.5
+#: the steepest rise (height per distance along the plane) between neighbouring samples of
+#: a flank continued from the contact: another branch of a long surface (a worm thread's
+#: next turn, a wheel flank's fold) is met by a jump, a flank curving away from the plane
+#: by a slope. A fixed height (FAR) instead cut a worm set's long, curved contact lines
+#: inside the flank: their loaded contact pressed on that false edge ("beyond_surface")
+STEEPEST = 1.0
+#: the height (mm) above the tangent plane beyond which a loaded contact's field takes no
+#: hit, jump or not: its contact lines are followed on (a worm set's: a PA66 set's 10 of 19
+#: contacts peaked on a false edge within FAR, none within this); the rigid search's
+#: fields keep FAR, which its patterns on long worm flanks need to stay on their branch
+LOADED_FAR = 5.0
+
+
 def gap_fields(pinion: Flank, gear: Flank, pinion_frames: Frame, gear_frames: Frame,
                planes: TangentPlanes, pinion_uv, gear_uv, half: np.ndarray,
                shape, samples: int = 25, centre: np.ndarray | None = None,
-               snap: bool = False) -> list[GapField]:
+               snap: bool = False, far: float = FAR) -> list[GapField]:
     """The gap fields of K contacts (frames and planes stacked (K,), parameters (K,)), each
     over centre[k] + [-half[k, 0], half[k, 0]] × [-half[k, 1], half[k, 1]] mm (centre (K, 2)
     in the plane from the contact point, default 0; the contact must lie inside) on `shape`
     points (one (nx, ny) for all, or one per contact, (K, 2)): the exact samples of all of
     them in one ray solve per flank, then per contact the splines. snap: the points along x
-    moved (by less than a cell) and respaced so that the face ends crossing a field lie on
-    cell boundaries (see snapped_points)."""
+    and y moved (by less than a cell) and respaced so that the face ends and the tip, root
+    and form edges crossing a field square to an axis lie on cell boundaries (see
+    snapped_points). far: the height (mm) above the plane beyond which no hit is taken."""
     half = np.asarray(half, float).reshape(-1, 2)
     centre = np.zeros_like(half) if centre is None else np.asarray(centre, float).reshape(-1, 2)
     shapes = np.broadcast_to(np.asarray(shape, int), half.shape)
@@ -168,12 +186,13 @@ def gap_fields(pinion: Flank, gear: Flank, pinion_frames: Frame, gear_frames: Fr
     names = [f"{member}_{name}" for member in ("pinion", "gear") for name in ("u", "v")]
     for k in range(len(half)):
         nx, ny = (int(n) for n in shapes[k])
-        reach = min(float(np.max(half[k])), FAR)
+        reach = min(float(np.max(half[k])), far)
+        spacing = 2.0 * half[k] / (samples - 1)
         # the sample nearest the contact point, from which the flanks are followed
         at = tuple(int(np.clip(np.rint((-c / h + 1.0) * 0.5 * (samples - 1)), 0, samples - 1))
                    for c, h in zip(centre[k], half[k]))
-        met = (_continued(_take(hp, k), pinion, pinion_normals[k], reach, grid, at)
-               & _continued(_take(hg, k), gear, gear_normals[k], reach, grid, at))
+        met = (_continued(_take(hp, k), pinion, pinion_normals[k], reach, grid, spacing, at)
+               & _continued(_take(hg, k), gear, gear_normals[k], reach, grid, spacing, at))
         if not met.any():
             raise ValueError("no line of the gap field meets both flanks")
         # the gap, and both flanks' parameters (to place their edges in the field)
@@ -183,10 +202,11 @@ def gap_fields(pinion: Flank, gear: Flank, pinion_frames: Frame, gear_frames: Fr
         points = (np.linspace(-1.0, 1.0, nx), np.linspace(-1.0, 1.0, ny))
         field = _spline_field(filled, met, points, centre[k], half[k], pinion, gear, names)
         if snap:
-            moved = snapped_points(field, centre[k, 0], half[k, 0])
-            if moved is not None:
-                field = _spline_field(filled, met, (moved, points[1]), centre[k], half[k],
-                                      pinion, gear, names)
+            moved = [snapped_points(field, centre[k, i], half[k, i], i) for i in (0, 1)]
+            if any(m is not None for m in moved):
+                field = _spline_field(filled, met, tuple(p if m is None else m
+                                                         for p, m in zip(points, moved)),
+                                      centre[k], half[k], pinion, gear, names)
         out.append(field)
     return out
 
@@ -241,10 +261,6 @@ def _spline_matrix(samples: int, points: np.ndarray) -> np.ndarray:
     return make_interp_spline(unit, np.eye(samples), k=3)(points)
 
 
-#: height (mm) above the tangent plane beyond which a line's hit is no part of the flank
-#: here but another part of a long surface (a worm thread's next turn, a wheel flank's fold):
-#: far above any contact's gap
-FAR = 0.5
 #: how far (in domain spans of u, v) beyond its domain a hit is still the flank continued:
 #: along the face (v) a flank runs on smoothly (a helicoid, a generated wheel tooth), across
 #: the profile (u) it soon meets a fold or cusp (past a worm wheel's tip, an involute's base)
@@ -252,14 +268,16 @@ REACH_SPANS = (1.0, 3.0)
 
 
 def _continued(hits, flank: Flank, normal: np.ndarray, reach: float,
-               shape: tuple[int, int], contact: tuple[int, int]) -> np.ndarray:
-    """The samples of one contact's field (hits of its lines, (n,); `normal` the plane's
-    normal in the flank's frame) where the lines meet the flank continued smoothly from the
-    contact at sample `contact`: converged within `reach` (mm) of the plane and near the
-    flank's domain (REACH_SPANS), the flank facing the plane as it does at the
-    contact (the parameter map does not fold), and connected to the centre through such
-    samples. Past a fold (an involute's cusp on its base circle) or far off, a line meets
-    another branch of the surface: no part of the flank."""
+               shape: tuple[int, int], spacing: np.ndarray, contact: tuple[int, int]
+               ) -> np.ndarray:
+    """The samples of one contact's field (hits of its lines on a `shape` grid of `spacing`
+    (2,) mm; `normal` the plane's normal in the flank's frame) where the lines meet the flank
+    continued smoothly from the contact at sample `contact`: converged within `reach` (mm)
+    of the plane and near the flank's domain (REACH_SPANS), the flank facing the plane as
+    it does at the contact (the parameter map does not fold), rising from its neighbours
+    no steeper than STEEPEST, and connected to the centre through such samples. Past a
+    fold (an involute's cusp on its base circle) or far off, a line meets another branch of
+    the surface: no part of the flank."""
     from scipy.ndimage import label
 
     with np.errstate(invalid="ignore"):
@@ -271,6 +289,15 @@ def _continued(hits, flank: Flank, normal: np.ndarray, reach: float,
     c = contact
     ok = ((hits.converged & near & (np.abs(hits.s) <= reach)).reshape(shape)
           & (facing == facing[c]))
+    height = np.where(ok, hits.s.reshape(shape), np.nan)
+    for axis in (0, 1):
+        with np.errstate(invalid="ignore"):
+            jump = np.abs(np.diff(height, axis=axis)) > STEEPEST * spacing[axis]
+        pad = [(0, 0), (0, 0)]
+        pad[axis] = (1, 0)
+        before = np.pad(jump, pad)
+        pad[axis] = (0, 1)
+        ok &= ~(before | np.pad(jump, pad))
     if not ok[c]:
         return ok
     labels, _ = label(ok)
@@ -319,7 +346,8 @@ def smooth_fill(values: np.ndarray, known: np.ndarray) -> np.ndarray:
 
 
 def contact_fields(cycle, rows, shape, margin=1.3, semi_axes: np.ndarray | None = None,
-                   largest_cell: float | None = None, snap: bool = False) -> list[GapField]:
+                   largest_cell: float | None = None, snap: bool = False,
+                   boxes: np.ndarray | None = None, far: float = FAR) -> list[GapField]:
     """The gap fields of the given rows of a contact cycle, each over the bounding box of an
     ellipse about the centre of its pattern along its A axis (cycle.pattern_centre: the
     contact point, or a contact line's middle; A axis along the row's axis angle; across
@@ -329,8 +357,15 @@ def contact_fields(cycle, rows, shape, margin=1.3, semi_axes: np.ndarray | None 
     it round-off put the contact point. snap: face ends on cell boundaries (gap_fields).
     `shape`: (nx, ny) points for
     every field, or an int n: n² points each, on cells as square as `square_cells` makes
-    them (no longer than `largest_cell`, mm, where it can)."""
+    them (no longer than `largest_cell`, mm, where it can). boxes ((K, 2, 2) mm, [[x_low,
+    x_high], [y_low, y_high]] in each row's plane): the fields' boxes as given instead.
+    far: see gap_fields."""
     rows = np.atleast_1d(np.asarray(rows, int))
+    if boxes is not None:
+        boxes = np.asarray(boxes, float).reshape(-1, 2, 2)
+        half = 0.5 * (boxes[:, :, 1] - boxes[:, :, 0])
+        return _fields(cycle, rows, half, 0.5 * (boxes[:, :, 1] + boxes[:, :, 0]), shape,
+                       largest_cell, snap, far)
     if semi_axes is None:
         semi_axes = pattern_semi_axes(cycle, rows)
     a, b = np.asarray(semi_axes, float).reshape(-1, 2).T
@@ -342,61 +377,89 @@ def contact_fields(cycle, rows, shape, margin=1.3, semi_axes: np.ndarray | None 
     # across it the contact point (a conformal contact's middle across is a mean of cells)
     direction = np.stack([np.cos(angle), np.sin(angle)], axis=-1)
     along = np.einsum("ki,ki->k", np.asarray(cycle.pattern_centre, float)[rows], direction)
+    # the contact point stays inside the field where its semi-axes are held below the
+    # pattern's (a far field's reach)
+    along = np.clip(along, -CENTRE_SHARE * a, CENTRE_SHARE * a)
+    return _fields(cycle, rows, half, along[:, None] * direction, shape, largest_cell, snap,
+                   far)
+
+
+#: the share of a field's semi-axis its centre may lie from the contact point
+CENTRE_SHARE = 0.9
+
+
+def _fields(cycle, rows: np.ndarray, half: np.ndarray, centre: np.ndarray, shape,
+            largest_cell: float | None, snap: bool, far: float) -> list[GapField]:
+    """The gap fields of the rows over the boxes centre ± half ((K, 2), mm; see
+    contact_fields)."""
     uv = {m: (np.asarray(getattr(cycle.contacts, f"{m}_u"))[rows],
               np.asarray(getattr(cycle.contacts, f"{m}_v"))[rows]) for m in ("pinion", "gear")}
     if np.ndim(shape) == 0:
         shape = square_cells(half, int(shape), largest_cell)
     return gap_fields(cycle.pinion, cycle.gear, cycle.pinion_frames[rows], cycle.gear_frames[rows],
                       planes_at(cycle.planes, rows), uv["pinion"], uv["gear"], half, shape,
-                      centre=along[:, None] * direction, snap=snap)
+                      centre=centre, snap=snap, far=far)
 
 
-#: a face end is snapped to a cell boundary where its crossings of the field's lines lie
-#: within this share of a cell of each other (square to x: a spur or helical face end)
+#: a flank edge is snapped to a cell boundary where its crossings of the field's lines lie
+#: within this share of a cell of each other (square to x: a spur or helical face end;
+#: square to y: a tip, root or form edge along the face)
 SQUARE_END = 0.5
 
 
-def face_ends(field: GapField) -> dict[str, float]:
-    """The face ends ("low", "high") of the material along x: for each member's face end
-    that crosses the field square to x (SQUARE_END), where its `inside` field crosses zero
-    along x (linear between the cells; the median over the lines on material); "low" the
-    innermost of the ends with material above them, "high" of those with material below."""
-    dx = field.spacing[0]
-    lines = field.material.any(axis=0)
+def is_face_end(name: str) -> bool:
+    """Whether a flank edge's name is a face end's."""
+    return name.endswith(("_end_A", "_end_B"))
+
+
+def square_edges(field: GapField, axis: int = 0) -> dict[str, float]:
+    """The edges ("low", "high") of the material along `axis` (0: x, the face ends; 1: y,
+    the tip, root and form edges): for each flank edge of that kind that crosses the field
+    square to the axis (SQUARE_END), where its `inside` field crosses zero along the axis
+    (linear between the cells; the median over the lines on material); "low" the innermost
+    of the edges with material above them, "high" of those with material below."""
+    step = field.spacing[axis]
+    coordinate = (field.x, field.y)[axis]
+    lines = field.material.any(axis=axis)
     found: dict[str, list[float]] = {"low": [], "high": []}
     for name, inside in field.inside.items():
-        if not name.endswith(("_end_A", "_end_B")) or not lines.any():
+        if is_face_end(name) != (axis == 0) or not lines.any():
             continue
-        f = inside[:, lines]
+        f = (inside if axis == 0 else inside.T)[:, lines]
         crossing = np.isfinite(f[:-1]) & np.isfinite(f[1:]) & ((f[:-1] > 0) != (f[1:] > 0))
         if not crossing.any(axis=0).all():
             continue
         i = np.argmax(crossing, axis=0)
         cols = np.arange(f.shape[1])
         f0, f1 = f[i, cols], f[i + 1, cols]
-        x = field.x[i] + dx * f0 / (f0 - f1)
-        if np.ptp(x) > SQUARE_END * dx:
+        at = coordinate[i] + step * f0 / (f0 - f1)
+        if np.ptp(at) > SQUARE_END * step:
             continue
-        found["low" if np.median(f1 - f0) > 0 else "high"].append(float(np.median(x)))
+        found["low" if np.median(f1 - f0) > 0 else "high"].append(float(np.median(at)))
     return {side: (max(xs) if side == "low" else min(xs)) for side, xs in found.items() if xs}
 
 
-def snapped_points(field: GapField, centre: float, half: float) -> np.ndarray | None:
-    """The field's points along x (in half-sides `half` about `centre`, mm) moved so that
-    the face ends crossing it (face_ends) lie on cell boundaries: both, by the cell's length
-    and the points' place, or one, by their place (less than a cell either way); None where
-    no face end crosses it. The material then ends at a whole cell on every line, however
-    the field lies: a face end's pressure does not depend on where a grid would have cut it
-    (before: 3 % between the same case in two unit systems)."""
-    ends = face_ends(field)
-    if not ends:
+def snapped_points(field: GapField, centre: float, half: float, axis: int = 0
+                   ) -> np.ndarray | None:
+    """The field's points along `axis` (in half-sides `half` about `centre`, mm) moved so
+    that the edges square to it (square_edges: face ends along x, tip, root and form edges
+    along y) lie on cell boundaries: both, by the cell's length and the points' place, or
+    one, by their place (less than a cell either way); None where no such edge crosses it.
+    The material then ends at a whole cell on every line, however the field lies: an edge's
+    pressure does not depend on where a grid would have cut it (before, at face ends: 3 %
+    between the same case in two unit systems; at a spline's sharp tips 303 against 439
+    MPa for 48 and 51 cells across)."""
+    edges = square_edges(field, axis)
+    if not edges:
         return None
-    n, dx = len(field.x), field.spacing[0]
-    if len(ends) == 2 and ends["high"] - ends["low"] > 2.0 * dx:
-        dx = (ends["high"] - ends["low"]) / max(int(round((ends["high"] - ends["low"]) / dx)), 1)
-    edge = ends.get("low", ends.get("high"))
-    first = edge - dx * (round((edge - field.x[0]) / dx - 0.5) + 0.5)
-    return (first + dx * np.arange(n) - centre) / half
+    coordinate = (field.x, field.y)[axis]
+    n, step = len(coordinate), field.spacing[axis]
+    if len(edges) == 2 and edges["high"] - edges["low"] > 2.0 * step:
+        step = (edges["high"] - edges["low"]) / max(
+            int(round((edges["high"] - edges["low"]) / step)), 1)
+    edge = edges.get("low", edges.get("high"))
+    first = edge - step * (round((edge - coordinate[0]) / step - 0.5) + 0.5)
+    return (first + step * np.arange(n) - centre) / half
 
 
 #: fewest points along either side of a field cut into square cells (a contact's width

@@ -22,7 +22,10 @@ and the bending must follow).
 The pressure at a sharp face end is singular: the raw peak grows as the grid is refined. The
 edge is therefore reported as the pressure averaged over a strip `EDGE_STRIP` wide at the
 edge (mm; pressure.ContactSolution.edge_loads), with the share of the load in that strip.
-Units: mm, N, MPa.
+A rounded tip (modify.TipEdge) is a smooth surface: its edge is the rounding itself, its
+pressure the largest on it (Hertz on the rounding's radius), apart from the active flank's.
+A contact that spans too few cells across its field is solved again on a narrower one
+(_Pair.narrow). Units: mm, N, MPa.
 """
 
 from __future__ import annotations
@@ -34,7 +37,7 @@ import numpy as np
 
 from ..parallel import parallel_map
 from .compliance import FaceLoad, PairCompliance
-from .field import GapField, contact_fields, pattern_semi_axes
+from .field import LOADED_FAR, GapField, contact_fields, is_face_end, pattern_semi_axes
 from .local import face_length
 from .pressure import (ContactSolution, EdgeLoad, FreeEnd, Grid, GridEdgeError,
                        free_end_factor, solve_shared)
@@ -60,6 +63,9 @@ EDGE_LEAST_SHARE = 0.02
 #: longest cell (mm) of a loaded contact's grid along a long contact, where the grid's size
 #: allows: a third of the edge strip, which then averages over three cells or more
 CELL = EDGE_STRIP / 3.0
+#: a loaded contact spanning fewer than RESOLVE_CELLS cells along an axis of its field is
+#: solved again on a field narrowed to NARROW_SPAN times its extent there (_Pair.narrow)
+RESOLVE_CELLS, NARROW_SPAN = 10, 3.0
 #: with the teeth's bending, a position is solved first on coarser grids, then on the full
 #: grids from there. A line contact's field (LINE_ASPECT or more times as many cells along
 #: one axis as along the other) keeps every cell across the line, where the pressure rises
@@ -113,7 +119,8 @@ class LoadedContact:
         return self.face.line_load(self.solution.pressure_MPa, edges)
 
 
-def summarise(field: GapField, s: ContactSolution, position_load: float | None = None) -> dict:
+def summarise(field: GapField, s: ContactSolution, position_load: float | None = None,
+              roundings: dict[str, tuple[float, float]] | None = None) -> dict:
     """The result keys of a loaded contact (RESULT_KEYS); the most loaded edge is named by
     the flank edge it is (e.g. "gear_tip", "pinion_end_B"). Where the material runs on to
     the field's border there is no edge (the contact never reaches that border: the solver
@@ -122,19 +129,27 @@ def summarise(field: GapField, s: ContactSolution, position_load: float | None =
     the load per mm of face in the end's strip over the contact's mean (END_LOAD_RATIO);
     edge_loaded: end-loaded, or a tip, root or form edge pressed harder than the contact's
     interior (EDGE_PRESSURE_RATIO); neither for a contact carrying less than
-    EDGE_LEAST_SHARE of `position_load` (N; None: the contact's own load)."""
+    EDGE_LEAST_SHARE of `position_load` (N; None: the contact's own load). `roundings`
+    (member -> (roll angle where its tip edge rounding starts, +1 or -1 toward the tip)):
+    a rounded tip's edge is the rounding itself, its pressure the largest on it (a smooth
+    surface's, converged on the grid), not a strip's at the tip circle; the interior peak
+    is the active flank's, the roundings left out."""
+    on_rounding = tip_roundings(field, roundings or {})
     # a tip, root or form edge named before a face end: a contact along a tip presses the
     # face ends' strips as hard where it reaches them
-    named = sorted(flank_edges(field, s), key=lambda item: _is_face_end(item[0]))
+    rounded = [(n, _rounding_load(field, n, on, s)) for n, on in on_rounding.items()]
+    named = sorted([(n, e) for n, e in flank_edges(field, s) if n not in on_rounding]
+                   + [(n, e) for n, e in rounded if e.load_N > 0.0],
+                   key=lambda item: is_face_end(item[0]))
     # the first of the edges within 0.1 % of the highest (two ends of a flush, aligned
     # pair press alike, to the solver's tolerance)
     highest = max((e.edge_pressure_MPa for _, e in named), default=0.0)
     name, worst = next(((n, e) for n, e in named if e.edge_pressure_MPa >= (1 - 1e-3) * highest),
                        ("none", None))
     edge_pressure = worst.edge_pressure_MPa if worst is not None and worst.load_N > 0 else 0.0
-    interior = _interior_peak(field, s)
-    end_ratio = max((_end_load_ratio(e, s) for n, e in named if _is_face_end(n)), default=0.0)
-    profile = [n for n, e in named if not _is_face_end(n) and e.load_N > 0
+    interior = _interior_peak(field, s, on_rounding.values())
+    end_ratio = max((_end_load_ratio(e, s) for n, e in named if is_face_end(n)), default=0.0)
+    profile = [n for n, e in named if not is_face_end(n) and e.load_N > 0
                and e.edge_pressure_MPa > EDGE_PRESSURE_RATIO * interior]
     judged = s.load_N >= EDGE_LEAST_SHARE * (position_load or s.load_N)
     end_loaded = bool(judged and end_ratio > END_LOAD_RATIO)
@@ -152,8 +167,45 @@ def summarise(field: GapField, s: ContactSolution, position_load: float | None =
             "bem_relative_error": s.relative_error, "bem_reason": None}
 
 
-def _is_face_end(name: str) -> bool:
-    return name.endswith(("_end_A", "_end_B"))
+def tip_roundings(field: GapField, roundings: dict[str, tuple[float, float]]
+                  ) -> dict[str, np.ndarray]:
+    """The cells on each member's tip edge rounding ("pinion_tip" -> bool mask): its roll
+    angle u beyond the rounding's start (`roundings`: member -> (start, +1 or -1 toward the
+    tip)), on material."""
+    return {f"{member}_tip": field.material & ((field.parameters[f"{member}_u"] - start)
+                                                * toward > 0.0)
+            for member, (start, toward) in roundings.items()}
+
+
+def _rounding_load(field: GapField, name: str, on: np.ndarray, s: ContactSolution) -> EdgeLoad:
+    """A tip rounding's load as an edge load: its load and share, and its largest pressure
+    more than EDGE_STRIP from the material's other edges (where it meets a face end, the
+    end's strip measures the corner: a sharp edge's pressure there does not converge)."""
+    from scipy.ndimage import distance_transform_edt
+
+    p = np.where(on, s.pressure_MPa, 0.0)
+    load = float(p.sum()) * s.dx_mm * s.dy_mm
+    beyond_tip = field.beyond.get(name, np.zeros_like(on))
+    away = distance_transform_edt(field.material | beyond_tip, sampling=field.spacing) > EDGE_STRIP
+    inner = np.where(away, p, 0.0)
+    peak = float(inner.max()) if inner.size else 0.0
+    return EdgeLoad(1, "high", 0.0, peak, float(p.max()) if p.size else 0.0, load,
+                    load / s.load_N if s.load_N else 0.0,
+                    int(np.unravel_index(inner.argmax(), inner.shape)[0]))
+
+
+def rounding_starts(cycle) -> dict[str, tuple[float, float]]:
+    """Each member's tip edge rounding in a cycle (member -> (the roll angle where it
+    starts, +1 or -1 toward the tip)); members without one left out."""
+    out = {}
+    for member in ("pinion", "gear"):
+        flank = getattr(cycle, member)
+        edge = getattr(getattr(flank, "modifications", None), "tip_edge", None)
+        if edge is not None:
+            base = flank.base
+            toward = 1.0 if base.tip_roll >= edge.start else -1.0
+            out[member] = (edge.start / base.gear.base_radius, toward)
+    return out
 
 
 def _end_load_ratio(edge: EdgeLoad, s: ContactSolution) -> float:
@@ -191,15 +243,17 @@ def _edge_name(field: GapField, edge: EdgeLoad) -> str:
     return f"field_{'xy'[edge.axis]}_{edge.side}"
 
 
-def _interior_peak(field: GapField, s: ContactSolution) -> float:
-    """The largest pressure (MPa) more than EDGE_STRIP from every edge of the material: with
-    the strip-averaged edge pressure, the peak that converges as the grid is refined (the
-    pressure in a cell at a sharp edge does not)."""
+def _interior_peak(field: GapField, s: ContactSolution, roundings=()) -> float:
+    """The largest pressure (MPa) more than EDGE_STRIP from every edge of the material and
+    off the tip roundings (bool masks): with the strip-averaged edge pressure, the peak that
+    converges as the grid is refined (the pressure in a cell at a sharp edge does not)."""
     from scipy.ndimage import distance_transform_edt
 
     material = field.material
     inside = (material if material.all() else
               distance_transform_edt(material, sampling=field.spacing) > EDGE_STRIP)
+    for on in roundings:
+        inside = inside & ~on
     p = s.pressure_MPa
     return float(p[inside].max()) if inside.any() else 0.0
 
@@ -223,8 +277,9 @@ def loaded_cycle(cycle, C_E: float, points: int = 128, teeth: PairCompliance | N
     fields = contact_fields(cycle, every, points, _Pair.MARGIN,   # one batch
                             np.minimum(pattern_semi_axes(cycle, every),
                                        field_reach(cycle, every)[:, None]),
-                            largest_cell=CELL, snap=True)
+                            largest_cell=CELL, snap=True, far=LOADED_FAR)
     groups = list(positions.values())
+    roundings = rounding_starts(cycle)
 
     def position(index: int):
         """A position's (field, face, solution, summary) per pair (the field where it was
@@ -243,7 +298,7 @@ def loaded_cycle(cycle, C_E: float, points: int = 128, teeth: PairCompliance | N
             return str(exc)
         return [(None if pair.field is fields[k] else pair.field,
                  None if pair.structure is None else pair.structure.face_load(), solution,
-                 None if solution is None else summarise(pair.field, solution, load))
+                 None if solution is None else summarise(pair.field, solution, load, roundings))
                 if k in solutions else (None, None, None, None)
                 for k, (pair, solution) in ((k, solutions.get(k, (None, None))) for k in ks)]
 
@@ -278,6 +333,9 @@ class _Pair:
                                                   self.largest)
         self.growth = (np.array([1.6, 1.6]) if cycle.rows[k]["contact_model"] == "ellipse"
                        else np.array([2.5, 1.3]))
+        #: the field's box ((2, 2) mm in the plane) once it is narrowed onto the contact
+        #: (see narrow); None while it lies about the pattern
+        self.box: np.ndarray | None = None
         self._use(field)
 
     def _use(self, field: GapField) -> None:
@@ -293,13 +351,57 @@ class _Pair:
     def grow(self) -> None:
         """Widen the field (the loaded contact reached its edge); ValueError where it
         already covers the flanks."""
+        if self.box is not None:
+            middle, half = self.box.mean(axis=1), 0.5 * np.ptp(self.box, axis=1)
+            grown = np.minimum(half * self.growth.max(), self.largest)
+            if np.array_equal(grown, half):
+                raise self._outgrown()
+            self._narrowed(np.stack([middle - grown, middle + grown], axis=1))
+            return
         grown = np.minimum(self.semi_axes * self.growth, self.largest)
         if np.array_equal(grown, self.semi_axes):
-            raise ValueError(f"the loaded contact at roll {self.cycle.rows[self.k]['roll_deg']:.3f} "
-                             "deg outgrows its gap field (the surfaces end around it)")
+            raise self._outgrown()
         self.semi_axes = grown
         self._use(contact_fields(self.cycle, [self.k], self.points, 1.0,
-                                 self.semi_axes[None], CELL, snap=True)[0])
+                                 self.semi_axes[None], CELL, snap=True, far=LOADED_FAR)[0])
+
+    def _outgrown(self) -> ValueError:
+        return ValueError(f"the loaded contact at roll {self.cycle.rows[self.k]['roll_deg']:.3f} "
+                          "deg outgrows its gap field (the surfaces end around it)")
+
+    def narrow(self, solution: ContactSolution | None) -> bool:
+        """Narrow the field onto a contact that spans fewer than RESOLVE_CELLS cells on every
+        line along an axis (a pair kept beyond the approach, sized on its far field, that
+        closes at one spot; a contact at a tip rounding's start): along that axis the box
+        becomes NARROW_SPAN times the contact's extent about it; whether it was narrowed
+        (once per pair: the position is then solved again)."""
+        if solution is None or self.box is not None:
+            return False
+        touched = solution.pressure_MPa > 0.0
+        if not touched.any():
+            return False
+        f = self.field
+        box = np.array([[f.x[0], f.x[-1]], [f.y[0], f.y[-1]]], float)
+        changed = False
+        for axis, coordinate in enumerate((f.x, f.y)):
+            # the contact's widest run of cells on a line along the axis
+            if touched.sum(axis=axis).max() >= RESOLVE_CELLS:
+                continue
+            cells = np.flatnonzero(touched.any(axis=1 - axis))
+            step = f.spacing[axis]
+            low, high = coordinate[cells[0]] - 0.5 * step, coordinate[cells[-1]] + 0.5 * step
+            half = 0.5 * NARROW_SPAN * (high - low)
+            box[axis] = 0.5 * (low + high) + np.array([-half, half])
+            changed = True
+        if changed:
+            self._narrowed(box)
+        return changed
+
+    def _narrowed(self, box: np.ndarray) -> None:
+        """Solve on the field over `box` ((2, 2) mm in the plane) from now on."""
+        self.box = box
+        self._use(contact_fields(self.cycle, [self.k], self.points, snap=True,
+                                 boxes=box[None], largest_cell=CELL, far=LOADED_FAR)[0])
 
     def grid(self, coarse: bool = False) -> Grid:
         """The field as the solver's grid, with the teeth's bending where there is a tooth
@@ -437,13 +539,14 @@ def _share(pairs: list[_Pair], load: float, E_star: float) -> list[ContactSoluti
     composite modulus E_star (MPa): one shared solve (pressure.solve_shared) started from
     the rigid analysis's split (the load equally among the pairs in contact; the others
     take load once the approach reaches them), first on the coarse grids where the teeth
-    bend; a pair whose contact reaches its field's edge gets a wider field and the position
-    is solved again. None for a pair that carries no load."""
+    bend; a pair whose contact reaches its field's edge gets a wider field, one that spans
+    too few cells a narrower one about it (_Pair.narrow), and the position is solved again.
+    None for a pair that carries no load."""
     touching = [p.rigid_contact for p in pairs]
     if not any(touching):
         touching = [True] * len(pairs)
     loads = np.array(touching, float) * (load / sum(touching))
-    for _ in range(5 * len(pairs) + 1):
+    for _ in range(6 * len(pairs) + 1):
         try:
             starts = None
             if pairs[0].structure is not None:
@@ -451,9 +554,13 @@ def _share(pairs: list[_Pair], load: float, E_star: float) -> list[ContactSoluti
                                       dtype=np.float32, tol=COARSE_TOLERANCE)
                 starts = [p.refined(s) for p, s in zip(pairs, coarse)]
                 loads = np.array([0.0 if s is None else s.load_N for s in coarse])
-            return solve_shared([p.grid() for p in pairs], loads, E_star, starts=starts,
-                                dtype=np.float32, tol=GAP_TOLERANCE)
+            solutions = solve_shared([p.grid() for p in pairs], loads, E_star, starts=starts,
+                                     dtype=np.float32, tol=GAP_TOLERANCE)
         except GridEdgeError as exc:
             pairs[exc.grid].grow()
+            continue
+        if not any([pair.narrow(s) for pair, s in zip(pairs, solutions)]):
+            return solutions
+        loads = np.array([0.0 if s is None else s.load_N for s in solutions])
     raise ValueError(f"the loaded contact at roll {pairs[0].cycle.rows[pairs[0].k]['roll_deg']:.3f} "
                      "deg outgrows its gap fields")
