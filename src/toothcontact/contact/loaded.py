@@ -66,6 +66,9 @@ CELL = EDGE_STRIP / 3.0
 #: a loaded contact spanning fewer than RESOLVE_CELLS cells along an axis of its field is
 #: solved again on a field narrowed to NARROW_SPAN times its extent there (_Pair.narrow)
 RESOLVE_CELLS, NARROW_SPAN = 10, 3.0
+#: ... where that box is at most NARROW_GAIN of the field's side (an oblique line that
+#: spans the field is left as it is)
+NARROW_GAIN = 0.5
 #: with the teeth's bending, a position is solved first on coarser grids, then on the full
 #: grids from there. A line contact's field (LINE_ASPECT or more times as many cells along
 #: one axis as along the other) keeps every cell across the line, where the pressure rises
@@ -391,6 +394,8 @@ class _Pair:
             step = f.spacing[axis]
             low, high = coordinate[cells[0]] - 0.5 * step, coordinate[cells[-1]] + 0.5 * step
             half = 0.5 * NARROW_SPAN * (high - low)
+            if half > 0.5 * NARROW_GAIN * np.ptp(box[axis]):
+                continue            # a contact lying across the field: narrowing gains little
             box[axis] = 0.5 * (low + high) + np.array([-half, half])
             changed = True
         if changed:
