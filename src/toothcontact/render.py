@@ -1190,9 +1190,13 @@ def pressure_scene(result, case=None, name: str = "", patch: Patch | None = None
     edges_loaded = loaded_edges(cycle)
     warnings = []
     if edges_loaded:
+        rounded = {f"{member}_tip" for member in ("pinion", "gear")
+                   if (result.sections.get(member) or {}).get("tip_edge_radius_mm")}
         warnings.append("EDGE LOAD: " + ", ".join(
-            f"{e.replace('_', ' ')} {p:.0f} MPa" for e, p in edges_loaded.items())
-            + " (averaged over the edge strip)")
+            f"{e.replace('_', ' ')} {p:.0f} MPa" + (" on its rounding" if e in rounded else "")
+            for e, p in edges_loaded.items())
+            + (" (sharp edges averaged over the edge strip)"
+               if set(edges_loaded) - rounded else ""))
     if crossed:
         warnings.append("Hertz ellipses cross the " + ", ".join(
             e.replace("_", " ") for e in crossed))
