@@ -150,11 +150,13 @@ FAR = 0.5
 #: a flank continued from the contact: another branch of a long surface (a worm thread's
 #: next turn, a wheel flank's fold) is met by a jump, a flank curving away from the plane
 #: by a slope. A fixed height (FAR) instead cut a worm set's long, curved contact lines
-#: inside the flank: their loaded contact pressed on that false edge ("beyond_surface")
-STEEPEST = 1.0
+#: inside the flank: their loaded contact pressed on that false edge ("beyond_surface").
+#: A flank near its base circle rises steeply too (its radius of curvature goes to zero):
+#: at 1 (45°) an undercut pinion's flank was cut there
+STEEPEST = 3.0
 #: the height (mm) above the tangent plane beyond which a loaded contact's field takes no
-#: hit, jump or not: its contact lines are followed on (a worm set's: a PA66 set's 10 of 19
-#: contacts peaked on a false edge within FAR, none within this); the rigid search's
+#: hit, jump or not: its contact lines are followed on (a PA66 worm set's contacts ended on
+#: a false edge in 10 of 19 within FAR, 3 within this, its peak no longer); the rigid search's
 #: fields keep FAR, which its patterns on long worm flanks need to stay on their branch
 LOADED_FAR = 5.0
 
@@ -515,24 +517,41 @@ class RigidPattern:
 
 def rigid_patterns(cycle, points: int, margin: float = 1.25, growths: int = 3) -> list[RigidPattern]:
     """The rigid pattern of every row of a contact cycle, each on a `points` × `points`
-    separation field over the box of its rigid ellipse (the A axis capped at the face
-    length) enlarged by `margin`; a field the pattern reaches the side of is enlarged 1.6
-    times, up to `growths` times. All rows' fields are solved in one batch. A row kept
-    beyond the approach (rigid_contact false) has no pattern (zero)."""
+    separation field over the box of its rigid ellipse (both axes capped at the shorter
+    member's face length: a worm's nearly conformal flanks make ellipses of metres)
+    enlarged by `margin`; a field the pattern reaches the side of is enlarged 1.6
+    times, up to `growths` times (where a grown batch cannot be followed on the flanks, each
+    row is measured on the field it had). All rows' fields are solved in one batch. A row
+    kept beyond the approach (rigid_contact false) has no pattern (zero)."""
     from scipy.ndimage import binary_dilation
 
     rows, approach = cycle.rows, cycle.settings.approach
-    face = face_length(cycle.pinion, (np.asarray(cycle.contacts.pinion_u), np.asarray(cycle.contacts.pinion_v)))
+    # the shorter of the two members' faces (a worm's thread runs on for turns; the wheel's
+    # face bounds its contact lines)
+    face = np.minimum(*(face_length(getattr(cycle, m), (
+        np.asarray(getattr(cycle.contacts, f"{m}_u")),
+        np.asarray(getattr(cycle.contacts, f"{m}_v")))) for m in ("pinion", "gear")))
     # a contact line's box spans the face both ways: its part in contact may lie to one side
     semi_axes = np.array([[f if r["contact_model"] != "ellipse" else min(r["rigid_a_mm"], f),
-                           r["rigid_b_mm"]] for r, f in zip(rows, face)])
+                           min(r["rigid_b_mm"], f)] for r, f in zip(rows, face)])
     margins = np.full(len(rows), float(margin))
     out: list[RigidPattern | None] = [None if r.get("rigid_contact", True)
                                       else RigidPattern(0.0, 0.0, 0.0, False) for r in rows]
     todo = np.array([k for k in range(len(rows)) if out[k] is None], int)
+    previous: dict[int, GapField] = {}
     for attempt in range(growths + 1):
-        solved = contact_fields(cycle, todo, (points, points), margins[todo], semi_axes[todo])
+        try:
+            solved = contact_fields(cycle, todo, (points, points), margins[todo],
+                                    semi_axes[todo])
+        except ValueError:
+            if attempt == 0:
+                raise
+            # a field grown past where its flanks can be followed (a worm's far turns):
+            # each row keeps the field it had
+            solved = [previous[k] for k in todo]
+            attempt = growths
         for k, field in zip(todo, solved):
+            previous[k] = field
             below = rows[k]["separation_mm"] + approach - field.gap
             pattern = field.material & (below >= 0)
             rim = np.zeros(pattern.shape, bool)

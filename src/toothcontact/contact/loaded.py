@@ -539,18 +539,34 @@ def coarse_steps(shape: tuple[int, int]) -> tuple[int, int]:
     return COARSE_STEP, COARSE_STEP
 
 
+def _widened(pairs: list[_Pair], wide: tuple[list, list[GapField]]
+             ) -> list[ContactSolution | None]:
+    """The solutions before the narrowing, each pair back on the field it was found on
+    (`wide`: the solutions and the fields; a narrowed field the solver could not close, or
+    whose contact outgrew it)."""
+    solutions, fields = wide
+    for pair, field in zip(pairs, fields):
+        if pair.field is not field:
+            pair._use(field)
+    return solutions
+
+
 def _share(pairs: list[_Pair], load: float, E_star: float) -> list[ContactSolution | None]:
     """Solutions of the pairs of one position (see module) under `load` (N) together,
     composite modulus E_star (MPa): one shared solve (pressure.solve_shared) started from
     the rigid analysis's split (the load equally among the pairs in contact; the others
     take load once the approach reaches them), first on the coarse grids where the teeth
     bend; a pair whose contact reaches its field's edge gets a wider field, one that spans
-    too few cells a narrower one about it (_Pair.narrow), and the position is solved again.
-    None for a pair that carries no load."""
+    too few cells a narrower one about it (_Pair.narrow), and the position is solved again
+    (where the narrowed fields cannot be solved, the solutions before stand). None for a
+    pair that carries no load."""
     touching = [p.rigid_contact for p in pairs]
     if not any(touching):
         touching = [True] * len(pairs)
     loads = np.array(touching, float) * (load / sum(touching))
+    # the solutions before a narrowing and their fields: kept where the narrowed fields
+    # cannot be solved
+    wide: tuple[list, list[GapField]] | None = None
     for _ in range(6 * len(pairs) + 1):
         try:
             starts = None
@@ -562,10 +578,21 @@ def _share(pairs: list[_Pair], load: float, E_star: float) -> list[ContactSoluti
             solutions = solve_shared([p.grid() for p in pairs], loads, E_star, starts=starts,
                                      dtype=np.float32, tol=GAP_TOLERANCE)
         except GridEdgeError as exc:
-            pairs[exc.grid].grow()
+            try:
+                pairs[exc.grid].grow()
+            except ValueError:
+                if wide is None:
+                    raise
+                return _widened(pairs, wide)
             continue
+        except RuntimeError:
+            if wide is None:
+                raise
+            return _widened(pairs, wide)
+        found_on = [pair.field for pair in pairs]
         if not any([pair.narrow(s) for pair, s in zip(pairs, solutions)]):
             return solutions
+        wide = (solutions, found_on)
         loads = np.array([0.0 if s is None else s.load_N for s in solutions])
     raise ValueError(f"the loaded contact at roll {pairs[0].cycle.rows[pairs[0].k]['roll_deg']:.3f} "
                      "deg outgrows its gap fields")
