@@ -4,13 +4,13 @@ cases/spur_crowned_20_60.toml (issue 27 item 5c). Coarse meshes: under a minute 
 finer comparison, its mesh convergence and the proposed correction are
 benchmarks/fe_tooth_face.py (benchmarks/fe_tooth_face.json).
 
-Status of the model against the FE (benchmark, pinion at r = 30 mm): the uniform-load slice
-compliance c is 20-25 % above FE, a point load in mid-face deflects the model's tooth 2.0-2.6x
-as far, the FE's face-end over mid-face ratio is 2.3-2.4 against the model's 1.8 and its
-deflection spreads over a decay length about twice the Vlasov coupling length. The tests
-below pin those discrepancies within bands (so that a change to the model or the FE shows)
-and check to 10 % what the model gets right: how the slice compliance grows with the load's
-height on the flank."""
+Status of the model against the FE (benchmark, pinion at r = 30 mm): the beam's slice
+compliance was 20-25 % above FE, a point load in mid-face deflected the model's tooth
+2.0-2.6x as far and FE's deflection spread over a decay length about twice Vlasov's
+coupling length; the model is corrected to it (compliance.SLICE_FACTOR,
+COUPLING_PER_ROOT_CHORD), and the tests below check the corrected model to 10 %: c, the
+mid-face point load, the coupling length, how c grows with the load's height. The face end
+is left: FE's end-over-mid ratio 2.3-2.4 against the line's 1.87, pinned in bands."""
 
 from __future__ import annotations
 
@@ -122,9 +122,9 @@ def study(pinion):
 
 def test_the_slice_compliance_grows_with_the_load_height_as_in_plane_strain_fe(pinion):
     """What the model gets right: c(31.5 mm)/c(28.5 mm) on the pinion's flank, the model
-    (1.99) against the whole gear in plane strain (2.05), within 10 %; and its excess over
-    FE is nearly the same at all three heights (FE/c 0.79-0.83, within 0.05 of each other),
-    so one factor corrects it."""
+    (1.99) against the whole gear in plane strain (2.05), within 10 %; and FE/c is nearly
+    the same at all three heights (the beam's 0.79-0.83, within 0.05 of each other), so one
+    factor corrects it."""
     from toothcontact.contact.compliance import ToothCompliance
 
     radii = (28.5, 30.0, 31.5)
@@ -135,34 +135,42 @@ def test_the_slice_compliance_grows_with_the_load_height_as_in_plane_strain_fe(p
     assert np.ptp(fe / model) < 0.05
 
 
-def test_fe_tooth_is_stiffer_than_the_models_slice_by_a_fifth(study):
-    """(1) Uniform line load: FE (3D, mid-face, at the centre line) 0.80-0.83 c (benchmark;
-    0.78-0.81 on this coarse mesh, which is stiffer), the plane-strain section within 4 % of
-    the 3D mid-face. Band: FE/c in [0.72, 0.90] (the model 11-39 % too soft)."""
+def test_the_corrected_slice_compliance_is_the_fe_tooths_within_10_percent(study):
+    """(1) Uniform line load: FE (3D, mid-face, at the centre line) against the model's c,
+    which is the beam's times SLICE_FACTOR (0.815, fitted on the medium mesh of the
+    benchmark): within 10 % (measured 0.969 on this coarse mesh, which is stiffer); the
+    plane-strain section within 4 % of the 3D mid-face. Before the correction FE/c was
+    0.78-0.83."""
     fe, model = study["fe"], study["model"]
-    assert 0.72 < fe["c_3d_centre"] / model["c"] < 0.90
+    assert fe["c_3d_centre"] / model["c"] == pytest.approx(1.0, abs=0.10)
     assert fe["c_2d_centre"] == pytest.approx(fe["c_3d_centre"], rel=0.04)
 
 
-def test_a_mid_face_point_load_spreads_further_in_fe_than_along_the_models_line(study):
-    """(3), (4): the FE deflection under a mid-face patch is 2.0-2.6x below the model's
-    (benchmark); its decay length (cosh fit from 3 mm) and the coupling length that would
-    match FE's point-over-uniform deflection are 1.6-2.6x the Vlasov length 2.86 mm.
-    Bands: model/FE peak in [1.8, 3.0]; FE lengths in [1.5, 3.0] λ."""
+def test_a_mid_face_point_load_spreads_along_the_face_as_in_fe(study):
+    """(3), (4): under a mid-face patch the model's deflection is the FE's within 10 %
+    (measured +1.5 %; 2.0-2.6x before the correction), its coupling length
+    (COUPLING_PER_ROOT_CHORD × S_f = 5.77 mm) the one that matches FE's point-over-uniform
+    deflection within 10 % (measured 5.67 mm), and FE's decay length (cosh fit from 3 mm:
+    4.82 mm on this mesh, 5.4-5.9 in the benchmark) within 25 % of it. Vlasov's length,
+    2.86 mm, was half of these."""
     fe, model, fit = study["fe"], study["model"], study["fits"]["centre_3"]
     lam = model["coupling_length"]
-    assert 1.8 < model["mid"] / fe["mid_centre"] < 3.0
-    assert 1.5 * lam < fit["L"] < 3.0 * lam
-    assert 1.5 * lam < fe["lambda_match_centre"] < 3.0 * lam
+    assert model["mid"] / fe["mid_centre"] == pytest.approx(1.0, abs=0.10)
+    assert fe["lambda_match_centre"] == pytest.approx(lam, rel=0.10)
+    assert fit["L"] == pytest.approx(lam, rel=0.25)
     profile = np.array(study["profiles"]["centre"]["mid"])
     mid = len(profile) // 2
     assert np.all(np.diff(profile[mid:]) < 0)           # falls from mid-face to the end
 
 
-def test_the_face_end_softens_more_in_fe_than_the_models_twofold(study):
+def test_the_face_end_softens_more_in_fe_than_the_models_line(study):
     """(2): a patch touching the face end deflects 2.3-2.4x the mid-face one in FE (centre
-    line; benchmark), the model's line 1.8 (a Pasternak line cannot exceed 2). Bands: FE in
-    [2.1, 2.7], the model's in [1.7, 1.9]."""
+    line; benchmark), the model's line 1.87 (a Pasternak line cannot exceed 2), so the
+    model's deflection under a point load at the end is 0.81 of FE's (measured): the
+    one comparison still outside 10 %, not corrected (a factor fitted to it would soften
+    the ends under a uniform load by a third, which no FE here has checked). Bands: FE in
+    [2.1, 2.7], the model's in [1.7, 2.0], model/FE at the end in [0.7, 0.9]."""
     fe, model = study["fe"], study["model"]
     assert 2.1 < fe["ratio_centre"] < 2.7
-    assert 1.7 < model["ratio"] < 1.9
+    assert 1.7 < model["ratio"] < 2.0
+    assert 0.7 < model["end"] / fe["end_centre"] < 0.9

@@ -149,10 +149,13 @@ def test_designed_crown_has_no_edge_load_and_a_flatter_one_has(slope):
     peak, the end's load per mm 0.01 of the contact's mean), while a crown radius 20 %
     larger is cut by the face end (above 0.5 of the peak there; the end's load per mm
     0.44 and 1.01 of the mean, measured: toward end A the cut reaches the ellipse's middle
-    and the end is loaded). With the teeth's bending the loaded pattern is longer than
-    Hertz's: the designed crown's edge pressure rises above twice the half-space's and its
-    end carries 0.16-0.21 of the mean load per mm (measured): seed 003's rule leaves no
-    room for the teeth's bending, though the end does not yet carry more than its share."""
+    and the end is loaded). With the teeth's bending (corrected to 3D FE, and the free end
+    faces' mirror term) the designed crown's pattern stays off the end as well (edge
+    pressure 0, no load at the end; measured) while the 20 % flatter crown's reaches it
+    (483 MPa and 0.18 of the mean load per mm toward end A, 108 MPa and 0.03 toward end B;
+    measured): seed 003's rule holds on bending teeth. (On the uncorrected teeth, 20-24 %
+    too soft with half the FE's coupling length, the designed crown's end carried 0.16-0.21
+    of the mean.)"""
     radius, centre = design()
     end = "end_A" if slope < 0 else "end_B"
     found, bending = {}, {}
@@ -165,8 +168,8 @@ def test_designed_crown_has_no_edge_load_and_a_flatter_one_has(slope):
         solved, _ = loaded_cycle(result.cycle, STEEL, 256)
         found[scale], bending[scale] = {**row, **solved[k].summary}, row
     designed, flat = found[1.0], found[1.2]
-    assert bending[1.0]["edge_pressure_MPa"] > 2 * designed["edge_pressure_MPa"]
-    assert 0.1 < bending[1.0]["end_load_ratio"] < 1.0
+    assert not bending[1.0]["edge_loaded"] and bending[1.0]["end_load_ratio"] < 0.01
+    assert bending[1.2]["edge_pressure_MPa"] > 50.0 and bending[1.2]["end_load_ratio"] > 0.02
     assert designed["edge_margins_mm"][f"pinion_{end}"] == pytest.approx(0.0, abs=0.15)
     assert not designed["edge_loaded"] and designed["end_load_ratio"] < 0.05
     assert designed["edge_pressure_MPa"] < 0.15 * designed["bem_p_max_MPa"]

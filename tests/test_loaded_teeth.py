@@ -29,19 +29,27 @@ def aligned():
     return spur((20, 60), 3, 20)
 
 
-@pytest.mark.parametrize("teeth, module, face, helix", [
-    ((20, 60), 3, 20, 0.0), ((17, 80), 4, 30, 0.0), ((25, 75), 3, 20, 15.0)])
-def test_the_mesh_stiffness_of_standard_pairs_is_isos(teeth, module, face, helix, aligned):
+@pytest.mark.parametrize("teeth, module, face, helix, within", [
+    ((20, 60), 3, 20, 0.0, 0.10), ((17, 80), 4, 30, 0.0, 0.10), ((25, 75), 3, 20, 15.0, 0.20)])
+def test_the_mesh_stiffness_of_standard_pairs_is_isos(teeth, module, face, helix, within,
+                                                      aligned):
     """The model's mean mesh stiffness against ISO 6336-1's c_γα and its single-pair
-    stiffness against c' (Method B, solid blanks): measured -11 % to +6 % and -9 % to
-    -12 % on these and two more pairs (see the issue 14 note); asserted within ±15 %."""
+    stiffness against c' (Method B, solid blanks), the teeth corrected to 3D finite
+    elements (compliance.SLICE_FACTOR). Spur pairs within 10 %: measured c_γα +8.6 % and
+    +4.7 %, c' +6.1 % and +2.9 % (the 2D FE of the 20/60 pair itself, 13.83, lies +2.5 %
+    above ISO's c': tests/test_fe_mesh_stiffness.py). The helical pair within 20 %:
+    measured +18.8 %. Its contact lines cross the face obliquely, so each loads a short
+    stretch of many slices, which the FE-fitted coupling (0.74 of the root chord) spreads
+    along the face further than Vlasov's did (+8 % before the correction); ISO's helical
+    c' is the spur value times cos β with no such term, and no 3D FE of a helical pair
+    checks either figure yet (stated in the issue 27 note)."""
     result = aligned if (teeth, face, helix) == ((20, 60), 20, 0.0) else spur(teeth, module, face, helix)
     s = result.sections["summary"]
     assert s["mesh_stiffness_N_per_mm_um"] == pytest.approx(s["iso_mesh_stiffness_N_per_mm_um"],
-                                                            rel=0.15)
+                                                            rel=within)
     if s["single_stiffness_N_per_mm_um"] is not None:       # a helical pair never has one
         assert s["single_stiffness_N_per_mm_um"] == pytest.approx(
-            s["iso_single_stiffness_N_per_mm_um"], rel=0.15)
+            s["iso_single_stiffness_N_per_mm_um"], rel=within)
 
 
 def test_an_aligned_uncrowned_pair_loads_its_face_evenly(aligned):
@@ -74,15 +82,16 @@ def test_a_slope_loads_the_face_as_isos_linear_misalignment(aligned):
     """An uncrowned 20/60 pair under a slope of 0.5 mrad (F_βy = 10 µm over b = 20 mm):
     at every position the line load, fitted by a line inside the end strips and taken to
     the face ends, gives K_Hβ against ISO 6336-1's 1 + F_βy·c/(2·F_m/b) with the same
-    stiffness c, the position's own from the aligned pair: one pair (c ≈ 12.3) gives 1.17,
-    two (c ≈ 21) 1.32. Where the loaded pairs touch without load ISO's linear stiffness
-    holds: within 2 % (measured -0.7 % to -0.2 %). Where a pair 14 µm away takes load only
-    through the others' deflection (roll -6.75 deg) the stiffness is not linear (that pair
-    engages more of its face the more the others deflect): within 10 % (measured +6.5 %;
-    the split of each position found with the teeth's bending on the full grid). The face
-    ends depart from the line: the unloaded end A is softer than its neighbours (end
-    softening: measured 5.7 % below the line), the loaded end B carries the half-space
-    contact's edge peak (5 % above it)."""
+    stiffness c, the position's own from the aligned pair: one pair (c ≈ 14.3) gives 1.24,
+    two (c ≈ 22) 1.37-1.42. ISO's formula takes the slices as independent springs; the
+    teeth, coupled along the face over 0.74 of the root chord (5.3 mm here, fitted to 3D
+    FE: compliance.COUPLING_PER_ROOT_CHORD), resist the tilt by their twist, which takes
+    load off end A and puts it on end B (a Pasternak line held to a linear deflection
+    needs end forces ±λ²w'/c; the contact's own compliance spreads them over a few mm,
+    into the fitted stretch). So the fit lies above ISO's: measured +8.1 % (one pair) to
+    +13.5 %, +6 % to +9 % fitted over the middle 7 mm only; asserted 0 to +16 %. (Before
+    the FE correction, with Vlasov's 2.9 mm, the fit was ISO's within 2 %.) The face ends
+    depart from the line further: end A 15-34 % below it, end B 6-16 % above it."""
     slope, width, line_load = 0.0005, 20.0, 300.0
     tilted = spur((20, 60), 3, width, slope=slope, line_load=line_load)
     stiffness = position_stiffness(aligned, width)
@@ -96,9 +105,7 @@ def test_a_slope_loads_the_face_as_isos_linear_misalignment(aligned):
         gradient, level = np.polyfit(face[2:-2], line[2:-2], 1)
         trend = (level + gradient * 0.5 * width) / mean
         iso = face_load_factor(slope * width * 1e3, stiffness[roll], line_load)
-        linear = all(r["separation_mm"] < 0.001 for r in rows
-                     if r["roll_deg"] == roll and r["bem_load_N"] > 0)
-        assert trend == pytest.approx(iso, rel=0.02 if linear else 0.10)
+        assert 1.0 < trend / iso < 1.16
         assert section["K_H_beta"][i] == pytest.approx(line.max() / mean, rel=1e-4)
         if sum(r["roll_deg"] == roll and r["bem_load_N"] > 0 for r in rows) == 1:
             assert line[0] < level + gradient * face[0]          # end A: softer

@@ -83,15 +83,18 @@ def test_an_aligned_spline_shares_its_torque_evenly_and_winds_up_as_its_teeth_be
 
 
 def test_a_tilted_spline_loads_both_face_ends_alike():
-    """The bundled crowned spline tilted by 0.1 deg: a tooth and the tooth opposite it see
-    the tilt mirrored along the face, so end A and end B carry the same largest edge
-    pressure over the contacts (here 3 positions: measured 333.9 and 333.9 MPa; asserted
-    within 0.5 %). The split found by separate per-tooth solves with the bending of a
-    coarser solve held fixed broke this symmetry (467 against 376 MPa); the position
-    solved as one coupled problem keeps it."""
+    """The bundled crowned spline tilted by 0.2 deg (its own 0.1 deg keeps the pattern
+    off the ends of the FE-corrected teeth: 0.002 MPa there): a tooth and the tooth
+    opposite it see the tilt mirrored along the face, so end A and end B carry the same
+    largest edge pressure over the contacts (here 3 positions: measured 1014.64 and
+    1014.58 MPa; asserted within 0.5 %). The split found by separate per-tooth solves with
+    the bending of a coarser solve held fixed broke this symmetry (467 against 376 MPa at
+    0.1 deg on the uncorrected teeth); the position solved as one coupled problem keeps
+    it."""
     with open(CASES_DIR / "spline_crowned_18t.toml", "rb") as f:
         raw = tomllib.load(f)
     raw.setdefault("analysis", {}).update(interference=False, positions=3)
+    raw["misalignment"] = "0.2 deg"
     result = analyse(parse_case(raw))
     ends = {}
     for contact in result.loaded:
@@ -100,5 +103,5 @@ def test_a_tilted_spline_loads_both_face_ends_alike():
                 if name in ("pinion_end_A", "pinion_end_B"):
                     ends[name] = max(ends.get(name, 0.0), edge.edge_pressure_MPa)
     assert set(ends) == {"pinion_end_A", "pinion_end_B"}
-    assert ends["pinion_end_A"] > 0
+    assert ends["pinion_end_A"] > 500.0
     assert ends["pinion_end_A"] == pytest.approx(ends["pinion_end_B"], rel=0.005)

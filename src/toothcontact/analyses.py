@@ -532,9 +532,9 @@ def _contact_pass(case: schema.SpurCase, pair, result: Result) -> None:
                      "tooth bending from each member's exact transverse slices (bending, shear, "
                      "axial and gear body compliance, solid blanks with a bore of half the root "
                      "diameter" + ("; the ring gear's body as an external gear's of its root "
-                                   "circle" if pair.gear.internal else "") + ") coupled along "
-                     "the face as a Pasternak line (contact.compliance), solved with the "
-                     "contact in one system", result)
+                                   "circle" if pair.gear.internal else "") + ", corrected to 3D finite "
+                     "elements of the whole gear) coupled along the face as a Pasternak line "
+                     "(contact.compliance), solved with the contact in one system", result)
     _load_distribution(case, pair, result)
     if case.analysis.interference:
         _spur_interference(mesh, pair, cycle, result)
@@ -1003,7 +1003,8 @@ def _spline_contact(case: schema.SplineCase, pair, result: Result) -> None:
                      "(bending, shear, axial and body compliance across the working depth: a "
                      "load at one height bends the whole tooth; the hub a solid shaft with a "
                      "bore of half its root diameter, the sleeve's body as an external gear's "
-                     "of its root circle) coupled along the engaged length as a Pasternak "
+                     "of its root circle; corrected to 3D finite elements of a gear) coupled "
+                     "along the engaged length as a Pasternak "
                      "line (contact.compliance), solved with the contact in one system", result)
     per_position = {}
     for r in cycle.rows:
