@@ -109,3 +109,46 @@ def test_gap_field_next_to_the_base_circle_stays_on_the_flank():
              for member, flank, frames in (("pinion", nine.pinion, nine.pinion_frames),
                                            ("gear", nine.gear, nine.gear_frames))]
     assert np.max(np.abs(exact[1] - exact[0] - field.gap[i, j])) < 1e-5
+
+
+HELICAL = {"kind": "spur", "teeth": [23, 61], "module": "3 mm", "pressure_angle": "20 deg",
+           "helix_angle": "30 deg", "face_width": "30 mm"}     # tips rounded by default
+
+
+def test_a_turned_field_at_a_rounded_helical_tip_is_the_exact_gap():
+    """An uncrowned 30 deg helical pair with its default tip roundings (0.3 mm): each
+    contact line's field laid along the line (contact_fields' along_pattern, turned by
+    10-20 deg from the face direction), 128 × 48 points. Where the flanks lie within 50 µm
+    of each other, the field's gap is the exact ray solve at its points to 1 % + 0.01 µm
+    (measured 0.8 % at most), and to 0.1 µm where they lie within 10 µm (measured 0.05
+    µm), next to the roundings too. The splines carry the gap less the modifications,
+    which are put back from the interpolated parameters (field.modification_gap): splined
+    whole, a rounding's start, narrower than the samples' spacing, rang in them (a false
+    notch of 16 µm beside a helical tip, 7 GPa on it)."""
+    from toothcontact.contact.field import contact_fields, field_turns
+    from toothcontact.contact.local import turned
+
+    helical = spur_cycle(HELICAL, 0.0, 3)[1]
+    rows = np.arange(len(helical.rows))
+    turns = field_turns(helical, rows)
+    assert np.all(np.abs(np.degrees(turns)) > 5.0)
+    fields = contact_fields(helical, rows, (128, 48), along_pattern=True)
+    near_tips = 0
+    for k, field in zip(rows, fields):
+        assert field.turn == turns[k]
+        close = np.isfinite(field.gap) & (field.gap < 0.05)
+        i, j = np.nonzero(close)
+        index = np.array([k])
+        planes = turned(planes_at(helical.planes, index), turns[index])
+        x, y = field.x[i][None], field.y[j][None]
+        hp = heights(helical.pinion, helical.pinion_frames[index], planes, x, y,
+                     *helical.contact_uv("pinion", k))
+        hg = heights(helical.gear, helical.gear_frames[index], planes, x, y,
+                     *helical.contact_uv("gear", k))
+        exact = (hg.s - hp.s)[0]
+        error = np.abs(exact - field.gap[i, j])
+        assert np.all(error <= 0.01 * exact + 1e-5)
+        assert np.all(error[exact < 0.01] < 1e-4)
+        near_tips += sum(int((np.abs(v[i, j]) < 0.05).sum()) for name, v in field.inside.items()
+                         if name.endswith("_tip"))
+    assert near_tips > 100                  # the comparison reaches the roundings

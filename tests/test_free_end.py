@@ -158,3 +158,67 @@ def test_a_hertz_line_contact_at_a_free_end_loads_it_as_3d_finite_elements_do():
     assert ours_free[0.1] == pytest.approx(free.end_average(0.1), rel=0.10)
     assert ours_running[0.25] == pytest.approx(running.end_average(0.25), rel=0.10)
     assert free.peak_mid == pytest.approx(free.p0_hertz, rel=0.02)
+
+
+def oblique_cylinder_line_load(radius, load, length, phi, cell, angle):
+    """cylinder_line_load with the cylinder's axis at `angle` (rad) to the grid's x: the
+    same body and end face turned in the plane, its end crossing the cells obliquely
+    (pressure.ObliqueFreeEnd); the line load binned along the axis."""
+    E_star = E_STEEL / (1 - NU**2)
+    b = math.sqrt(4 * load * radius / (math.pi * E_star))
+    along = np.array([math.cos(angle), math.sin(angle)])
+    across = np.array([-along[1], along[0]])
+    corners = np.array([s * along + q * across for s in (-length, length) for q in (-3 * b, 3 * b)])
+    lo, hi = corners.min(axis=0), corners.max(axis=0)
+    shape = np.ceil((hi - lo) / cell).astype(int) + 1
+    X, Y = np.meshgrid(lo[0] + np.arange(shape[0]) * cell, lo[1] + np.arange(shape[1]) * cell,
+                       indexing="ij")
+    s, q = X * along[0] + Y * along[1], X * across[0] + Y * across[1]
+    gap = q**2 / (2 * radius)
+    mask = (s < 0) & (s > -length) & (np.abs(q) < 3 * b)
+    # d = -s (mm) at cell (i, j): the distance from the end into the body
+    ends = ((P.ObliqueFreeEnd(-along[0] * cell, -along[1] * cell, -float(lo @ along), phi,
+                              length),) if phi else ())
+    total = load * length
+    for _ in range(3):                        # the mid-length line load brought to `load`
+        solved = solve_shared([Grid(gap, cell, cell, mask, None, (), ends)], [total], E_star,
+                              tol=1e-8, max_iter=2000)[0]
+        cell_load = solved.pressure_MPa * cell * cell
+        mid = cell_load[np.abs(s + 0.5 * length) < 0.5].sum()     # N over 1 mm
+        total *= load / mid
+    return {c: float(cell_load[s > -c * b].sum() / (c * b) / mid) for c in (0.1, 0.25, 0.5)}
+
+
+def test_an_oblique_free_end_loads_its_end_as_a_square_one():
+    """The Hertz line contact of the test above (b = 1 mm, 10b long, cells of b/20) turned
+    by 30 deg to the grid, so that its free end crosses the cells obliquely (a helical
+    flank's face end on a field laid along the helix): the mirror's images then fall off
+    the cell centres and are spread onto them. The line load at the end against mid-length
+    agrees with the square end's: within 2 % over the last 0.25b and 0.5b and within 5 %
+    over the last 0.1b (two cells, a staircase along the end; measured -0.6 %, -0.6 % and
+    -0.9 %; with cells of b/40 -0.5 %, -0.5 %, -0.65 %); on the half-space (running on) the
+    same within 2 % over 0.25b. The operator stays symmetric to the spreading's order:
+    |v·K u - u·K v| below 1e-3 of v·K u (measured 8e-6)."""
+    phi = free_end_factor(NU)
+    load = math.pi * E_STEEL / (1 - NU**2) / (4 * 84.0)      # b = 1 mm
+    square = cylinder_line_load(84.0, load, 10.0, phi, 0.05)
+    turned = oblique_cylinder_line_load(84.0, load, 10.0, phi, 0.05, math.radians(30.0))
+    for c in (0.25, 0.5):
+        assert turned[c] == pytest.approx(square[c], rel=0.02)
+    assert turned[0.1] == pytest.approx(square[0.1], rel=0.05)
+    running = oblique_cylinder_line_load(84.0, load, 10.0, 0.0, 0.05, math.radians(30.0))
+    assert running[0.25] == pytest.approx(cylinder_line_load(84.0, load, 10.0, 0.0, 0.05)[0.25],
+                                          rel=0.02)
+
+    rng = np.random.default_rng(3)
+    dx, dy = 0.1, 0.08
+    end = P.ObliqueFreeEnd(0.6 * dx, 0.8 * dy, -1.2, phi, 1.5)
+    op = P.influence_operator((30, 24), dx, dy)
+
+    def K(p):
+        out = op(p)
+        end.add_mirror(out, p, op, (dx, dy), single=False)
+        return out
+
+    u, v = rng.random((30, 24)), rng.random((30, 24))
+    assert abs(np.sum(v * K(u)) - np.sum(u * K(v))) < 1e-3 * np.sum(v * K(u))

@@ -140,7 +140,8 @@ def synthetic_loaded(cycle, n: int = 48):
         xa = X * math.cos(angle) + Y * math.sin(angle)
         yb = -X * math.sin(angle) + Y * math.cos(angle)
         p = row["p_max_MPa"] * np.sqrt(np.clip(1 - (xa / a) ** 2 - (yb / b) ** 2, 0, None))
-        out.append(SimpleNamespace(field=SimpleNamespace(x=x, y=y, material=np.ones_like(p, bool)),
+        out.append(SimpleNamespace(field=SimpleNamespace(x=x, y=y, material=np.ones_like(p, bool),
+                                                            turn=0.0),
                                    solution=SimpleNamespace(pressure_MPa=p)))
     return out
 

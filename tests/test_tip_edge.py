@@ -136,3 +136,28 @@ def test_a_sharp_tips_strip_pressure_does_not_depend_on_where_the_grid_cuts_it(m
         peaks.append(result.sections["summary"]["max_edge_pressure_MPa"])
     assert peaks[1] == pytest.approx(peaks[0], rel=0.03)
     assert peaks[2] == pytest.approx(peaks[0], rel=0.03)
+
+
+def test_a_helical_pairs_rounded_tip_corners_converge_with_the_grid():
+    """An uncrowned, unrelieved 30 deg helical pair (z = 23/61, m = 3 mm, 300 N/mm) with its
+    default 0.3 mm tip roundings: its contact lines run onto the roundings at their ends (a
+    corner contact at each tip: what tip relief is for). Each line's field is laid along
+    it, so that its cells across are 0.012-0.02 mm, and the splines carry the gap without
+    the roundings (field.modification_gap). The largest pressure of every contact then
+    changes by less than 4 % from pressure_grid 256 to 384 (measured 2.3 % at most;
+    3.4-5.4 GPa, on the roundings); on fields along the face with the gap splined whole
+    it jumped by up to 40 % and a false notch beside a tip read 7 GPa."""
+    def peaks(grid):
+        result = analyses.analyse(parse_case({
+            "kind": "spur", "title": "helical corners", "teeth": [23, 61], "module": "3 mm",
+            "pressure_angle": "20 deg", "helix_angle": "30 deg", "face_width": "30 mm",
+            "misalignment": {"slope": "0"}, "load": {"tangential_load": "9000 N"},
+            "analysis": {"positions": 3, "interference": False, "pressure_grid": grid}}))
+        return [(r["bem_p_max_MPa"], r["edge_pressure_at"]) for r in result.sections["positions"]
+                if r["bem_load_N"]]
+
+    fine, finer = peaks(256), peaks(384)
+    assert len(fine) == len(finer) >= 6
+    for (p, at), (q, at_finer) in zip(fine, finer):
+        assert q == pytest.approx(p, rel=0.04)
+        assert at.endswith("_tip") and at == at_finer

@@ -1092,8 +1092,9 @@ def _pair_camera(plotter, case, focus, normal, pinion_frame, gear_frame, m: floa
 def pressure_on_flank(cycle, loaded: list, patch: Patch, refine: int = 4):
     """The largest pressure (MPa) over the rows' loaded solutions at the points of the shown
     flank, on a grid `refine` times finer than the patch: (points (nu, nv, 3), pressure
-    (nu, nv)). Each row's pressure lives on a grid of its tangent plane (field.x along e1,
-    field.y along e2, mm from the contact point); a flank point is carried there by the
+    (nu, nv)). Each row's pressure lives on a grid of its tangent plane (field.x along e1
+    turned by field.turn, field.y across it, mm from the contact point); a flank point is
+    carried there by the
     row's frame and read off by bilinear interpolation where it lies within 0.05 mm of the
     plane and on both flanks' material."""
     from scipy.interpolate import RegularGridInterpolator
@@ -1114,7 +1115,9 @@ def pressure_on_flank(cycle, loaded: list, patch: Patch, refine: int = 4):
         field, p = item.field, np.asarray(item.solution.pressure_MPa, float)
         world = frames[np.array([k])].to_world(flat[None])[0]
         rel = world - planes.point[k]
-        x, y, h = rel @ planes.e1[k], rel @ planes.e2[k], rel @ planes.normal[k]
+        e1 = math.cos(field.turn) * planes.e1[k] + math.sin(field.turn) * planes.e2[k]
+        e2 = np.cross(planes.normal[k], e1)
+        x, y, h = rel @ e1, rel @ e2, rel @ planes.normal[k]
         fx, fy = np.asarray(field.x, float), np.asarray(field.y, float)
         near = ((x >= fx[0]) & (x <= fx[-1]) & (y >= fy[0]) & (y <= fy[-1])
                 & (np.abs(h) < 0.05))

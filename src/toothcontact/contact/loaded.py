@@ -40,7 +40,7 @@ from .compliance import FaceLoad, PairCompliance
 from .field import LOADED_FAR, GapField, contact_fields, is_face_end, pattern_semi_axes
 from .local import face_length
 from .pressure import (ContactSolution, EdgeLoad, FreeEnd, Grid, GridEdgeError,
-                       free_end_factor, solve_shared)
+                       ObliqueFreeEnd, free_end_factor, solve_shared)
 
 #: width (mm) of the strip at an edge over which the edge pressure is averaged
 EDGE_STRIP = 0.1
@@ -280,7 +280,8 @@ def loaded_cycle(cycle, C_E: float, points: int = 128, teeth: PairCompliance | N
     fields = contact_fields(cycle, every, points, _Pair.MARGIN,   # one batch
                             np.minimum(pattern_semi_axes(cycle, every),
                                        field_reach(cycle, every)[:, None]),
-                            largest_cell=CELL, snap=True, far=LOADED_FAR)
+                            largest_cell=CELL, snap=True, far=LOADED_FAR,
+                            along_pattern=True)
     groups = list(positions.values())
     roundings = rounding_starts(cycle)
 
@@ -366,7 +367,8 @@ class _Pair:
             raise self._outgrown()
         self.semi_axes = grown
         self._use(contact_fields(self.cycle, [self.k], self.points, 1.0,
-                                 self.semi_axes[None], CELL, snap=True, far=LOADED_FAR)[0])
+                                 self.semi_axes[None], CELL, snap=True, far=LOADED_FAR,
+                                 along_pattern=True)[0])
 
     def _outgrown(self) -> ValueError:
         return ValueError(f"the loaded contact at roll {self.cycle.rows[self.k]['roll_deg']:.3f} "
@@ -406,7 +408,8 @@ class _Pair:
         """Solve on the field over `box` ((2, 2) mm in the plane) from now on."""
         self.box = box
         self._use(contact_fields(self.cycle, [self.k], self.points, snap=True,
-                                 boxes=box[None], largest_cell=CELL, far=LOADED_FAR)[0])
+                                 boxes=box[None], largest_cell=CELL, far=LOADED_FAR,
+                                 along_pattern=True)[0])
 
     def grid(self, coarse: bool = False) -> Grid:
         """The field as the solver's grid, with the teeth's bending where there is a tooth
@@ -439,9 +442,10 @@ class _Pair:
 #: to 1e-3 from 2 to 6 depths)
 FREE_END_REACH = 1.0
 #: an end face is taken as crossing the grid along one axis where its normal lies within
-#: this angle (deg) of that axis (a spur or helical face end is square to the face
-#: direction x; a misalignment turns it by a fraction of a degree)
-FREE_END_ANGLE = 15.0
+#: this angle (deg) of that axis (a spur face end is square to the face direction x; a
+#: misalignment turns it by a fraction of a degree); beyond it, obliquely (a helical face
+#: end on a field laid along the helix or along a contact line: pressure.ObliqueFreeEnd)
+FREE_END_ANGLE = 1.0
 
 
 def free_ends(field: GapField, weights: dict[str, float], reference: tuple
@@ -467,6 +471,7 @@ def free_ends(field: GapField, weights: dict[str, float], reference: tuple
                   np.gradient(np.nan_to_num(field.inside[name]), *spacing))
         angle = math.degrees(math.atan2(min(abs(gx), abs(gy)), max(abs(gx), abs(gy))))
         if angle > FREE_END_ANGLE:
+            ends.append(_oblique_end(field, name, weights[member], reach))
             continue
         axis = 0 if abs(gx) >= abs(gy) else 1
         outside = beyond if axis == 0 else beyond.T
@@ -484,22 +489,60 @@ def free_ends(field: GapField, weights: dict[str, float], reference: tuple
     return _merged(ends)
 
 
-def _merged(ends: list[FreeEnd]) -> tuple[FreeEnd, ...]:
+def _oblique_end(field: GapField, name: str, weight: float, reach: float) -> ObliqueFreeEnd:
+    """The face end `name` crossing the field obliquely as a straight line: its `inside`
+    field (the flank's face parameter's distance from the end) fitted by a plane over the
+    cells within `reach` mm of the end, scaled to mm; moved out, where the fit leaves a
+    material cell beyond it, to that cell's centre (no material cell without its mirror)."""
+    dx, dy = field.spacing
+    inside = field.inside[name]
+    I, J = np.meshgrid(np.arange(inside.shape[0]), np.arange(inside.shape[1]), indexing="ij")
+    finite = np.isfinite(inside)
+    gx, gy = (np.median(g[finite]) for g in np.gradient(np.nan_to_num(inside), dx, dy))
+    near = finite & (np.abs(inside) < reach * math.hypot(gx, gy))
+    if near.sum() < 3:
+        near = finite
+    (alpha, beta, gamma), *_ = np.linalg.lstsq(
+        np.column_stack([I[near], J[near], np.ones(near.sum())]), inside[near], rcond=None)
+    scale = math.hypot(alpha / dx, beta / dy)
+    a, b, c = alpha / scale, beta / scale, gamma / scale
+    on = field.material & near
+    if on.any():
+        c += max(0.0, -float(np.min(a * I[on] + b * J[on] + c)))
+    return ObliqueFreeEnd(a, b, c, weight, reach)
+
+
+def _merged(ends: list) -> tuple:
     """The ends with those of both members that lie within a cell of each other (flush
     ends) taken as one, at the outer of the two, their weights summed: one mirror
-    convolution instead of two."""
-    out: list[FreeEnd] = []
+    convolution instead of two (square ends on the same axis and side; oblique ends whose
+    normals agree within FREE_END_ANGLE)."""
+    out: list = []
     for end in ends:
-        twin = next((k for k, o in enumerate(out) if (o.axis, o.side) == (end.axis, end.side)
-                     and abs(o.index - end.index) <= 1), None)
+        twin = next((k for k, o in enumerate(out) if _flush(o, end)), None)
         if twin is None:
             out.append(end)
             continue
         o = out[twin]
-        index = min(o.index, end.index) if o.side == "low" else max(o.index, end.index)
-        out[twin] = FreeEnd(o.axis, index, o.side, o.weight + end.weight,
-                            max(o.reach_mm, end.reach_mm))
+        reach, weight = max(o.reach_mm, end.reach_mm), o.weight + end.weight
+        if isinstance(o, FreeEnd):
+            index = min(o.index, end.index) if o.side == "low" else max(o.index, end.index)
+            out[twin] = FreeEnd(o.axis, index, o.side, weight, reach)
+        else:
+            out[twin] = ObliqueFreeEnd(o.a, o.b, max(o.c, end.c), weight, reach)
     return tuple(out)
+
+
+def _flush(one, other) -> bool:
+    """Whether two free ends are the same end face of the two members (within a cell)."""
+    if isinstance(one, FreeEnd) and isinstance(other, FreeEnd):
+        return ((one.axis, one.side) == (other.axis, other.side)
+                and abs(one.index - other.index) <= 1)
+    if isinstance(one, ObliqueFreeEnd) and isinstance(other, ObliqueFreeEnd):
+        turn = math.degrees(math.acos(min(1.0, (one.a * other.a + one.b * other.b)
+                                          / math.hypot(one.a, one.b) / math.hypot(other.a, other.b))))
+        return turn <= FREE_END_ANGLE and abs(one.c - other.c) <= math.hypot(one.a, one.b)
+    return False
 
 
 def _member_ends(teeth: PairCompliance | None) -> dict[str, float]:

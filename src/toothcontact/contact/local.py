@@ -143,6 +143,12 @@ def planes_at(planes: TangentPlanes, index) -> TangentPlanes:
     return TangentPlanes(planes.point[index], planes.normal[index], planes.e1[index], planes.e2[index])
 
 
+def turned(planes: TangentPlanes, angle: np.ndarray) -> TangentPlanes:
+    """The same planes with their bases turned by `angle` (rad, (K,)) from e1 toward e2."""
+    e1 = planes.direction(np.asarray(angle, float))
+    return TangentPlanes(planes.point, planes.normal, e1, np.cross(planes.normal, e1))
+
+
 def analytic_gaps(pinion: Flank, gear: Flank, pinion_frames: Frame, gear_frames: Frame,
                   planes: TangentPlanes, pinion_uv, gear_uv) -> list[RelativeCurvature]:
     """A, B and the direction of A from the principal curvatures of both flanks (convex

@@ -553,6 +553,14 @@ def free_end_factor(nu: float) -> float:
     return float(np.interp(nu, ratios, factors))
 
 
+def end_taper(depth: np.ndarray) -> np.ndarray:
+    """A free end's mirror weight at `depth` from the end in reaches: 1 to half the reach,
+    a cosine down to 0 at the reach."""
+    d = np.asarray(depth, float)
+    return np.where(d <= 0.5, 1.0, np.where(d < 1.0, 0.5 + 0.5 * np.cos(2.0 * math.pi * (d - 0.5)),
+                                             0.0))
+
+
 @dataclass(frozen=True)
 class FreeEnd:
     """A free end face of one of the two bodies, crossing a grid along `axis` (0: its x):
@@ -586,11 +594,8 @@ class FreeEnd:
         return FreeEnd(self.axis, self.index - start, self.side, self.weight, self.reach_mm)
 
     def taper(self, count: int, step: float) -> np.ndarray:
-        """Weights of the `count` cells inward from the end (step mm each): 1 to half the
-        reach, a cosine down to 0 at the reach."""
-        d = (np.arange(count) + 0.5) * step / self.reach_mm
-        return np.where(d <= 0.5, 1.0, np.where(d < 1.0, 0.5 + 0.5 * np.cos(2.0 * math.pi * (d - 0.5)),
-                                                 0.0))
+        """Weights of the `count` cells inward from the end (step mm each): see end_taper."""
+        return end_taper((np.arange(count) + 0.5) * step / self.reach_mm)
 
     def add_mirror(self, u: np.ndarray, p: np.ndarray, op: "InfluenceOperator",
                    spacing: tuple[float, float], single: bool) -> None:
@@ -627,6 +632,66 @@ class FreeEnd:
         part = op.part(line.shape if self.axis == 0 else line.T.shape)
         image = part(line, single) if self.axis == 0 else part(line.T, single).T
         u[lo:hi] += self.weight * taper * image[take]
+
+
+@dataclass(frozen=True)
+class ObliqueFreeEnd:
+    """A free end face of one of the bodies crossing a grid obliquely (a helical flank's
+    face end on a field laid along its helix): the line d = 0, d = a·i + b·j + c (mm) the
+    distance from the end into the body's material at cell (i, j) (a/dx, b/dy the unit
+    normal into the material).
+
+    The same mirror term as FreeEnd's, φ times the half-space displacement of the pressure
+    mirrored about the end: the image of cell j at R x_j = x_j - 2·d_j·n lies off the cell
+    centres, so its tapered pressure is spread onto the four cells around the image by
+    bilinear weights (which keep its load and its centre), the half-space displacement of
+    those images taken by one convolution on the box holding them and the band, and read
+    at the band's cells. The exact operator is symmetric (|R x_i - x_j|² = |x_i - x_j|² +
+    4·d_i·d_j); the spreading approximates it to second order in the cell size.
+
+    weight, reach_mm: as FreeEnd's (the mirror acts on and from the cells with
+    0 < d < reach_mm, tapered by end_taper)."""
+
+    a: float
+    b: float
+    c: float
+    weight: float
+    reach_mm: float
+
+    def shifted(self, rows: slice, cols: slice) -> "ObliqueFreeEnd":
+        """The same end on a part of the grid starting at (rows.start, cols.start)."""
+        i0, j0 = rows.start or 0, cols.start or 0
+        return ObliqueFreeEnd(self.a, self.b, self.c + self.a * i0 + self.b * j0,
+                              self.weight, self.reach_mm)
+
+    def add_mirror(self, u: np.ndarray, p: np.ndarray, op: "InfluenceOperator",
+                   spacing: tuple[float, float], single: bool) -> None:
+        """Adds the mirror term of the pressure p (MPa, the grid's shape) to the displacement
+        u (mm for E* = 1 MPa, the grid's shape; in place), `op` the grid's half-space."""
+        dx, dy = spacing
+        n0, n1 = p.shape
+        I, J = np.meshgrid(np.arange(n0), np.arange(n1), indexing="ij")
+        d = self.a * I + self.b * J + self.c
+        band = (d > 0.0) & (d < self.reach_mm)
+        if not band.any():
+            return
+        i, j, d = I[band], J[band], d[band]
+        taper = end_taper(d / self.reach_mm)
+        load = p[band] * taper
+        if not load.any():
+            return
+        # the images (in cell units), and the box that holds them and the band
+        si, sj = i - 2.0 * d * self.a / dx ** 2, j - 2.0 * d * self.b / dy ** 2
+        fi, fj = np.floor(si).astype(int), np.floor(sj).astype(int)
+        wi, wj = si - fi, sj - fj
+        lo = (min(fi.min(), i.min()), min(fj.min(), j.min()))
+        hi = (max(fi.max() + 2, i.max() + 1), max(fj.max() + 2, j.max() + 1))
+        canvas = np.zeros((hi[0] - lo[0], hi[1] - lo[1]))
+        for di, dj, w in ((0, 0, (1 - wi) * (1 - wj)), (1, 0, wi * (1 - wj)),
+                          (0, 1, (1 - wi) * wj), (1, 1, wi * wj)):
+            np.add.at(canvas, (fi + di - lo[0], fj + dj - lo[1]), load * w)
+        image = op.part(canvas.shape)(canvas, single)
+        u[band] += self.weight * taper * image[i - lo[0], j - lo[1]]
 
 
 @dataclass(frozen=True)

@@ -39,6 +39,9 @@ class Flank:
     domain: tuple[tuple[float, float], tuple[float, float]]
     edges: dict[str, str]
     orientation: float = 1.0
+    #: whether its contact lines with a conjugate mate run straight across it (an involute
+    #: helicoid's: a loaded contact's field can be laid along them; a worm set's curve)
+    straight_contact_lines: bool = False
 
     def point(self, u, v):  # pragma: no cover - interface
         raise NotImplementedError

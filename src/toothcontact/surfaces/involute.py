@@ -168,6 +168,8 @@ class InvoluteFlank(Flank):
     with s = side for an external gear (mirror for side -1) and psi = psi_b; an internal
     gear's flank is the mirror image with psi = -psi_b (its tooth widens outward)."""
 
+    straight_contact_lines = True
+
     def __init__(self, gear: CylindricalGear, side: int, form_radius: float | None = None):
         if side not in (1, -1):
             raise ValueError("side must be +1 or -1")
