@@ -243,6 +243,7 @@ def test_flush_face_ends_load_like_the_middle_not_like_a_half_space(loaded):
     assert len(single) >= 3
     for row in single:
         assert row["bem_p_max_MPa"] == pytest.approx(row["p_max_MPa"], rel=0.05)
+        assert row["flank_p_max_MPa"] == row["bem_p_max_MPa"]     # the ends press less
         assert row["edge_pressure_at"] in ("pinion_end_A", "pinion_end_B", "gear_end_A",
                                            "gear_end_B")
         assert row["edge_pressure_MPa"] / row["bem_p_max_MPa"] == pytest.approx(0.74, rel=0.10)

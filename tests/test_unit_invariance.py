@@ -37,8 +37,8 @@ LENGTH_ATOL = 1e-4
 #: the loaded contact's pressure grid takes a cell at a flank edge as all or nothing, so
 #: a cell centre within round-off of an edge moves its loads by about 1e-4
 LOADED_RTOL = 1e-3
-LOADED = ("bem_", "edge_pressure", "edge_load", "end_load", "loaded_", "max_pressure",
-          "max_edge_pressure", "max_edge_load", "max_end_load", "K_H_beta", "iso_K_H_beta",
+LOADED = ("bem_", "flank_p_max", "max_flank_p_max", "edge_pressure", "edge_load", "end_load",
+          "loaded_", "max_pressure", "max_edge_pressure", "max_edge_load", "max_end_load", "K_H_beta", "iso_K_H_beta",
           "mesh_stiffness", "single_stiffness", "line_load", "mean_line_load")
 #: a loaded transmission error's peak to peak is the difference of two loaded TEs of
 #: hundreds of µrad, each to LOADED_RTOL: on a helical pair whose TE barely varies

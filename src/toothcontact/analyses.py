@@ -743,6 +743,7 @@ def _loaded_sections(cycle, C_E: float, grid: int, teeth, bending: str,
     worst = next(r for r in candidates if r["edge_pressure_MPa"] >= (1 - 1e-3) * highest)
     summary.update(
         bem_max_p_max_MPa=max(r["bem_p_max_MPa"] for r in answered),
+        max_flank_p_max_MPa=max(r["flank_p_max_MPa"] for r in answered),
         max_edge_pressure_MPa=max(r["edge_pressure_MPa"] for r in answered),
         max_edge_load_fraction=max(r["edge_load_fraction"] for r in answered),
         edge_loaded_contacts=len(edged),
@@ -750,9 +751,10 @@ def _loaded_sections(cycle, C_E: float, grid: int, teeth, bending: str,
         max_end_load_ratio=max(r["end_load_ratio"] for r in answered),
         edge_pressure_note=f"edge_pressure_MPa is the pressure averaged over a {EDGE_STRIP} mm "
                            "strip at a sharp edge, the largest on the rounding at a rounded tip "
-                           "(a smooth surface: Hertz on its radius), and bem_p_max_MPa the "
-                           "larger of it and the active flank's peak "
-                           f"more than {EDGE_STRIP} mm inside the edges: both converge as the "
+                           "(a smooth surface: Hertz on its radius), flank_p_max_MPa the "
+                           f"active flank's peak more than {EDGE_STRIP} mm inside the edges "
+                           "(the roundings left out: what a lead crown sizes), and "
+                           "bem_p_max_MPa the larger of the two: both converge as the "
                            "grid is refined; bem_raw_peak_MPa, the largest cell pressure, grows "
                            "without bound at a sharp edge and is not a design value; free face "
                            "ends are quarter-spaces (mirror-pressure correction); a contact is "

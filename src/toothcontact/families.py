@@ -231,7 +231,8 @@ def check(case: dict, document: dict) -> list[str]:
     """What the result `document` of `case` breaks of the invariants every design keeps:
     strict JSON (no NaN, no infinity, no "nan" text), positive semi-axes (none, and no
     load, on a pair kept beyond the approach for the loaded contact), the loads of a
-    position summing to the normal load (Hertz split and loaded solution), the contact
+    position summing to the normal load (Hertz split and loaded solution), a loaded peak
+    that is the larger of the active flank's and the edge's, the contact
     moving toward the end the slope closes, and an uncrowned pair under slope in edge
     contact at that end and not at the other."""
     problems = list(_not_finite(document, "result"))
@@ -250,6 +251,11 @@ def check(case: dict, document: dict) -> list[str]:
         elif not (r["a_mm"] > 0 and r["b_mm"] > 0):
             problems.append(f"roll {r['roll_deg']:.3f} pair {r['pair']}: a = {r['a_mm']}, "
                             f"b = {r['b_mm']} must be > 0")
+        if r.get("bem_status") == "solved" and not math.isclose(
+                r["bem_p_max_MPa"], max(r["flank_p_max_MPa"], r["edge_pressure_MPa"])):
+            problems.append(f"roll {r['roll_deg']:.3f} pair {r['pair']}: bem_p_max_MPa "
+                            f"{r['bem_p_max_MPa']} is not the larger of the active flank's "
+                            f"{r['flank_p_max_MPa']} and the edge's {r['edge_pressure_MPa']}")
     for roll, group in by_position.items():
         if normal and case["kind"] != "spline":
             split = sum(r["normal_load_N"] for r in group)

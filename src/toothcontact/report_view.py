@@ -23,6 +23,8 @@ LABELS = {
     "roll_deg": "pinion roll", "pair": "tooth pair", "p_max_MPa": "Hertz peak pressure",
     "max_p_max_MPa": "largest Hertz pressure (equal split)",
     "bem_max_p_max_MPa": "largest loaded pressure", "bem_p_max_MPa": "loaded peak pressure",
+    "max_flank_p_max_MPa": "largest loaded pressure on the active flank",
+    "flank_p_max_MPa": "active-flank peak pressure",
     "bem_load_N": "loaded share", "bem_area_mm2": "loaded contact area",
     "bem_approach_mm": "loaded approach", "bem_status": "loaded solution",
     "bem_reason": "why not solved", "bem_iterations": "solver iterations",

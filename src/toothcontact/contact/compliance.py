@@ -57,7 +57,8 @@ spur_crowned_20_60 at its pitch radius and checked on a z = 17, m = 4 tooth and 
 60-tooth gear, not fitted (c within 3 %, λ within 3 % at the pitch radius, 13 % on the
 60-tooth gear 1.5 mm above it). The end's extra softness (the FE's 2.36 end-to-mid ratio
 against the line's at most 2) is not modelled: a factor fitted to a point load at the end
-would soften the ends under a uniform load by a third, which no FE here has checked. A
+would soften the ends under a uniform load by a third, where the FE's ends deflect 0.97-0.99
+of mid-face (the line's: 1), so only a load concentrated at an end is underrated. A
 plane-strain FE of the whole 20/60 pair in contact (tests/fe_mesh_stiffness.py) found the
 uncorrected single-pair stiffness 11.5 % below its own (the teeth and bodies 18 % too
 soft, the contact 8 % too stiff), the corrected one 3.5 % above it. Worm

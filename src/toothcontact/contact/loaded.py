@@ -85,7 +85,8 @@ GAP_TOLERANCE, COARSE_TOLERANCE = 1e-5, 1e-3
 #: the result keys of a loaded contact (LoadedContact.summary); a row without a solution
 #: carries them as None, with bem_status "unloaded" (the other pairs of its position carry
 #: the load) or "failed" and the reason in bem_reason
-RESULT_KEYS = ("bem_status", "bem_load_N", "bem_p_max_MPa", "edge_loaded", "end_loaded",
+RESULT_KEYS = ("bem_status", "bem_load_N", "bem_p_max_MPa", "flank_p_max_MPa", "edge_loaded",
+               "end_loaded",
                "end_load_ratio", "bem_area_mm2",
                "bem_approach_mm", "bem_grid", "edge_pressure_MPa", "edge_load_fraction",
                "edge_pressure_at", "edge_strip_mm", "bem_raw_peak_MPa", "bem_iterations",
@@ -97,7 +98,8 @@ def unsolved(status: str, reason: str | None = None) -> dict:
     carries nothing (zero load, pressure and area), "failed" is not known (None)."""
     row = dict.fromkeys(RESULT_KEYS)
     if status == "unloaded":
-        row.update(bem_load_N=0.0, bem_p_max_MPa=0.0, bem_area_mm2=0.0, edge_pressure_MPa=0.0,
+        row.update(bem_load_N=0.0, bem_p_max_MPa=0.0, flank_p_max_MPa=0.0, bem_area_mm2=0.0,
+                   edge_pressure_MPa=0.0,
                    edge_load_fraction=0.0, edge_loaded=False, end_loaded=False,
                    end_load_ratio=0.0)
     return {**row, "bem_status": status, "bem_reason": reason}
@@ -136,7 +138,8 @@ def summarise(field: GapField, s: ContactSolution, position_load: float | None =
     (member -> (roll angle where its tip edge rounding starts, +1 or -1 toward the tip)):
     a rounded tip's edge is the rounding itself, its pressure the largest on it (a smooth
     surface's, converged on the grid), not a strip's at the tip circle; the interior peak
-    is the active flank's, the roundings left out."""
+    (flank_p_max_MPa) is the active flank's more than EDGE_STRIP inside its edges, the
+    roundings left out: what a lead crown sizes, apart from the edges' pressures."""
     on_rounding = tip_roundings(field, roundings or {})
     # a tip, root or form edge named before a face end: a contact along a tip presses the
     # face ends' strips as hard where it reaches them
@@ -158,7 +161,7 @@ def summarise(field: GapField, s: ContactSolution, position_load: float | None =
     end_loaded = bool(judged and end_ratio > END_LOAD_RATIO)
     profile = profile if judged else []
     return {"bem_status": "solved", "bem_load_N": s.load_N,
-            "bem_p_max_MPa": max(interior, edge_pressure),
+            "bem_p_max_MPa": max(interior, edge_pressure), "flank_p_max_MPa": interior,
             "edge_loaded": bool(profile) or end_loaded,
             "end_loaded": end_loaded, "end_load_ratio": float(end_ratio),
             "bem_area_mm2": s.area_mm2, "bem_approach_mm": s.approach_mm,
