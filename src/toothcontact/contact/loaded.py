@@ -138,8 +138,9 @@ def summarise(field: GapField, s: ContactSolution, position_load: float | None =
     (member -> (roll angle where its tip edge rounding starts, +1 or -1 toward the tip)):
     a rounded tip's edge is the rounding itself, its pressure the largest on it (a smooth
     surface's, converged on the grid), not a strip's at the tip circle; the interior peak
-    (flank_p_max_MPa) is the active flank's more than EDGE_STRIP inside its edges, the
-    roundings left out: what a lead crown sizes, apart from the edges' pressures."""
+    (flank_p_max_MPa) is the active flank's more than EDGE_STRIP inside its edges, a
+    rounding's start among them: what a lead crown sizes, apart from the edges' pressures
+    (a corner contact on a rounding spills past its start onto the involute)."""
     on_rounding = tip_roundings(field, roundings or {})
     # a tip, root or form edge named before a face end: a contact along a tip presses the
     # face ends' strips as hard where it reaches them
@@ -250,16 +251,17 @@ def _edge_name(field: GapField, edge: EdgeLoad) -> str:
 
 
 def _interior_peak(field: GapField, s: ContactSolution, roundings=()) -> float:
-    """The largest pressure (MPa) more than EDGE_STRIP from every edge of the material and
-    off the tip roundings (bool masks): with the strip-averaged edge pressure, the peak that
-    converges as the grid is refined (the pressure in a cell at a sharp edge does not)."""
+    """The largest pressure (MPa) on the active flank more than EDGE_STRIP inside its edges:
+    those of the material and the tip roundings' starts (`roundings`: bool masks of the
+    cells on them). With the edge pressures, the peak that converges as the grid is refined
+    (the pressure in a cell at a sharp edge does not)."""
     from scipy.ndimage import distance_transform_edt
 
-    material = field.material
-    inside = (material if material.all() else
-              distance_transform_edt(material, sampling=field.spacing) > EDGE_STRIP)
+    active = field.material.copy()
     for on in roundings:
-        inside = inside & ~on
+        active &= ~on
+    inside = (active if active.all() else
+              distance_transform_edt(active, sampling=field.spacing) > EDGE_STRIP)
     p = s.pressure_MPa
     return float(p[inside].max()) if inside.any() else 0.0
 
