@@ -379,7 +379,14 @@ def spur_geometry_case(case: schema.SpurCase) -> Result:
                    "pitch_diameter_mm": 2 * gear.pitch_radius, "base_diameter_mm": 2 * gear.base_radius,
                    "tip_diameter_mm": 2 * gear.tip_radius, "root_diameter_mm": 2 * gear.root_radius_value,
                    "tooth_thickness_mm": gear.tooth_thickness,
-                   "tip_edge_radius_mm": None if mods.tip_edge is None else mods.tip_edge.radius}
+                   "tip_edge_radius_mm": None if mods.tip_edge is None else mods.tip_edge.radius,
+                   "tip_chamfer_angle_deg": (None if mods.tip_edge is None
+                                             or mods.tip_edge.angle is None
+                                             else math.degrees(mods.tip_edge.angle)),
+                   "end_chamfer_mm": (None if mods.end_chamfer is None
+                                      else mods.end_chamfer.length),
+                   "end_chamfer_angle_deg": (None if mods.end_chamfer is None
+                                             else math.degrees(mods.end_chamfer.angle))}
         if not gear.internal:
             generated = generate_side(gear)
             section["form_diameter_mm"] = 2 * generated.form_radius
@@ -482,15 +489,27 @@ def _spur_contact(case: schema.SpurCase, pair, result: Result) -> None:
 
 
 def _tip_edge_note(case: schema.SpurCase, pair) -> str:
-    """The tip edges as analysed: each member's rounding, and where it is the default."""
+    """The tip edges and end chamfers as analysed: each member's rounding or chamfer, and
+    where it is the default."""
     from .gearset import DEFAULT_TIP_EDGE_MODULES
 
     parts = []
     for name, mods in (("pinion", pair.pinion_modifications), ("gear", pair.gear_modifications)):
-        edge = mods.tip_edge
-        given = getattr(case, name).tip_edge is not None
-        parts.append(f"{name} {'sharp' if edge is None else f'rounded {edge.radius:.3g} mm'}"
-                     + ("" if given else " (default)"))
+        edge, spec = mods.tip_edge, getattr(case, name).tip_edge
+        if edge is None:
+            text = "sharp"
+        elif edge.angle is None:
+            text = f"rounded {edge.radius:.3g} mm"
+        else:
+            text = (f"chamfered {spec.chamfer:.3g} mm at {math.degrees(edge.angle):.3g} deg, "
+                    f"its edge rounded {edge.radius:.3g} mm")
+        parts.append(f"{name} {text}" + ("" if spec is not None else " (default)"))
+        chamfer = mods.end_chamfer
+        if chamfer is not None:
+            parts.append(f"{name} face ends chamfered {chamfer.length:.3g} mm at "
+                         f"{math.degrees(chamfer.angle):.3g} deg, their edges rounded "
+                         f"{chamfer.radius:.3g} mm (the edge pressure there resolved from "
+                         "pressure_grid 256)")
     return ("tip edges: " + ", ".join(parts) + f"; the default is {DEFAULT_TIP_EDGE_MODULES:g} "
             "normal modules, or the largest rounding that fits the tooth ([member.tip_edge] "
             "radius; '0 mm' for a sharp edge)")
@@ -708,7 +727,7 @@ def _loaded_sections(cycle, C_E: float, grid: int, teeth, bending: str,
     if not grid:
         return
     from .contact.loaded import (EDGE_PRESSURE_RATIO, EDGE_STRIP, END_LOAD_RATIO,
-                                 loaded_cycle, rounding_starts, unsolved)
+                                 edge_breaks, loaded_cycle, unsolved)
 
     rows = cycle.rows
     try:
@@ -735,7 +754,9 @@ def _loaded_sections(cycle, C_E: float, grid: int, teeth, bending: str,
     if not answered:
         return
     edged = [r for r in answered if r["edge_loaded"]]
-    rounded = {f"{member}_tip" for member in rounding_starts(cycle)}
+    breaks = edge_breaks(cycle)
+    rounded = ({f"{member}_tip" for member in breaks.roundings}
+               | {f"{member}_end_{end}" for member in breaks.chamfers for end in "AB"})
     candidates = edged or answered
     highest = max(r["edge_pressure_MPa"] for r in candidates)
     # the first of those within 0.1 % (a spline's teeth all press alike, to the pressure
@@ -767,7 +788,7 @@ def _loaded_sections(cycle, C_E: float, grid: int, teeth, bending: str,
         "loaded contact: no edge load", not edged,
         f"{len(edged)} of {len(answered)} contacts edge-loaded; highest edge pressure "
         f"{worst['edge_pressure_MPa']:.0f} MPa "
-        + ("on the tip rounding" if worst["edge_pressure_at"] in rounded
+        + ("on the rounded edge" if worst["edge_pressure_at"] in rounded
            else f"averaged over {EDGE_STRIP} mm")
         + f" ({worst['edge_pressure_at']}), "
         f"{worst['edge_pressure_MPa'] / max(worst['bem_p_max_MPa'], 1e-300):.2f} of the "

@@ -232,10 +232,33 @@ class TipReliefSpec(Model):
 
 
 class TipEdgeSpec(Model):
-    radius: quantity("length", low=0.0) = Field(
-        description="radius of the rounding that breaks the tip edge, e.g. '0.3 mm'; '0 mm' "
-                    "for a sharp edge; none given: 0.1 normal modules, or the largest that "
-                    "fits the tooth")
+    radius: quantity("length", low=0.0) | None = Field(
+        None, description="radius of the rounding that breaks the tip edge, e.g. '0.3 mm'; "
+                          "'0 mm' for a sharp edge; with a chamfer, the rounding of the "
+                          "chamfer's edge on the flank; none given: 0.1 normal modules, or "
+                          "(a rounding alone) the largest that fits the tooth")
+    chamfer: Length | None = Field(
+        None, description="a tip chamfer instead of a rounding: its length along the flank "
+                          "from the tip circle to its edge, e.g. '0.2 mm'")
+    angle: quantity("angle", positive=True) = Field(
+        math.radians(30.0), description="the tip chamfer's angle to the flank, e.g. '30 deg'")
+
+    @model_validator(mode="after")
+    def _chamfer_edge(self):
+        if self.chamfer is not None and self.radius == 0.0:
+            raise ValueError("radius: '0 mm' with a chamfer would leave its edge on the flank "
+                             "sharp: give the rounding it has, or none for 0.1 normal modules")
+        return self
+
+
+class EndChamferSpec(Model):
+    length: Length = Field(description="length along the face from each end face to the "
+                                       "chamfer's edge on the flank, e.g. '0.5 mm'")
+    angle: quantity("angle", positive=True) = Field(
+        math.radians(45.0), description="the chamfer's angle to the flank, e.g. '45 deg'")
+    radius: Length | None = Field(
+        None, description="the rounding of the chamfer's edge on the flank, e.g. '0.2 mm'; "
+                          "none given: 0.1 normal modules")
 
 
 class EndReliefSpec(Model):
@@ -292,6 +315,7 @@ class Member(Model):
     tip_relief: TipReliefSpec | None = None
     tip_edge: TipEdgeSpec | None = None
     end_relief: EndReliefSpec | None = None
+    end_chamfer: EndChamferSpec | None = None
     shaft: ShaftSpec | None = None
 
 

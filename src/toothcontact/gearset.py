@@ -16,9 +16,10 @@ import numpy as np
 from scipy.optimize import brentq
 
 from .analytic.spur_mesh import SpurMesh
-from .case import CrownSpec, Member, SplineCase, SpurCase, TipEdgeSpec, WormCase
-from .modify import (Deflection, EndRelief, FlankModifications, LeadCrown, ProfileCrown,
-                     TipEdge, TipRelief)
+from .case import (CrownSpec, EndChamferSpec, Member, SplineCase, SpurCase, TipEdgeSpec,
+                   WormCase)
+from .modify import (Deflection, EndChamfer, EndRelief, FlankModifications, LeadCrown,
+                     ProfileCrown, TipEdge, TipRelief)
 from .surfaces.involute import CylindricalGear, inv
 from .surfaces.spline import InvoluteSpline
 from .surfaces.wheel import BlankError, WormWheelFlank
@@ -487,7 +488,8 @@ def modifications(member: Member, gear: CylindricalGear, name: str) -> FlankModi
         tip_relief=None if tip is None else TipRelief(
             tip.amount, float(gear.base_radius * gear.roll_angle(0.5 * tip.start_diameter)), tip.shape),
         end_relief=None if member.end_relief is None else EndRelief(
-            member.end_relief.amount, member.end_relief.length, member.end_relief.shape))
+            member.end_relief.amount, member.end_relief.length, member.end_relief.shape),
+        end_chamfer=end_chamfer(member.end_chamfer, gear, f"{name}.end_chamfer"))
 
 
 #: the tip edge rounding a member gets where its case gives none, in normal modules: the
@@ -507,6 +509,8 @@ def tip_edge(spec: TipEdgeSpec | None, gear: CylindricalGear, field: str,
 
     given = spec.radius if spec is not None else None
     radius = default_modules * gear.normal_module if given is None else given
+    if spec is not None and spec.chamfer is not None:
+        return _tip_chamfer(spec, radius, gear, field)
     if radius == 0.0:
         return None
     form = (generate_ring_side(gear) if gear.internal else generate_side(gear)).form_radius
@@ -521,6 +525,71 @@ def tip_edge(spec: TipEdgeSpec | None, gear: CylindricalGear, field: str,
                      f"{'inside' if gear.internal else 'above'} the form diameter "
                      f"{2 * form:.4g} mm and leave room on the top land "
                      f"({tip_thickness(gear):.3g} mm) for the other flank's")
+
+
+#: the longest tip chamfer, as a share of the involute's radius of curvature at its edge
+CHAMFER_PER_CURVATURE_RADIUS = 0.1
+
+
+def _tip_chamfer(spec: TipEdgeSpec, radius: float, gear: CylindricalGear,
+                 field: str) -> TipEdge:
+    """A tip chamfer (modify.TipEdge with an angle) of the case's `spec`, its edge on the
+    flank rounded by `radius` (mm); checked to turn less than the corner between flank and
+    tip land, to be short against the involute's curvature, to start on the involute and
+    to leave a top land."""
+    from .surfaces.generation import generate_ring_side, generate_side
+
+    rb, ra = gear.base_radius, gear.tip_radius
+    corner = 0.5 * math.pi - math.acos(min(rb / ra, 1.0))
+    if not spec.angle < corner:
+        raise ValueError(f"{field}.angle: {math.degrees(spec.angle):.4g} deg must be less than "
+                         f"{math.degrees(corner):.3g} deg, the turn from the flank onto the "
+                         "tip land (90 deg less the pressure angle at the tip)")
+    s_tip = math.sqrt(max(ra**2 - rb**2, 0.0))
+    s_edge = math.sqrt(max(s_tip**2 + (1.0 if gear.internal else -1.0) * 2.0 * rb * spec.chamfer,
+                           0.0))
+    if not spec.chamfer <= CHAMFER_PER_CURVATURE_RADIUS * s_edge:
+        raise ValueError(f"{field}.chamfer: {spec.chamfer:.4g} mm must be at most "
+                         f"{CHAMFER_PER_CURVATURE_RADIUS * s_edge:.3g} mm, a tenth of the "
+                         "involute's radius of curvature at its edge (the chamfer's drop is "
+                         "straightened to second order in the involute's turn along it)")
+    form = (generate_ring_side(gear) if gear.internal else generate_side(gear)).form_radius
+    try:
+        edge = TipEdge.on(radius, rb, ra, gear.internal, spec.chamfer, spec.angle)
+        start = math.hypot(edge.start, rb)
+        on_flank = start < form if gear.internal else start > form
+    except ValueError:
+        on_flank = False
+    if not on_flank:
+        raise ValueError(f"{field}.chamfer: {spec.chamfer:.4g} mm with its edge rounded by "
+                         f"{radius:.4g} mm must start on the involute "
+                         f"{'inside' if gear.internal else 'above'} the form diameter "
+                         f"{2 * form:.4g} mm")
+    land_cut = float(edge.drop(np.array(s_tip), s_tip)) / math.sin(corner)
+    if not 2.0 * land_cut < tip_thickness(gear):
+        raise ValueError(f"{field}.chamfer: {spec.chamfer:.4g} mm at "
+                         f"{math.degrees(spec.angle):.4g} deg cuts {land_cut:.3g} mm into the "
+                         f"top land from each flank: the land is {tip_thickness(gear):.3g} mm")
+    return edge
+
+
+def end_chamfer(spec: EndChamferSpec | None, gear: CylindricalGear, field: str
+                ) -> EndChamfer | None:
+    """A member's face-end chamfer (modify.EndChamfer) of the case's `spec` at `field`, its
+    edge on the flank rounded by the given radius or 0.1 normal modules; checked to turn
+    less than 90 deg and to leave the middle of the face."""
+    if spec is None:
+        return None
+    if not spec.angle < 0.5 * math.pi:
+        raise ValueError(f"{field}.angle: {math.degrees(spec.angle):.4g} deg must be less than "
+                         "90 deg (the chamfer's angle to the flank)")
+    radius = DEFAULT_TIP_EDGE_MODULES * gear.normal_module if spec.radius is None else spec.radius
+    chamfer = EndChamfer(spec.length, spec.angle, radius)
+    if not chamfer.start(gear.face_width) > 0.0:
+        raise ValueError(f"{field}.length: {spec.length:.4g} mm with its edge rounded by "
+                         f"{radius:.4g} mm must leave the middle of the "
+                         f"{gear.face_width:.4g} mm face")
+    return chamfer
 
 
 def largest_tip_edge(gear: CylindricalGear, form: float) -> float:

@@ -74,16 +74,13 @@ def gear_mesh(outline, teeth: int | None = None,
 
     twist = abs(gear.twist_per_length) * gear.face_width
     z = np.linspace(v0, v1, max(9 if outline.curved else 2, steps(gear.tip_radius, twist)))
-    relief = outline.modifications.end_relief
-    if relief is not None:
-        inner = 0.5 * gear.face_width - relief.length
-        z = np.union1d(z, [-inner, inner])
+    z = np.union1d(z, outline.lead_sections())
     first = outline.section(u, 0.0)
     n_tip = steps(gear.tip_radius,
                   polar_angle(first.tip_ends[1]) - polar_angle(first.tip_ends[0]))
     n_root = steps(first.root_radius, polar_angle(first.fillet_minus[0]) - first.space_before)
     edge = outline.modifications.tip_edge     # the rest of a rounding turns up to 45°
-    n_rounding = 2 if edge is None else steps(edge.radius, 0.25 * np.pi)
+    n_rounding = 2 if edge is None or edge.angle is not None else steps(edge.radius, 0.25 * np.pi)
 
     k = gear.teeth if teeth is None or teeth >= gear.teeth else teeth
     turns = (np.arange(gear.teeth) if k == gear.teeth else np.arange(k) - k // 2) * outline.pitch

@@ -96,10 +96,24 @@ class TipRelief:
         return where(value(x) > 0, self.amount * ramp, 0.0)
 
 
+def _broken_edge_drop(run, radius: float, angle: float, bend: float = 0.0):
+    """The drop (mm) of an edge broken by a chamfer at `angle` (rad) to the surface, its
+    start rounded by `radius` (mm, the curvature the drop adds), at `run` (mm, >= 0) past
+    where the rounding starts: the circle until its slope reaches tan(angle), then the
+    straight chamfer, plus bend·run²/2 from there on (a curved surface's own curvature taken
+    back, so that the chamfer is straight in space). C1, exact for jets."""
+    turn_run = radius * math.sin(angle)
+    on_circle = value(run) < turn_run
+    circle = _arc_drop(where(on_circle, run, 0.0 * run + turn_run), radius, "circular")
+    past = where(on_circle, 0.0 * run, run - turn_run)
+    return circle + math.tan(angle) * past + 0.5 * bend * past * past
+
+
 @dataclass(frozen=True)
 class TipEdge:
     """The tip edge broken by a rounding of `radius` (mm) tangent to the flank and to the tip
-    circle, as the drop it cuts from the involute run on to the tip.
+    circle, or, with a chamfer `angle` (rad, to the flank), by a chamfer whose edge on the
+    flank is rounded by `radius`; as the drop it cuts from the involute run on to the tip.
 
     On an involute of base radius r_b the arc length from the base circle is s²/(2·r_b)
     (s = r_b·t the roll length), and the flank meets the tip circle turning by
@@ -111,36 +125,63 @@ class TipEdge:
     across the rounding is 1/ρ. The drop is taken along the flank normal (the rounding's
     departure at its start is second order: the contact, a few micrometres deep, stays
     on it); the flank ends at the tip circle, where the drop is ρ·(1 - cos(θ/2)) (tens of
-    micrometres), and the rest of the rounding, turning onto the tip land, is left off."""
+    micrometres), and the rest of the rounding, turning onto the tip land, is left off.
+    A chamfer of `chamfer` mm along the flank (its edge that far from the tip corner) turns
+    the rounding by `angle` only and runs on straight to the tip circle: its edge's
+    rounding starts ρ·tan(angle/2) before the edge."""
 
     radius: float
     start: float
     base_radius: float
     internal: bool = False
+    angle: float | None = None
 
     @classmethod
     def on(cls, radius: float, base_radius: float, tip_radius: float,
-           internal: bool = False) -> "TipEdge":
+           internal: bool = False, chamfer: float | None = None,
+           angle: float | None = None) -> "TipEdge":
         """The rounding of `radius` (mm) on a flank of base radius and tip radius (mm); on a
-        ring (internal) the tip is the flank's inner end."""
+        ring (internal) the tip is the flank's inner end. With `chamfer` (mm along the flank
+        from the tip) and `angle` (rad): a chamfer whose edge is rounded by `radius`."""
         alpha_a = math.acos(min(base_radius / tip_radius, 1.0))
         s_tip = math.sqrt(max(tip_radius**2 - base_radius**2, 0.0))
-        tangent = radius * math.tan(0.5 * (0.5 * math.pi - alpha_a))
-        # the rounding's start, the tangent length back from the tip along the flank
-        start_arc = 0.5 * s_tip**2 / base_radius + (tangent if internal else -tangent)
+        if chamfer is None:
+            back = radius * math.tan(0.5 * (0.5 * math.pi - alpha_a))
+        else:
+            back = chamfer + radius * math.tan(0.5 * angle)
+        # the rounding's start, its tangent length back from the tip (or the chamfer's edge)
+        start_arc = 0.5 * s_tip**2 / base_radius + (back if internal else -back)
         if not start_arc > 0.0:
             raise ValueError(f"tip edge radius {radius:g} mm: the rounding would start below "
                              "the base circle")
-        return cls(radius, math.sqrt(2.0 * base_radius * start_arc), base_radius, internal)
+        return cls(radius, math.sqrt(2.0 * base_radius * start_arc), base_radius, internal,
+                   None if chamfer is None else angle)
+
+    @property
+    def breaks(self) -> tuple[float, ...]:
+        """Roll lengths (mm) where the profile's curvature jumps: the rounding's start, and
+        a chamfer's where its edge's rounding runs into the straight chamfer."""
+        if self.angle is None:
+            return (self.start,)
+        relative = 1.0 / (1.0 / self.radius + (1.0 if self.internal else -1.0) / self.start)
+        arc = relative * math.sin(self.angle) * (-1.0 if self.internal else 1.0)
+        return (self.start, math.sqrt(self.start**2 + 2.0 * self.base_radius * arc))
 
     def drop(self, s, s_tip: float):
         """The drop (mm) at roll length s (mm; s_tip the tip's). Past the tip (where a gap
         field continues the flank) the circle runs on as its own quadratic from the tip, so
-        the continued surface stays smooth and finite."""
+        the continued surface stays smooth and finite; a chamfer runs on straight."""
         toward = 1.0 if s_tip >= self.start else -1.0
         beyond = (value(s) - self.start) * toward > 0.0
         arc = where(beyond, toward * (s * s - self.start**2) / (2.0 * self.base_radius), 0.0 * s)
         radius = 1.0 / (1.0 / self.radius + (1.0 if self.internal else -1.0) / self.start)
+        if self.angle is not None:
+            # a line's drop off a circle of radius s along its normal, at the angle γ to
+            # it, curves at (1 + sin²γ)/(cos²γ·s) (d = s - p/cos(σ/s - φ0) differentiated
+            # twice in the arc σ), away from the circle's centre on an external gear
+            sin2 = math.sin(self.angle) ** 2
+            bend = (1.0 if self.internal else -1.0) * (1.0 + sin2) / ((1.0 - sin2) * self.start)
+            return where(beyond, _broken_edge_drop(arc, radius, self.angle, bend), 0.0 * s)
         arc_tip = toward * (s_tip**2 - self.start**2) / (2.0 * self.base_radius)
         past = value(arc) > arc_tip
         circle = _arc_drop(where(past, 0.0 * s + arc_tip, arc), radius, "circular")
@@ -149,6 +190,40 @@ class TipEdge:
         continued = (radius - root + arc_tip / root * run
                      + 0.5 * radius**2 / root**3 * run * run)
         return where(beyond, where(past, continued, circle), 0.0 * s)
+
+
+@dataclass(frozen=True)
+class EndChamfer:
+    """A chamfer at both face ends, `length` (mm) along the face from each end face to its
+    edge on the flank, at `angle` (rad) to the flank (its drop grows tan(angle) mm, a
+    transverse amount like every modification, per mm toward the end), its edge on the
+    flank rounded by `radius` (mm): the rounding starts radius·tan(angle/2) before the
+    edge."""
+
+    length: float
+    angle: float
+    radius: float
+
+    def start(self, face_width: float) -> float:
+        """Where the edge's rounding starts (mm from mid-face, either way)."""
+        return 0.5 * face_width - self.length - self.radius * math.tan(0.5 * self.angle)
+
+    def breaks(self, face_width: float) -> tuple[float, ...]:
+        """Face positions (mm from mid-face) where the lead's curvature jumps: the edge's
+        rounding's start and end at both ends."""
+        start = self.start(face_width)
+        end = start + self.radius * math.sin(self.angle)
+        return (-end, -start, start, end)
+
+    def drop(self, w, face_width: float):
+        start = self.start(face_width)
+        if not start > 0.0:
+            raise ValueError("end chamfer length and its edge's rounding must leave the middle "
+                             "of the face")
+        run = where(value(w) > 0, w, -w) - start
+        inside = value(run) > 0.0
+        return where(inside, _broken_edge_drop(where(inside, run, 0.0 * run), self.radius,
+                                               self.angle), 0.0 * w)
 
 
 @dataclass(frozen=True)
@@ -211,6 +286,7 @@ class FlankModifications:
     end_relief: EndRelief | None = None
     deflection: Deflection | None = None
     tip_edge: TipEdge | None = None
+    end_chamfer: EndChamfer | None = None
 
     def drop(self, w, s, face_width: float, s_form: float, s_tip: float):
         total = 0.0 * w + 0.0 * s
@@ -220,6 +296,8 @@ class FlankModifications:
             total = total + self.lead_crown.drop(w, face_width)
         if self.end_relief is not None:
             total = total + self.end_relief.drop(w, face_width)
+        if self.end_chamfer is not None:
+            total = total + self.end_chamfer.drop(w, face_width)
         if self.profile_crown is not None:
             total = total + self.profile_crown.drop(s, s_form, s_tip)
         if self.tip_relief is not None:
@@ -231,11 +309,24 @@ class FlankModifications:
     @property
     def empty(self) -> bool:
         return all(m is None for m in (self.lead_crown, self.profile_crown, self.tip_relief,
-                                       self.end_relief, self.deflection, self.tip_edge))
+                                       self.end_relief, self.deflection, self.tip_edge,
+                                       self.end_chamfer))
 
     @property
     def profile_breaks(self) -> tuple[float, ...]:
-        """Roll lengths (mm) where the profile's slope or curvature jumps: the starts of the
-        tip relief and of the tip edge rounding (a fitted B-spline needs points close
-        around them)."""
-        return tuple(m.start for m in (self.tip_relief, self.tip_edge) if m is not None)
+        """Roll lengths (mm) where the profile's slope or curvature jumps: the start of the
+        tip relief and those of the tip edge (a fitted B-spline needs points close around
+        them)."""
+        relief = () if self.tip_relief is None else (self.tip_relief.start,)
+        return relief + (() if self.tip_edge is None else self.tip_edge.breaks)
+
+    def lead_breaks(self, face_width: float) -> tuple[float, ...]:
+        """Face positions (mm from mid-face) where the lead's slope or curvature jumps: an
+        end relief's starts and an end chamfer's edge roundings (sections are put there)."""
+        out = ()
+        if self.end_relief is not None:
+            inner = 0.5 * face_width - self.end_relief.length
+            out += (-inner, inner)
+        if self.end_chamfer is not None:
+            out += self.end_chamfer.breaks(face_width)
+        return tuple(sorted(out))

@@ -1193,10 +1193,13 @@ def pressure_scene(result, case=None, name: str = "", patch: Patch | None = None
     edges_loaded = loaded_edges(cycle)
     warnings = []
     if edges_loaded:
-        rounded = {f"{member}_tip" for member in ("pinion", "gear")
-                   if (result.sections.get(member) or {}).get("tip_edge_radius_mm")}
+        sections = {member: result.sections.get(member) or {} for member in ("pinion", "gear")}
+        rounded = ({f"{m}_tip" for m, s in sections.items() if s.get("tip_edge_radius_mm")}
+                   | {f"{m}_end_{end}" for m, s in sections.items() if s.get("end_chamfer_mm")
+                      for end in "AB"})
         warnings.append("EDGE LOAD: " + ", ".join(
-            f"{e.replace('_', ' ')} {p:.0f} MPa" + (" on its rounding" if e in rounded else "")
+            f"{e.replace('_', ' ')} {p:.0f} MPa" + (" on its rounded edge" if e in rounded
+                                                    else "")
             for e, p in edges_loaded.items())
             + (" (sharp edges averaged over the edge strip)"
                if set(edges_loaded) - rounded else ""))

@@ -16,7 +16,7 @@ import numpy as np
 from ..modify import FlankModifications
 from ..surfaces.involute import CylindricalGear
 from ..surfaces.outline import ToothOutline
-from .loft import (LoftedBody, arc, chord_parameters, generated_face, half_root_arc,
+from .loft import (LoftedBody, arc, chord_parameters, fused, generated_face, half_root_arc,
                    interpolated, loft, patterned_wire, sector_closure)
 
 #: radial thickness of a ring gear's rim below its root circle, in normal modules
@@ -44,27 +44,61 @@ def build_gear(gear: CylindricalGear, modifications: FlankModifications | None =
     elif generated.undercut:
         notes.append(f"undercut by its rack: the generated root cuts into the involute, "
                      f"which starts on the form circle d = {2 * generated.form_radius:.4f} mm")
-    if sections is None:
-        twist = abs(gear.twist_per_length) * gear.face_width
-        sections = max(7 if outline.curved else 2, int(math.ceil(twist / 0.04)) + 1)
     (u0, u1), (v0, v1) = outline.flanks[1].domain
     fit_u = outline.profile_parameters(profile_points)
-    fit_v = np.linspace(v0, v1, sections)
-
     params = {"flank": chord_parameters(np.stack(
                   gear.flank(1, generated.form_radius).transverse_point(fit_u), -1)),
               "fillet": chord_parameters(generated.fillet)}
-    wires, flank_index = [], {}
-    for z in fit_v:
-        wire, flank_index = _section_wire(outline, params, fit_u, float(z), teeth or gear.teeth)
-        wires.append(wire)
-    maker = loft(wires, ruled=sections == 2)
-    faces = {side: generated_face(maker, (wires[0], i)) for side, i in flank_index.items()}
-    solid = maker.Shape()
+    solids, faces, fit_v = [], {1: (), -1: ()}, ()
+    for z in _lead_segments(outline, sections):
+        wires = []
+        for height in z:
+            wire, flank_index = _section_wire(outline, params, fit_u, float(height),
+                                              teeth or gear.teeth)
+            wires.append(wire)
+        maker = loft(wires, ruled=len(z) == 2)
+        for side, i in flank_index.items():
+            faces[side] += (generated_face(maker, (wires[0], i)),)
+        solids.append(maker.Shape())
+        fit_v += (z,)
+    solid = fused(solids)
     if gear.internal:
         solid = _ring_from_hole(gear, solid)
     return GearBody(solid, outline.flanks, faces, fit_u, fit_v, gear.teeth, teeth or gear.teeth,
                     notes, gear=gear)
+
+
+def _lead_segments(outline: ToothOutline, sections: int | None) -> list[np.ndarray]:
+    """The face width's sections (mm) for lofting, one array per segment between the
+    lead's breaks (an end relief's or chamfer's start: one B-spline face per segment, so
+    the loft's splines do not ring across a jump in the lead's slope or curvature):
+    `sections` over the face (default: 7 on a bent lead, 2 on a straight one, or one per
+    0.04 rad of helical twist); with breaks, each segment as densely, at least 5 sections
+    where its lead bends (2 where it is straight: ruled), 7 on a chamfer's rounded edge."""
+    gear, m = outline.gear, outline.modifications
+    (_, _), (v0, v1) = outline.flanks[1].domain
+    twist_rate = abs(gear.twist_per_length)
+    if sections is None:
+        sections = max(7 if outline.curved else 2,
+                       int(math.ceil(twist_rate * gear.face_width / 0.04)) + 1)
+    breaks = [b for b in m.lead_breaks(gear.face_width) if v0 < b < v1]
+    if not breaks:
+        return [np.linspace(v0, v1, sections)]
+    bounds = [v0, *breaks, v1]
+    spacing = (v1 - v0) / max(sections - 1, 1)
+    straight = (m.lead_crown is None and twist_rate == 0.0
+                and (m.end_relief is None or m.end_relief.shape == "linear"))
+    rounded = []
+    if m.end_chamfer is not None:
+        _, _, start, end = m.end_chamfer.breaks(gear.face_width)
+        rounded = [(start, end), (-end, -start)]
+    out = []
+    for low, high in zip(bounds[:-1], bounds[1:]):
+        count = max(int(math.ceil((high - low) / spacing - 1e-9)) + 1, 2 if straight else 5)
+        if any(math.isclose(low, a) and math.isclose(high, b) for a, b in rounded):
+            count = 7
+        out.append(np.linspace(low, high, count))
+    return out
 
 
 def _section_wire(outline: ToothOutline, params: dict, u: np.ndarray, z: float, teeth: int):

@@ -125,14 +125,16 @@ def generated_face(loft, key):
 
 @dataclass
 class LoftedBody:
-    """A lofted solid and, per flank of tooth 0, the exact flank, its B-spline face and the
-    fitting parameters; `teeth` of the part, `teeth_built` of them in the solid."""
+    """A lofted solid and, per flank of tooth 0, the exact flank, its B-spline faces (one
+    per lofted segment of the face width, a tuple) and the fitting parameters (`fit_v`: a
+    tuple of each segment's sections); `teeth` of the part, `teeth_built` of them in the
+    solid."""
 
     solid: object
     flanks: dict
     faces: dict
     fit_u: np.ndarray
-    fit_v: np.ndarray
+    fit_v: tuple
     teeth: int
     teeth_built: int
     notes: list[str] = field(default_factory=list)
@@ -148,26 +150,46 @@ class LoftedBody:
 
 def flank_deviation(body, per_interval: int = 2) -> float:
     """Largest distance (mm) from each exact flank of a lofted body (its `flanks`, `faces`,
-    `fit_u`, `fit_v`) to its B-spline face, at points between the fitting points (profile)
-    and between the sections (face width)."""
+    `fit_u`, `fit_v`) to its B-spline faces, at points between the fitting points (profile)
+    and between the sections (face width) of each segment."""
     from OCP.BRep import BRep_Tool
     from OCP.ShapeAnalysis import ShapeAnalysis_Surface
     from OCP.gp import gp_Pnt
 
     u = _between(body.fit_u, per_interval)
-    v = _between(body.fit_v, per_interval)
-    uu, vv = np.meshgrid(u, v, indexing="ij")
     worst = 0.0
     for key, flank in body.flanks.items():
-        surface = ShapeAnalysis_Surface(BRep_Tool.Surface_s(body.faces[key]))
-        points = np.stack(flank.point(uu.ravel(), vv.ravel()), axis=-1)
-        uv = None
-        for p in points:
-            point = gp_Pnt(*map(float, p))
-            uv = surface.ValueOfUV(point, 1e-9) if uv is None else \
-                surface.NextValueOfUV(uv, point, 1e-9, -1.0)
-            worst = max(worst, surface.Gap())
+        for face, sections in zip(body.faces[key], body.fit_v):
+            uu, vv = np.meshgrid(u, _between(sections, per_interval), indexing="ij")
+            surface = ShapeAnalysis_Surface(BRep_Tool.Surface_s(face))
+            points = np.stack(flank.point(uu.ravel(), vv.ravel()), axis=-1)
+            uv = None
+            for p in points:
+                point = gp_Pnt(*map(float, p))
+                uv = surface.ValueOfUV(point, 1e-9) if uv is None else \
+                    surface.NextValueOfUV(uv, point, 1e-9, -1.0)
+                worst = max(worst, surface.Gap())
     return worst
+
+
+def fused(solids: list):
+    """One solid of lofted segments that meet at their end sections."""
+    from OCP.BRepAlgoAPI import BRepAlgoAPI_Fuse
+    from OCP.TopTools import TopTools_ListOfShape
+
+    if len(solids) == 1:
+        return solids[0]
+    arguments, tools = TopTools_ListOfShape(), TopTools_ListOfShape()
+    arguments.Append(solids[0])
+    for solid in solids[1:]:
+        tools.Append(solid)
+    fuse = BRepAlgoAPI_Fuse()
+    fuse.SetArguments(arguments)
+    fuse.SetTools(tools)
+    fuse.Build()
+    if not fuse.IsDone():
+        raise RuntimeError("the lofted segments of the face width did not fuse")
+    return fuse.Shape()
 
 
 def _between(fit: np.ndarray, per_interval: int) -> np.ndarray:

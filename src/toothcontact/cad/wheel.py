@@ -57,9 +57,9 @@ def build_wheel(left: WormWheelFlank, right: WormWheelFlank, profile_points: int
                                   after - pitch + count * pitch, z) if count < left.teeth else [])
         wires.append(patterned_wire(edges, count, pitch, closure))
     maker = loft(wires)
-    faces = {name: generated_face(maker, (wires[0], index))
+    faces = {name: (generated_face(maker, (wires[0], index)),)
              for name, index in ((flanks["minus"].side, 1), (flanks["plus"].side, 3))}
-    return WheelBody(maker.Shape(), {left.side: left, right.side: right}, faces, fit_u, fit_v,
+    return WheelBody(maker.Shape(), {left.side: left, right.side: right}, faces, fit_u, (fit_v,),
                      left.teeth, teeth or left.teeth)
 
 

@@ -31,6 +31,7 @@ A contact that spans too few cells across its field is solved again on a narrowe
 from __future__ import annotations
 
 import math
+import dataclasses
 from dataclasses import dataclass
 
 import numpy as np
@@ -125,7 +126,7 @@ class LoadedContact:
 
 
 def summarise(field: GapField, s: ContactSolution, position_load: float | None = None,
-              roundings: dict[str, tuple[float, float]] | None = None) -> dict:
+              breaks: EdgeBreaks | None = None) -> dict:
     """The result keys of a loaded contact (RESULT_KEYS); the most loaded edge is named by
     the flank edge it is (e.g. "gear_tip", "pinion_end_B"). Where the material runs on to
     the field's border there is no edge (the contact never reaches that border: the solver
@@ -134,28 +135,35 @@ def summarise(field: GapField, s: ContactSolution, position_load: float | None =
     the load per mm of face in the end's strip over the contact's mean (END_LOAD_RATIO);
     edge_loaded: end-loaded, or a tip, root or form edge pressed harder than the contact's
     interior (EDGE_PRESSURE_RATIO); neither for a contact carrying less than
-    EDGE_LEAST_SHARE of `position_load` (N; None: the contact's own load). `roundings`
-    (member -> (roll angle where its tip edge rounding starts, +1 or -1 toward the tip)):
-    a rounded tip's edge is the rounding itself, its pressure the largest on it (a smooth
-    surface's, converged on the grid), not a strip's at the tip circle; the interior peak
-    (flank_p_max_MPa) is the active flank's more than EDGE_STRIP inside its edges, a
-    rounding's start among them: what a lead crown sizes, apart from the edges' pressures
+    EDGE_LEAST_SHARE of `position_load` (N; None: the contact's own load). `breaks` (the
+    members' tip roundings and chamfers, and their face-end chamfers): a broken tip's edge
+    is its rounding (or the chamfer's rounded edge) itself, its pressure the largest on it
+    (a smooth surface's, converged on the grid), not a strip's at the tip circle; a
+    chamfered face end's likewise, its end load ratio taken over the last EDGE_STRIP of
+    the flank before the chamfer's rounded edge and that edge; the interior peak
+    (flank_p_max_MPa) is the active flank's more than EDGE_STRIP inside its edges, the
+    roundings' starts among them: what a lead crown sizes, apart from the edges' pressures
     (a corner contact on a rounding spills past its start onto the involute)."""
-    on_rounding = tip_roundings(field, roundings or {})
+    breaks = breaks or EdgeBreaks()
+    on_break = {**tip_roundings(field, breaks.roundings),
+                **chamfered_ends(field, breaks.chamfers)}
+    # a chamfered end's edge load: on its rounded edge and the last strip of flank before it
+    at_break = {**on_break, **chamfered_ends(field, breaks.chamfers, EDGE_STRIP)}
     # a tip, root or form edge named before a face end: a contact along a tip presses the
     # face ends' strips as hard where it reaches them
-    rounded = [(n, _rounding_load(field, n, on, s)) for n, on in on_rounding.items()]
-    named = sorted([(n, e) for n, e in flank_edges(field, s) if n not in on_rounding]
-                   + [(n, e) for n, e in rounded if e.load_N > 0.0],
+    rounded = [(n, _rounding_load(field, n, on, s, patch=is_face_end(n)))
+               for n, on in at_break.items()]
+    named = sorted([(n, e) for n, e in flank_edges(field, s) if n not in on_break]
+                   + [(n, e) for n, e in rounded if e.load_N > 0],
                    key=lambda item: is_face_end(item[0]))
-    # the first of the edges within 0.1 % of the highest (two ends of a flush, aligned
-    # pair press alike, to the solver's tolerance)
     highest = max((e.edge_pressure_MPa for _, e in named), default=0.0)
     name, worst = next(((n, e) for n, e in named if e.edge_pressure_MPa >= (1 - 1e-3) * highest),
                        ("none", None))
     edge_pressure = worst.edge_pressure_MPa if worst is not None and worst.load_N > 0 else 0.0
-    interior = _interior_peak(field, s, on_rounding.values())
-    end_ratio = max((_end_load_ratio(e, s) for n, e in named if is_face_end(n)), default=0.0)
+    interior = _interior_peak(field, s, on_break.values())
+    end_ratio = max((_chamfer_end_ratio(field, s, n, breaks.chamfers) if n in on_break
+                     else _end_load_ratio(e, s) for n, e in named if is_face_end(n)),
+                    default=0.0)
     profile = [n for n, e in named if not is_face_end(n) and e.load_N > 0
                and e.edge_pressure_MPa > EDGE_PRESSURE_RATIO * interior]
     judged = s.load_N >= EDGE_LEAST_SHARE * (position_load or s.load_N)
@@ -184,35 +192,87 @@ def tip_roundings(field: GapField, roundings: dict[str, tuple[float, float]]
             for member, (start, toward) in roundings.items()}
 
 
-def _rounding_load(field: GapField, name: str, on: np.ndarray, s: ContactSolution) -> EdgeLoad:
-    """A tip rounding's load as an edge load: its load and share, and its largest pressure
+def _rounding_load(field: GapField, name: str, on: np.ndarray, s: ContactSolution,
+                   patch: bool = False) -> EdgeLoad:
+    """A broken edge's load (on `on`) as an edge load: its load and share, its largest pressure
     more than EDGE_STRIP from the material's other edges (where it meets a face end, the
-    end's strip measures the corner: a sharp edge's pressure there does not converge)."""
-    from scipy.ndimage import distance_transform_edt
+    end's strip measures the corner: a sharp edge's pressure there does not converge); with
+    `patch`, the largest mean over EDGE_STRIP × EDGE_STRIP of material (an end chamfer's
+    rounded edge runs along a line field's long cells, which do not resolve its peak)."""
+    from scipy.ndimage import distance_transform_edt, uniform_filter
 
     p = np.where(on, s.pressure_MPa, 0.0)
     load = float(p.sum()) * s.dx_mm * s.dy_mm
+    if patch:
+        size = [max(1, round(EDGE_STRIP / step)) for step in field.spacing]
+        held = uniform_filter(field.material.astype(float), size, mode="constant")
+        mean = uniform_filter(np.where(field.material, s.pressure_MPa, 0.0), size,
+                              mode="constant")
+        p = np.where(on, np.divide(mean, held, out=np.zeros_like(mean), where=held > 0), 0.0)
     beyond_tip = field.beyond.get(name, np.zeros_like(on))
     away = distance_transform_edt(field.material | beyond_tip, sampling=field.spacing) > EDGE_STRIP
     inner = np.where(away, p, 0.0)
     peak = float(inner.max()) if inner.size else 0.0
-    return EdgeLoad(1, "high", 0.0, peak, float(p.max()) if p.size else 0.0, load,
-                    load / s.load_N if s.load_N else 0.0,
+    return EdgeLoad(1, "high", 0.0, peak, float(s.pressure_MPa[on].max()) if on.any() else 0.0,
+                    load, load / s.load_N if s.load_N else 0.0,
                     int(np.unravel_index(inner.argmax(), inner.shape)[0]))
 
 
-def rounding_starts(cycle) -> dict[str, tuple[float, float]]:
-    """Each member's tip edge rounding in a cycle (member -> (the roll angle where it
-    starts, +1 or -1 toward the tip)); members without one left out."""
-    out = {}
+@dataclass(frozen=True)
+class EdgeBreaks:
+    """The broken edges of a cycle's flanks: `roundings` (member -> (the roll angle where
+    its tip edge's rounding starts, +1 or -1 toward the tip)) and `chamfers` (member -> the
+    face position, mm from mid-face either way, where its end chamfer's rounded edge
+    starts)."""
+
+    roundings: dict = dataclasses.field(default_factory=dict)
+    chamfers: dict = dataclasses.field(default_factory=dict)
+
+
+def edge_breaks(cycle) -> EdgeBreaks:
+    """The tip roundings (or chamfers) and end chamfers of a cycle's members (those
+    without one left out)."""
+    roundings, chamfers = {}, {}
     for member in ("pinion", "gear"):
         flank = getattr(cycle, member)
-        edge = getattr(getattr(flank, "modifications", None), "tip_edge", None)
+        modifications = getattr(flank, "modifications", None)
+        edge = getattr(modifications, "tip_edge", None)
         if edge is not None:
             base = flank.base
             toward = 1.0 if base.tip_roll >= edge.start else -1.0
-            out[member] = (edge.start / base.gear.base_radius, toward)
-    return out
+            roundings[member] = (edge.start / base.gear.base_radius, toward)
+        chamfer = getattr(modifications, "end_chamfer", None)
+        if chamfer is not None:
+            chamfers[member] = chamfer.start(flank.base.gear.face_width)
+    return EdgeBreaks(roundings, chamfers)
+
+
+def chamfered_ends(field: GapField, chamfers: dict[str, float], before: float = 0.0
+                   ) -> dict[str, np.ndarray]:
+    """The cells on each member's end chamfers' rounded edges and beyond, and `before` (mm)
+    ahead of them ("pinion_end_B" -> bool mask), on material (`chamfers`: member -> where
+    the rounding starts, mm from mid-face either way)."""
+    return {f"{member}_end_{end}": field.material & (sign * field.parameters[f"{member}_v"]
+                                                     > start - before)
+            for member, start in chamfers.items() for end, sign in (("A", -1.0), ("B", 1.0))}
+
+
+def _chamfer_end_ratio(field: GapField, s: ContactSolution, name: str,
+                       chamfers: dict[str, float]) -> float:
+    """A chamfered face end's load ratio: the load per mm of face on the last EDGE_STRIP of
+    the flank before the chamfer's rounded edge and on that edge, over the contact's mean
+    load per mm over its extent in contact along the face."""
+    member, end = name.rsplit("_end_", 1)
+    v = field.parameters[f"{member}_v"] * (1.0 if end == "B" else -1.0)
+    loaded = s.pressure_MPa > 0.0
+    if not loaded.any():
+        return 0.0
+    start = chamfers[member]
+    strip = field.material & (v > start - EDGE_STRIP)
+    load = float(s.pressure_MPa[strip].sum()) * s.dx_mm * s.dy_mm
+    extent = float(v[loaded].max() - v[loaded].min())
+    edge_run = float(v[strip & loaded].max() - start) if (strip & loaded).any() else 0.0
+    return (load / (EDGE_STRIP + max(edge_run, 0.0))) / (s.load_N / max(extent, EDGE_STRIP))
 
 
 def _end_load_ratio(edge: EdgeLoad, s: ContactSolution) -> float:
@@ -288,7 +348,7 @@ def loaded_cycle(cycle, C_E: float, points: int = 128, teeth: PairCompliance | N
                             largest_cell=CELL, snap=True, far=LOADED_FAR,
                             along_pattern=True)
     groups = list(positions.values())
-    roundings = rounding_starts(cycle)
+    breaks = edge_breaks(cycle)
 
     def position(index: int):
         """A position's (field, face, solution, summary) per pair (the field where it was
@@ -307,7 +367,7 @@ def loaded_cycle(cycle, C_E: float, points: int = 128, teeth: PairCompliance | N
             return str(exc)
         return [(None if pair.field is fields[k] else pair.field,
                  None if pair.structure is None else pair.structure.face_load(), solution,
-                 None if solution is None else summarise(pair.field, solution, load, roundings))
+                 None if solution is None else summarise(pair.field, solution, load, breaks))
                 if k in solutions else (None, None, None, None)
                 for k, (pair, solution) in ((k, solutions.get(k, (None, None))) for k in ks)]
 

@@ -162,9 +162,21 @@ class ToothOutline:
 
     @cached_property
     def curved(self) -> bool:
-        """The flanks bend along the face width (a lead crown or an end relief)."""
+        """The flanks bend along the face width (a lead crown, an end relief or chamfer)."""
         m = self.modifications
-        return m.lead_crown is not None or m.end_relief is not None
+        return m.lead_crown is not None or m.end_relief is not None or m.end_chamfer is not None
+
+    def lead_sections(self) -> np.ndarray:
+        """Face positions (mm) a section must lie at besides evenly spaced ones: the lead's
+        breaks (modify.FlankModifications.lead_breaks), and along an end chamfer's edge
+        rounding five more, so that a mesh or a loft follows its turn."""
+        m, width = self.modifications, self.gear.face_width
+        out = np.array(m.lead_breaks(width))
+        if m.end_chamfer is not None:
+            start, end = m.end_chamfer.breaks(width)[2:]
+            turn = np.linspace(start, end, 7)[1:-1]
+            out = np.union1d(out, np.concatenate([-turn, turn]))
+        return out
 
     @property
     def pitch(self) -> float:
@@ -190,7 +202,8 @@ class ToothOutline:
         root = 0.5 * (np.hypot(*fillet_minus[0, :2]) + np.hypot(*fillet_plus[-1, :2]))
         tip_middle = polar(gear.tip_radius, turn, z)
         roundings = (None, None)
-        if self.modifications.tip_edge is not None:
+        edge = self.modifications.tip_edge
+        if edge is not None and edge.angle is None:     # a chamfer runs on to the tip land
             roundings = tuple(self._rest_of_rounding(side, z, np.array(tip_middle))
                               for side in (-1, 1))
         return ToothSection(z, fillet_minus, minus, tip_middle, plus[::-1],
