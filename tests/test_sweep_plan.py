@@ -11,7 +11,8 @@ import numpy as np
 import pytest
 from mutations import CASES
 
-from toothcontact.case import CaseError, load_sweep, read_table
+from toothcontact.case import CaseError, read_table
+from toothcontact.runner import load_sweep
 from toothcontact.sweep.sampling import plan
 from toothcontact.sweep.spec import SweepSpec
 

@@ -177,7 +177,8 @@ def test_positions_on_request_hold_every_samples_rows(two_workers, tmp_path):
     import shutil
 
     from toothcontact.analyses import analyse
-    from toothcontact.case import load_sweep, parse_case
+    from toothcontact.case import parse_case
+    from toothcontact.runner import load_sweep
     from toothcontact.sweep.sampling import plan
 
     folder, path, _ = two_workers

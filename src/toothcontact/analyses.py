@@ -86,7 +86,9 @@ def _defaulted_materials(case: schema.CaseInfo) -> list[str]:
     notes = []
     if "material" in type(case).model_fields and "material" not in given:
         m = case.material
-        notes.append(f"material: none given, so steel: E = {m.E / 1e3:g} GPa, nu = {m.nu:g}")
+        whose = " (the worm's)" if case.kind == "worm" else ""
+        notes.append(f"material{whose}: none given, so steel: E = {m.E / 1e3:g} GPa, "
+                     f"nu = {m.nu:g}")
     for mate in ("gear_material", "wheel_material", "sleeve_material"):
         if mate in type(case).model_fields and getattr(case, mate) is None:
             notes.append(f"{mate}: none given, so the same as material")
@@ -1077,11 +1079,26 @@ def worm_geometry_case(case: schema.WormCase) -> Result:
                                 - wheel.tip_diameter / 2)):
         result.checks.append(Check(
             f"{name} flank reaches below the wheel's tip", flank.form_radius <= reach,
-            f"{name} form diameter {2 * flank.form_radius:.3f} mm (no flank inside it), the "
-            f"wheel's tip reaches diameter {2 * reach:.3f} mm"))
+            (f"{name} form diameter {2 * flank.form_radius:.3f} mm (no flank inside it)"
+             if flank.form_radius > 0.0 else f"the {name} flank exists down to its root (no "
+                                             "form circle)")
+            + f", the wheel's tip reaches diameter {2 * reach:.3f} mm"))
     if case.load is not None:
         _worm_contact(case, parts, result)
     return result
+
+
+def _flankless_worm(case: schema.WormCase, worm, wheel) -> str:
+    """Why no contact was found on a worm whose flanks start (a ZI worm's base cylinder, a
+    ZK's form limit) above the radius the wheel's tips reach, naming the fields that size
+    it: a slender worm of few starts and a steep lead."""
+    given = "worm.lead_angle" if case.worm.lead_angle is not None else "worm.pitch_diameter"
+    return (f"{given} / worm.starts / worm module: no contact could be found on a "
+            f"{worm.starts}-start {worm.form} worm of d1 = {worm.pitch_diameter:.4g} mm "
+            f"(diameter quotient q = d1/m_x = {worm.pitch_diameter / worm.axial_module:.3g}): "
+            f"its flanks start at diameter {2 * worm.form_radius:.4g} mm, above the "
+            f"{2 * wheel.throat_radius:.4g} mm the wheel's tips reach; give a larger pitch "
+            "diameter (a smaller lead angle) or fewer starts")
 
 
 def _worm_contact(case: schema.WormCase, parts, result: Result) -> None:
@@ -1122,6 +1139,8 @@ def _worm_contact(case: schema.WormCase, parts, result: Result) -> None:
                               _cycle_settings(a, pairs=(-2, -1, 0, 1, 2),
                                               ease_off_grid=(41, 61), ease_off_member="gear"))
     except (ValueError, RuntimeError) as exc:
+        if worm.form_radius > wheel.throat_radius:
+            raise CaseError(_flankless_worm(case, worm, wheel)) from None
         raise CaseError(f"misalignment / load: no contact could be found: {exc}") from None
     _contact_sections(cycle, loads, result)
     from .contact.compliance import PairCompliance, ThreadCompliance, WheelToothCompliance

@@ -9,6 +9,7 @@ from __future__ import annotations
 
 import math
 import os
+import re
 import tomllib
 from pathlib import Path
 from typing import Annotated, Any, Literal
@@ -767,13 +768,43 @@ def read_table(path: str | Path) -> dict:
     """A TOML file's table; a CaseError names the file where it cannot be read."""
     path = Path(path)
     try:
-        return tomllib.loads(path.read_text(encoding="utf-8"))
+        text = path.read_text(encoding="utf-8")
     except FileNotFoundError:
         raise CaseError(f"{path}: no such case file") from None
     except (OSError, UnicodeDecodeError) as exc:
         raise CaseError(f"{path}: cannot read it ({exc})") from None
+    try:
+        table = tomllib.loads(text)
     except tomllib.TOMLDecodeError as exc:
-        raise CaseError(f"{path}: not valid TOML ({exc})") from None
+        raise CaseError(f"{path}: not valid TOML ({_toml_problem(exc, text)})") from None
+    except RecursionError:
+        raise CaseError(f"{path}: {TOO_DEEP}") from None
+    if _depth(table) > MAX_DEPTH:
+        raise CaseError(f"{path}: {TOO_DEEP}")
+    return table
+
+
+#: the deepest nesting of arrays and tables a case file may have (a case needs 4)
+MAX_DEPTH = 16
+TOO_DEEP = f"arrays or tables nested more than {MAX_DEPTH} deep (a case needs 4)"
+
+
+def _depth(value, level: int = 0) -> int:
+    """How deep arrays and tables nest in `value` (stops counting past MAX_DEPTH)."""
+    if level > MAX_DEPTH or not isinstance(value, (dict, list)):
+        return level
+    children = value.values() if isinstance(value, dict) else value
+    return max((_depth(v, level + 1) for v in children), default=level + 1)
+
+
+def _toml_problem(exc: tomllib.TOMLDecodeError, text: str) -> str:
+    """tomllib's message, with the key named where it says a value is given twice."""
+    message = str(exc)
+    at = re.search(r"at line (\d+)", message)
+    if "Cannot overwrite" in message and at:
+        key = text.splitlines()[int(at.group(1)) - 1].split("=", 1)[0].strip()
+        return f"{key!r} is given twice ({message})"
+    return message
 
 
 def load_case(path: str | Path) -> tuple[CaseInfo, dict]:
@@ -782,42 +813,25 @@ def load_case(path: str | Path) -> tuple[CaseInfo, dict]:
     return parse_case(raw, source=str(path), base=Path(path).parent), raw
 
 
-def load_sweep(path: str | Path):
-    """Read and validate a sweep file (sweep.spec): the spec, its base case's table (units
-    as given; the base validated as a case) and the base case's path. The base is a path
-    relative to the sweep file, or a bundled case's name."""
-    from .runner import case_path
-    from .sweep.spec import SweepSpec
-
-    path = Path(path)
-    raw = read_table(path)
-    try:
-        spec = SweepSpec.model_validate(raw)
-    except ValidationError as exc:
-        raise CaseError(f"{path}: {_describe(exc, SweepSpec)}") from None
-    relative = Path(os.path.normpath(path.parent / spec.base))
-    base_path = relative if relative.is_file() else case_path(spec.base)
-    _, base = load_case(base_path)
-    return spec, base, base_path
-
-
 def parse_case(raw: dict, source: str = "case", base: Path | None = None) -> CaseInfo:
     """Validate a case table (as read from TOML) into its kind's model; files it names are
     found relative to `base` (the case file's folder)."""
+    if _depth(raw) > MAX_DEPTH:
+        raise CaseError(f"{source}: {TOO_DEEP}")
     kind = raw.get("kind")
     allowed = ", ".join(KINDS)
     if kind is None:
         raise CaseError(f"{source}: kind: missing; allowed: {allowed}")
-    if kind not in KINDS:
-        raise CaseError(f"{source}: kind: {kind!r} is not a known kind; allowed: {allowed}")
+    if not isinstance(kind, str) or kind not in KINDS:
+        raise CaseError(f"{source}: kind: {shown(kind)} is not a known kind; allowed: {allowed}")
     model = KINDS[kind]
     try:
         return model.model_validate(raw, context={"base": base})
     except ValidationError as exc:
-        raise CaseError(f"{source}: {_describe(exc, model)}") from None
+        raise CaseError(f"{source}: {describe(exc, model)}") from None
 
 
-def _describe(exc: ValidationError, model: type[BaseModel]) -> str:
+def describe(exc: ValidationError, model: type[BaseModel]) -> str:
     """One line for the first validation error: field, value, what is allowed."""
     error = exc.errors(include_url=False)[0]
     field = _dotted(error["loc"])
@@ -830,8 +844,26 @@ def _describe(exc: ValidationError, model: type[BaseModel]) -> str:
     if not field:
         return message
     if error["type"] in ("value_error", "assertion_error") and repr(error["input"]) in message:
-        return f"{field}: {message}"
-    return f"{field}: {error['input']!r}: {message}"
+        return f"{field}: {_shortened(message)}"
+    return f"{field}: {shown(error['input'])}: {_shortened(message)}"
+
+
+#: the most characters of a given value a message repeats
+SHOWN = 60
+
+
+def shown(value) -> str:
+    """A given value as a message shows it: its repr, cut to SHOWN characters."""
+    return _cut(repr(value))
+
+
+def _cut(text: str) -> str:
+    return text if len(text) <= SHOWN else f"{text[:SHOWN]}… ({len(text)} characters)"
+
+
+def _shortened(message: str) -> str:
+    """A message with every long quoted value in it cut (see shown)."""
+    return re.sub(rf"'[^']{{{SHOWN},}}'", lambda m: _cut(m.group(0)), message)
 
 
 def _dotted(loc: tuple) -> str:

@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import os
+import shlex
 from pathlib import Path
 from typing import Optional
 
@@ -108,7 +109,11 @@ def run(case: Path = typer.Argument(..., help="case file (TOML), or the name of 
     from . import runner
 
     with _Progress(None, case.stem) as progress:
-        document, written = _guarded(lambda: runner.run_case(case, out, pictures, progress.stage))
+        command = shlex.join(["toothcontact", "run", str(case)]
+                             + (["--out", str(out)] if out is not None else [])
+                             + ([] if pictures else ["--no-pictures"]))
+        document, written = _guarded(lambda: runner.run_case(case, out, pictures, progress.stage,
+                                                             command))
     failed = [c for c in document["checks"] if not c["ok"] and c["kind"] == "design"]
     folder = written[0].parent if written else out
     typer.echo(f"{case.stem}: wrote {_wrote(written)} -> {folder}")
@@ -226,18 +231,31 @@ def cases():
     from rich.console import Console
     from rich.table import Table
 
-    table = Table("name", "kind", "title", "path", title="bundled cases (run one with "
-                  "`toothcontact run NAME`)")
+    console = Console(width=200)
+    listings = []
+    rows = []
     for path in _guarded(runner.bundled_cases):
         info, _ = _guarded(lambda: schema.load_case(path))
-        table.add_row(path.stem, info.kind, info.title, str(path))
-    sweeps = Table("name", "samples", "title", "path", title="bundled sweeps (run one with "
-                   "`toothcontact sweep NAME`)")
+        rows.append((path.stem, info.kind, info.title, str(path)))
+    listings.append((("name", "kind", "title", "path"), rows,
+                     "bundled cases (run one with `toothcontact run NAME`)"))
+    rows = []
     for path in _guarded(runner.bundled_sweeps):
-        spec, raw, base = _guarded(lambda: schema.load_sweep(path))
-        sweeps.add_row(path.stem, str(len(_guarded(lambda: plan(spec, raw, base.parent)))),
-                       spec.title or "", str(path))
-    Console(width=200).print(table, sweeps)
+        spec, raw, base = _guarded(lambda: runner.load_sweep(path))
+        rows.append((path.stem, str(len(_guarded(lambda: plan(spec, raw, base.parent)))),
+                     spec.title or "", str(path)))
+    listings.append((("name", "samples", "title", "path"), rows,
+                     "bundled sweeps (run one with `toothcontact sweep NAME`)"))
+    if not console.is_terminal:        # piped or captured: one tab-separated line per entry
+        for headers, rows, _ in listings:
+            for row in rows:
+                typer.echo("\t".join(row))
+        return
+    for headers, rows, title in listings:
+        table = Table(*headers, title=title)
+        for row in rows:
+            table.add_row(*row)
+        console.print(table)
 
 
 @app.command()

@@ -17,12 +17,25 @@ from . import __version__
 from .report_view import view
 
 
-def result_document(name: str, case, raw: dict, result) -> dict:
-    """The JSON document of a run: what was asked (units as given) and what was found."""
+def result_document(name: str, case, raw: dict, result, provenance: dict | None = None
+                    ) -> dict:
+    """The JSON document of a run: what was asked (units as given), what was found, and
+    what made it (`provenance`: run_at_utc, case_file, case_sha256, command)."""
     return {"case": name, "kind": case.kind, "title": case.title, "source": case.source,
             "assumptions": case.assumptions, "toothcontact_version": __version__,
+            "provenance": provenance or {},
             "units": "mm, N, MPa, rad unless the key says otherwise",
             "inputs": raw, **result.as_dict()}
+
+
+def provenance_of(path: Path) -> dict:
+    """When and from which case file (path and SHA-256 of its bytes) a run was made."""
+    import datetime
+    import hashlib
+
+    return {"run_at_utc": datetime.datetime.now(datetime.timezone.utc).isoformat(
+                timespec="seconds"),
+            "case_file": str(path), "case_sha256": hashlib.sha256(path.read_bytes()).hexdigest()}
 
 
 def write_run(out_dir: Path, document: dict, images=()) -> list[Path]:

@@ -7,14 +7,16 @@ out as Markdown and as one self-contained HTML page."""
 from __future__ import annotations
 
 import math
+import re
 from dataclasses import dataclass, field
 
 #: sections of a document that are not result tables
 META = {"case", "kind", "title", "source", "assumptions", "toothcontact_version", "units",
-        "inputs", "checks", "notes", "stages"}
+        "inputs", "checks", "notes", "stages", "provenance"}
 
 #: key suffix -> unit shown in a label (longest first)
-UNITS = [("_mm2_s", "mm²/s"), ("_per_mm", "1/mm"), ("_mm2", "mm²"), ("_urad", "µrad"),
+UNITS = [("_N_per_mm_um", "N/(mm·µm)"), ("_N_per_mm", "N/mm"), ("_sqrt_MPa", "√MPa"),
+         ("_mm2_s", "mm²/s"), ("_per_mm", "1/mm"), ("_mm2", "mm²"), ("_urad", "µrad"),
          ("_MPa", "MPa"), ("_Nm", "N·m"), ("_deg", "deg"), ("_rad", "rad"), ("_mm", "mm"),
          ("_um", "µm"), ("_N", "N"), ("_C", "°C")]
 
@@ -46,29 +48,63 @@ LABELS = {
     "I": "AGMA geometry factor I", "Cp_sqrt_MPa": "elastic coefficient Cp",
     "K_D_mm": "K_D", "rho1_mm": "profile radius rho1", "rho2_mm": "profile radius rho2",
     "rho1_lpstc_mm": "pinion profile radius at the LPSTC",
+    "K_H_beta": "face load factor K_Hβ (over the mesh cycle)",
+    "K_H_beta_instantaneous": "K_Hβ at the worst instant",
+    "iso_K_H_beta_linear": "K_Hβ by ISO 6336-1 (the slope alone)",
+    "mesh_stiffness_N_per_mm_um": "mesh stiffness c_γα",
+    "iso_mesh_stiffness_N_per_mm_um": "mesh stiffness c_γα by ISO 6336-1",
+    "single_stiffness_N_per_mm_um": "single-pair stiffness c'",
+    "iso_single_stiffness_N_per_mm_um": "single-pair stiffness c' by ISO 6336-1",
+    "bem_failed_contacts": "contacts the loaded solver could not answer",
+    "max_edge_pressure_MPa": "largest edge pressure", "max_edge_load_fraction":
+    "largest share of a contact's load at an edge", "max_end_load_ratio":
+    "largest end load ratio", "edge_loaded_contacts": "edge-loaded contacts",
+    "end_loaded_contacts": "end-loaded contacts", "edge_load_fraction": "share of the load at the edge",
+    "agma_stress_MPa": "AGMA contact stress", "contact_radius_worm_mm": "contact radius on the worm",
+    "self_locking": "self-locking", "eta_kim_aligned": "efficiency (misalignment model, aligned)",
+    "mu": "friction coefficient μ", "mu_aligned": "friction coefficient μ (aligned)",
+    "found": "interference found at", "back_flanks": "back flanks touching at",
+    "Cp_sqrt_MPa": "elastic coefficient Cp",
 }
+
+#: the members' names in a worm set's labels
+WORM_MEMBERS = (("pinion", "worm"), ("gear", "wheel"))
 
 #: a number this close to zero, relative to the largest of its kind, shows as 0
 ZERO = 1e-8
 
+#: edge margins are shown to the micrometre (mm), as the checks give them
+MARGIN_RESOLUTION = 1e-3
 
-def label(key: str) -> str:
-    """A key's label with its unit: 'face_position_mm' -> 'position along the face [mm]'."""
+#: transmission errors are shown to 0.01 µrad (the unloaded TE of conjugate flanks is the
+#: contact search's tolerance, a few hundredths)
+TE_RESOLUTION = 0.01
+
+
+def label(key: str, kind: str = "") -> str:
+    """A key's label with its unit: 'face_position_mm' -> 'position along the face [mm]'; in
+    a worm set's report (`kind` "worm") the pinion is the worm and the gear the wheel."""
     unit = next((u for suffix, u in UNITS if key.endswith(suffix)), None)
     if key in LABELS:
         words = LABELS[key]
     else:
         stem = key[: -len(next(s for s, u in UNITS if key.endswith(s)))] if unit else key
         words = stem.replace("_", " ")
+    if kind == "worm":
+        for member, name in WORM_MEMBERS:
+            words = re.sub(rf"\b{member}\b", name, words)
     return f"{words} [{unit}]" if unit else words
 
 
-def number(value, scale: float | None = None) -> str:
-    """A value as text: numbers to four significant digits (0 when within ZERO of `scale`),
-    None as '', booleans as yes/no, dicts as 'key: value' pairs, short lists inline and long
-    ones by their shape and range."""
+def number(value, scale: float | None = None, resolution: float | None = None) -> str:
+    """A value as text: numbers to four significant digits and no finer than `resolution`
+    (0 when within ZERO of `scale`), None as '', booleans as yes/no, dicts as 'key: value'
+    pairs, an empty list as 'none', short lists of names joined, of numbers inline, long ones
+    by their shape and range."""
     if value is None:
         return ""
+    if isinstance(value, float) and resolution and math.isfinite(value):
+        value = round(value / resolution) * resolution
     if isinstance(value, bool):
         return "yes" if value else "no"
     if isinstance(value, int):
@@ -82,6 +118,10 @@ def number(value, scale: float | None = None) -> str:
     if isinstance(value, dict):
         return "; ".join(f"{k}: {number(v)}" for k, v in value.items())
     if isinstance(value, (list, tuple)):
+        if not value:
+            return "none"
+        if all(isinstance(v, str) for v in value):
+            return ", ".join(value)
         flat = _flatten(value)
         if len(flat) > 12:
             finite = [v for v in flat if isinstance(v, (int, float)) and not isinstance(v, bool)
@@ -152,6 +192,7 @@ class ReportView:
     inputs: str
     tables: list[Table]
     stages: list[tuple[str, str]] = field(default_factory=list)
+    provenance: list[tuple[str, str]] = field(default_factory=list)
 
     @property
     def failed(self) -> list[CheckLine]:
@@ -172,7 +213,7 @@ def view(document: dict) -> ReportView:
         if summary.get(key):
             tool.append(summary[key])
     tables = [t for key, value in document.items() if key not in META
-              for t in _tables(key, value)]
+              for t in _tables(key, value, document["kind"])]
     stages = [(name, stage.get("reason", "")) for name, stage in
               (document.get("stages") or {}).items() if stage.get("status") == "failed"]
     return ReportView(
@@ -184,18 +225,33 @@ def view(document: dict) -> ReportView:
         other_checks=[c for c in checks if c.kind != "design"],
         assumptions=[str(a) for a in document.get("assumptions") or []], tool_notes=tool,
         inputs="\n".join(toml_lines(document.get("inputs") or {})), tables=tables,
-        stages=stages)
+        stages=stages, provenance=provenance(document))
 
 
-def _tables(key: str, value) -> list[Table]:
+#: the traceability block's lines: (label, the document's provenance key)
+PROVENANCE = (("run at (UTC)", "run_at_utc"), ("case file", "case_file"),
+              ("case file SHA-256", "case_sha256"), ("command", "command"))
+
+
+def provenance(document: dict) -> list[tuple[str, str]]:
+    """What made the document: the tool's version, when, from which case file (its hash)
+    and by which command, as far as the document says."""
+    given = document.get("provenance") or {}
+    return ([("toothcontact", str(document.get("toothcontact_version", "")))]
+            + [(name, str(given[key])) for name, key in PROVENANCE if given.get(key)])
+
+
+def _tables(key: str, value, kind: str) -> list[Table]:
+    """A document section as a table: a dict as quantity/value rows (those that do not
+    apply, None, left out), a list of dicts as one row each."""
     title = key.replace("_", " ")
     if isinstance(value, dict):
         plain = {k: v for k, v in value.items() if not k.endswith("_note")
-                 and k not in ("load_sharing",)}
+                 and k not in ("load_sharing",) and v is not None}
         if not plain:
             return []
         note = "; ".join(f"{number(v)}" for k, v in value.items() if k.endswith("_note"))
-        rows = [[label(k), number(v)] for k, v in plain.items()]
+        rows = [[label(k, kind), number(v)] for k, v in plain.items()]
         return [Table(title, ["quantity", "value"], rows, [False, True], note=note)]
     if isinstance(value, list) and value and all(isinstance(r, dict) for r in value):
         keys = list(dict.fromkeys(k for row in value for k in row))
@@ -204,7 +260,7 @@ def _tables(key: str, value) -> list[Table]:
         rows = [[number(r.get(k), scale[k]) for k in keys] for r in value]
         numeric = [all(isinstance(r.get(k), (int, float)) and not isinstance(r.get(k), bool)
                        for r in value if r.get(k) is not None) for k in keys]
-        return [Table(title, [label(k) for k in keys], rows, numeric,
+        return [Table(title, [label(k, kind) for k in keys], rows, numeric,
                       collapsed=len(value) > COLLAPSE_ROWS)]
     return []
 
@@ -297,7 +353,8 @@ def _contact_figures(summary: dict, rows: list[dict], driven: str) -> list[KeyRe
         loaded = summary.get("edge_loaded_contacts")
         if loaded is not None:
             out.append(KeyResult("edge-loaded contacts", f"{loaded} of {len(solved)}",
-                                 "edge pressure above a quarter of the peak", loaded > 0))
+                                 "a face end loaded above its mean load per mm, or a tip, "
+                                 "root or form edge pressed harder than the flank", loaded > 0))
     elif summary.get("max_p_max_MPa") is not None:
         out.append(KeyResult("largest Hertz pressure", f"{number(summary['max_p_max_MPa'])} MPa",
                              "equal load split, no loaded solution"))
@@ -305,7 +362,7 @@ def _contact_figures(summary: dict, rows: list[dict], driven: str) -> list[KeyRe
                             ("tip and form", "worst_profile_edge_margin_mm", "worst_profile_edge")):
         if summary.get(key) is not None:
             out.append(KeyResult(f"worst edge margin ({what})",
-                                 f"{number(summary[key], scale=1.0)} mm",
+                                 f"{number(summary[key], resolution=MARGIN_RESOLUTION)} mm",
                                  f"at {summary.get(edge)} (negative: the pattern is cut)",
                                  summary[key] < 0))
     span = summary.get("face_position_range_mm")
@@ -319,7 +376,8 @@ def _contact_figures(summary: dict, rows: list[dict], driven: str) -> list[KeyRe
                         ("transmission error, peak to peak (loaded)",
                          "loaded_transmission_error_peak_to_peak_urad")):
         if summary.get(key) is not None:
-            out.append(KeyResult(label_, f"{number(summary[key])} µrad", f"the {driven}'s lag"))
+            out.append(KeyResult(label_, f"{number(summary[key], resolution=TE_RESOLUTION)} µrad",
+                                 f"the {driven}'s lag"))
     return out
 
 

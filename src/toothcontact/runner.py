@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import difflib
 import math
 import os
 from collections.abc import Callable
@@ -54,8 +55,36 @@ def case_path(name: str | Path) -> Path:
     bundled = bundled_cases_dir() / (path.name if path.suffix == ".toml" else f"{path.name}.toml")
     if path.parent == Path(".") and bundled.is_file():
         return bundled
-    raise schema.CaseError(f"{name}: no such case file, and no bundled case of that name "
-                           "(`toothcontact cases` lists them)")
+    close = difflib.get_close_matches(path.stem, [p.stem for p in bundled_cases()], n=1)
+    raise schema.CaseError(f"{name}: no such case file, and no bundled case of that name"
+                           + (f"; did you mean {close[0]}?" if close else "")
+                           + " (`toothcontact cases` lists them)")
+
+
+def load_sweep(path: str | Path):
+    """Read and validate a sweep file (sweep.spec): the spec, its base case's table (units
+    as given; the base validated as a case) and the base case's path. The base is a path
+    relative to the sweep file, or a bundled case's name."""
+    from pydantic import ValidationError
+
+    from .sweep.spec import SweepSpec
+
+    path = Path(path)
+    raw = schema.read_table(path)
+    try:
+        spec = SweepSpec.model_validate(raw)
+    except ValidationError as exc:
+        raise schema.CaseError(f"{path}: {schema.describe(exc, SweepSpec)}") from None
+    relative = Path(os.path.normpath(path.parent / spec.base))
+    try:
+        base_path = relative if relative.is_file() else case_path(spec.base)
+    except schema.CaseError:
+        raise schema.CaseError(f"{path}: base: {schema.shown(spec.base)} is neither a case "
+                               "file (relative to the sweep file) nor a bundled case's name "
+                               "(`toothcontact cases` lists them)") from None
+    _, base = schema.load_case(base_path)
+    return spec, base, base_path
+
 
 
 @dataclass
@@ -78,7 +107,8 @@ def analyse_path(path: str | Path) -> Analysis:
         result = analyses.analyse(case)
     except schema.CaseError as exc:
         raise schema.CaseError(f"{path}: {exc}") from None
-    return Analysis(path, case, raw, result, report.result_document(path.stem, case, raw, result))
+    return Analysis(path, case, raw, result, report.result_document(
+        path.stem, case, raw, result, report.provenance_of(path)))
 
 
 def analyse_file(path: str | Path) -> dict:
@@ -92,7 +122,8 @@ def _step(progress: Callable[[str], None] | None, what: str) -> None:
 
 
 def run_case(path: str | Path, out_dir: str | Path | None = None, pictures: bool = True,
-             progress: Callable[[str], None] | None = None) -> tuple[dict, list[Path]]:
+             progress: Callable[[str], None] | None = None, command: str | None = None
+             ) -> tuple[dict, list[Path]]:
     """Analyse a case file and write into `out_dir` (default out/<case name>/): result.json,
     report.md, report.html, the plots (plots.figures_for) and, with `pictures`, the 3D
     pictures (render.pictures_for). Nothing is written when the case is bad.
@@ -101,11 +132,13 @@ def run_case(path: str | Path, out_dir: str | Path | None = None, pictures: bool
     which then replaces it (report.publish_folder), so a reader sees the previous complete
     run or the new one. A stage that cannot answer (plots, pictures) says so in the
     document's `stages` and leaves the rest standing. `progress(stage)` is called before
-    each stage."""
+    each stage; `command`: the command line that asked for it, for the traceability block."""
     path = case_path(path)
     _step(progress, "analysing")
     run = analyse_path(path)
     document = run.document
+    if command:
+        document["provenance"]["command"] = command
     target = Path(out_dir) if out_dir is not None else Path("out") / path.stem
     stages = document.setdefault("stages", {})
     with report.staging_folder(target) as staging:
@@ -163,7 +196,7 @@ def run_sweep(path: str | Path, out_dir: str | Path | None = None, *,
     from .sweep.sampling import plan
 
     path = sweep_path(path)
-    spec, base, base_path = schema.load_sweep(path)
+    spec, base, base_path = load_sweep(path)
     samples = plan(spec, base, base_path.parent, source=str(path))
     if spec.optimise is not None:          # the bounds' corners are cases too, checked now
         design_of = designs(spec.optimise, f"{path}: optimise")

@@ -69,6 +69,10 @@ def registry():
     return pint.UnitRegistry()
 
 
+#: torque units as KISSsoft users write them, which pint reads otherwise ("Nm": nanometres)
+TORQUE_SHORTHANDS = {"Nm": "N*m", "kNm": "kN*m", "Nmm": "N*mm", "N.m": "N*m", "N·m": "N*m"}
+
+
 def parse(text: str | float | int, kind: str) -> float:
     """Convert `text` to a float in the core unit of `kind` (see KINDS).
 
@@ -95,6 +99,8 @@ def parse(text: str | float | int, kind: str) -> float:
             return magnitude
         raise UnitError(f"{text!r} has no unit; expected {_expected(spec)}")
     ureg = registry()
+    if kind == "torque":           # "Nm", "kNm", "Nmm" as gear engineers write them
+        unit_text = TORQUE_SHORTHANDS.get(unit_text.strip(), unit_text)
     try:
         unit = ureg.Unit(unit_text.replace("^", "**"))
     except Exception:
