@@ -51,13 +51,13 @@ def test_importing_the_package_leaves_mallopt_alone():
     command line and a sweep's samples set them, a host program importing the package
     does not (M_MMAP_THRESHOLD read back through mallinfo is not available, so the call
     itself is watched)."""
-    code = ("import ctypes, toothcontact.memory as m\\n"
-            "called = []\\n"
-            "m.keep_freed_memory = lambda: called.append(1)\\n"
-            "import importlib, toothcontact\\n"
-            "importlib.reload(toothcontact)\\n"
-            "import toothcontact.analyses\\n"
-            "print(len(called))\\n")
+    code = ("import ctypes, toothcontact.memory as m\n"
+            "called = []\n"
+            "m.keep_freed_memory = lambda: called.append(1)\n"
+            "import importlib, toothcontact\n"
+            "importlib.reload(toothcontact)\n"
+            "import toothcontact.analyses\n"
+            "print(len(called))\n")
     out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True,
                          check=True)
     assert out.stdout.strip() == "0"

@@ -9,7 +9,7 @@ from typing import Optional
 
 import typer
 
-app = typer.Typer(add_completion=False, no_args_is_help=True,
+app = typer.Typer(add_completion=False, no_args_is_help=True, rich_markup_mode=None,
                   help="Tooth-contact analysis of gears under misalignment and deflection.")
 
 
@@ -94,6 +94,9 @@ def _version(value: bool) -> None:
 def main(version: bool = typer.Option(False, "--version", callback=_version, is_eager=True,
                                       help="print the version and exit")):
     """Tooth-contact analysis of gears under misalignment and deflection."""
+    from .memory import keep_freed_memory
+
+    keep_freed_memory()
 
 
 @app.command()
@@ -152,8 +155,9 @@ def sweep(file: Path = typer.Argument(..., help="sweep file (TOML, kind = \"swee
 
     Every sample is validated first, then analysed and checkpointed as it finishes; the
     table has a row per sample, sweep.json the percentiles, the edge-loading probability
-    and the sensitivities. Exit 0: done (failed samples are recorded in the table); 2: the
-    sweep was refused."""
+    and the sensitivities. Exit 0: done (failed samples are recorded in the table); 1: done,
+    but an optimisation found no design that met its constraints; 2: the sweep was
+    refused."""
     from . import runner
 
     failures = []
@@ -172,6 +176,11 @@ def sweep(file: Path = typer.Argument(..., help="sweep file (TOML, kind = \"swee
             positions=positions, planned=planned, on_done=done))
     typer.echo(f"{file.stem}: {stats['samples']} samples, {stats['ok']} answered, "
                f"{stats['failed']} failed; wrote {_wrote(written)} -> {written[0].parent}")
+    best = (stats.get("optimise") or {}).get("best")
+    if best is not None and not best["feasible"]:
+        typer.echo(f"  no design met the constraints: the best tried, {best['design']}, "
+                   "breaks one (see the report's optimisation table)")
+        raise typer.Exit(EXIT_CHECK_FAILED)
 
 
 @app.command()
@@ -256,6 +265,23 @@ def cases():
         for row in rows:
             table.add_row(*row)
         console.print(table)
+
+
+@app.command()
+def schema(kind: str = typer.Argument(..., help="a case kind, e.g. spur")):
+    """Print the JSON schema of a case kind (for an editor's completion and checks).
+
+    Save it beside your cases, e.g. `toothcontact schema spur > spur.schema.json`, and
+    point your editor's TOML support at it (Taplo / Even Better TOML: a `#:schema
+    spur.schema.json` first line)."""
+    import json
+
+    from .case import KINDS
+
+    if kind not in KINDS:
+        _fail(f"kind: {kind!r} is not a known kind; allowed: {', '.join(KINDS)}",
+              EXIT_BAD_INPUT)
+    typer.echo(json.dumps(KINDS[kind].model_json_schema(), indent=2))
 
 
 @app.command()

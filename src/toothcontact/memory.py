@@ -5,7 +5,8 @@ per step. glibc serves such sizes with fresh mmap pages and returns them on free
 step pays the kernel to fault in and zero its pages again: about 35,000 page faults and a
 third of the wall time of the crowned spur case's contact cycle. Raising the mmap and trim
 thresholds keeps that memory in the heap for the next step (measured: cycle with its gap
-fields 0.28 s -> 0.20 s). It is set once, when the package is imported.
+fields 0.28 s -> 0.20 s). The command line and a sweep's samples set it (a process-wide
+setting: importing the package leaves a host program's allocator alone).
 """
 
 from __future__ import annotations

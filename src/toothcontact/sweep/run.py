@@ -6,6 +6,7 @@ whatever the workers and the order they finish in."""
 
 from __future__ import annotations
 
+import logging
 import contextlib
 import math
 import os
@@ -33,8 +34,10 @@ def sample_record(number: int, inputs: dict, raw: dict, folder: str | None,
     position and pair (their table cells, with `sample`), else []."""
     from ..analyses import analyse
     from ..case import parse_case
+    from ..memory import keep_freed_memory
     from ..parallel import workers
 
+    keep_freed_memory()
     record: dict = {"sample": number}
     rows: list[dict] = []
     try:
@@ -94,9 +97,12 @@ class Workers:
 
         if self._client is None:
             if self.scheduler is None:
+                # errors only: a worker slow to stop at the end ("still alive after 4.0
+                # seconds, killing") is Dask's housekeeping, not the user's business
                 self._cluster = LocalCluster(n_workers=self._local()[0],
                                              threads_per_worker=1, processes=True,
-                                             dashboard_address=":0")
+                                             dashboard_address=":0",
+                                             silence_logs=logging.ERROR)
             self._client = Client(self.scheduler or self._cluster)
         return self._client
 
