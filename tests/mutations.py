@@ -180,3 +180,21 @@ def run_cli(case_path: Path, out_dir: Path) -> tuple[int, str]:
     if result.exception is not None and not isinstance(result.exception, SystemExit):
         return 3, f"{type(result.exception).__name__}: {result.exception}"
     return result.exit_code, result.output
+
+
+def refused_line(case_text: str, folder: Path) -> str:
+    """Run a case text through `toothcontact run`: it must exit 2 with one line and write
+    nothing; that line."""
+    from typer.testing import CliRunner
+
+    from toothcontact.cli import app
+
+    case = folder / "case.toml"
+    case.write_text(case_text)
+    out = folder / "out"
+    result = CliRunner().invoke(app, ["run", str(case), "--out", str(out), "--no-pictures"])
+    assert result.exit_code == 2, result.output
+    lines = result.output.strip().splitlines()
+    assert len(lines) == 1 and lines[0].startswith("error: "), lines
+    assert not out.exists()
+    return lines[0]

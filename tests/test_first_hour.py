@@ -4,20 +4,13 @@ refused in one line naming the field (exit 2, nothing written) or read as meant.
 import pytest
 from typer.testing import CliRunner
 
+import mutations
+from test_cli import GOOD_HERTZ
+
 from toothcontact.cli import app
 from toothcontact.units import parse
 
-HERTZ = """kind = "hertz"
-load = "1000 N"
-[body1]
-radii = ["12.7 mm", "12.7 mm"]
-E = "206 GPa"
-nu = 0.3
-[body2]
-radii = ["inf", "inf"]
-E = "206 GPa"
-nu = 0.3
-"""
+HERTZ = GOOD_HERTZ
 
 SLENDER_WORM = """kind = "worm"
 [worm]
@@ -36,16 +29,7 @@ flank = "left"
 
 
 def refused(tmp_path, text: str) -> str:
-    """Run a case text: it must exit 2 with one line and write nothing; that line."""
-    case = tmp_path / "case.toml"
-    case.write_text(text)
-    out = tmp_path / "out"
-    result = CliRunner().invoke(app, ["run", str(case), "--out", str(out), "--no-pictures"])
-    assert result.exit_code == 2, result.output
-    lines = result.output.strip().splitlines()
-    assert len(lines) == 1 and lines[0].startswith("error: "), lines
-    assert not out.exists()
-    return lines[0]
+    return mutations.refused_line(text, tmp_path)
 
 
 def test_a_kind_that_is_not_a_name_is_refused(tmp_path):
