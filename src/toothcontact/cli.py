@@ -24,14 +24,18 @@ def _fail(message: str, code: int) -> None:
 
 
 def _guarded(action):
-    """Run `action`; bad input becomes one line and exit 2, never a traceback."""
+    """Run `action`; bad input, or a task whose extra is not installed, becomes one line
+    and exit 2, never a traceback."""
     from .case import CaseError
+    from .extras import missing_extra
 
     try:
         return action()
     except CaseError as exc:
         _fail(str(exc), EXIT_BAD_INPUT)
     except Exception as exc:  # noqa: BLE001 - the promise is: no traceback for users
+        if missing_extra(exc) is not None:
+            _fail(missing_extra(exc), EXIT_BAD_INPUT)
         if os.environ.get("TOOTHCONTACT_DEBUG"):
             raise
         _fail(f"internal error: {type(exc).__name__}: {exc} (a bug in toothcontact: please "
@@ -286,23 +290,32 @@ def schema(kind: str = typer.Argument(..., help="a case kind, e.g. spur")):
 
 @app.command()
 def demo(out: Path = typer.Option(Path("out"), "--out", help="output folder")):
-    """Run every bundled case into OUT/<case>/: results, reports, plots, pictures, solids."""
+    """Run every bundled case into OUT/<case>/: results, reports, plots, pictures, solids
+    (those an extra not installed here would make are listed as such)."""
     from rich.console import Console
     from rich.table import Table
 
     from . import runner
+    from .extras import installed
 
     table = Table("case", "kind", "checks", "files", "STEP/STL",
                   title=f"bundled cases -> {out}/<case>/")
+    cad = installed("cad")
     paths = _guarded(runner.bundled_cases)
     with _Progress(len(paths), "demo") as progress:
         for path in paths:
             progress.stage(path.stem)
+            if not cad and path.stem.startswith("imported_"):
+                table.add_row(path.stem, "imported", "", "", "needs the cad extra (STEP input)")
+                progress.advance()
+                continue
             document, written = _guarded(lambda: runner.run_case(
                 path, out / path.stem, progress=lambda what: progress.stage(f"{path.stem}: {what}")))
             failed = sum(not c["ok"] and c["kind"] == "design" for c in document["checks"])
             solids = ""
-            if document["kind"] in runner.GEOMETRY_KINDS:
+            if document["kind"] in runner.GEOMETRY_KINDS and not cad:
+                solids = "needs the cad extra"
+            elif document["kind"] in runner.GEOMETRY_KINDS:
                 progress.stage(f"{path.stem}: solids")
                 record = _guarded(lambda: runner.export_case(path, out / path.stem))
                 solids = ", ".join(f"{n} {p['flank_deviation_um']:.2f} µm"

@@ -12,6 +12,7 @@ from pathlib import Path
 import numpy as np
 
 from . import analyses, case as schema, report
+from .extras import missing_extra
 
 _HERE = Path(__file__).resolve().parent
 
@@ -171,7 +172,8 @@ def _stage(stages: dict, name: str, action: Callable[[], list[Path]]) -> list[Pa
     except Exception as exc:  # noqa: BLE001 - the numbers stand without the pictures
         if os.environ.get("TOOTHCONTACT_DEBUG"):
             raise
-        stages[name] = {"status": "failed", "reason": f"{type(exc).__name__}: {exc}"}
+        stages[name] = {"status": "failed",
+                        "reason": missing_extra(exc) or f"{type(exc).__name__}: {exc}"}
         return []
     stages[name] = {"status": "done", "files": [p.name for p in files]}
     return files
