@@ -241,3 +241,24 @@ def test_the_scale_bar_is_a_round_length_drawn_to_scale(half):
     assert abs(ends[1, 0] - ends[0, 0]) == pytest.approx(
         length * render.WINDOW[1] / (2.0 * half), rel=0.01)
     plotter.close()
+
+
+def test_the_colour_bars_title_stands_clear_of_its_tick_labels(aligned):
+    """VTK drew a horizontal colour bar's title over its tick labels (issue 28): the bar
+    carries no title of its own, and the title is a text above the bar's box, below the
+    scale bar's height."""
+    case, result = aligned
+    plotter = render.pattern_scene(result, case, "test", "head-on")
+    render._bar_title(plotter)
+    bar = plotter.scalar_bar
+    assert not bar.GetTitle().strip()
+    x, y = bar.GetPosition()
+    _, height = bar.GetPosition2()
+    texts = [a for a in plotter.renderer.actors.values()
+             if hasattr(a, "GetInput") and isinstance(a.GetInput(), str)
+             and a.GetInput().startswith("least separation over the mesh cycle")]
+    assert len(texts) == 1
+    coordinate = texts[0].GetPositionCoordinate()
+    tx, ty = coordinate.GetValue()[:2]
+    assert tx == pytest.approx(x) and ty > y + height
+    plotter.close()

@@ -120,12 +120,26 @@ def project(plotter, points) -> np.ndarray:
 def _finish(plotter, path: Path) -> Path:
     """Screenshot, close and write the picture, cut off below `plotter._keep_above` (a
     window fraction from the bottom, set by a head-on layout) where the picture ends."""
+    _bar_title(plotter)
     image = screenshot(plotter)
     keep = getattr(plotter, "_keep_above", 0.0)
     plotter.close()
     if keep > 0.0:
         image = image[: int(round((1.0 - keep) * image.shape[0]))]
     return write_png(image, path)
+
+
+def _bar_title(plotter) -> None:
+    """The colour bar's title as a text of its own just above the bar's box, where it
+    stands (VTK draws a horizontal bar's title over its tick labels)."""
+    title = getattr(plotter, "_bar_title", None)
+    if not title:
+        return
+    bar = plotter.scalar_bar
+    x, y = bar.GetPosition()
+    _, height = bar.GetPosition2()
+    plotter.add_text(title, position=(x, y + height + 0.004), viewport=True, font_size=9,
+                     color=INK)
 
 
 def _wrap(text: str, width: int = 95) -> str:
@@ -667,7 +681,7 @@ def _head_on_layout(plotter, points: np.ndarray, centre: np.ndarray, normal: np.
     _camera(plotter, focus, normal, up, half, parallel=True)
     bar = max(0.035, heights.min() + rise - 0.16)     # under the edge labels
     plotter.scalar_bar.SetPosition(0.17, bar)
-    _scale_bar(plotter, focus, normal, up, half, stretch, bar + 0.08)
+    _scale_bar(plotter, focus, normal, up, half, stretch, bar + 0.12)   # above the bar's title
     plotter._keep_above = max(bar - 0.03, 0.0)
 
 
@@ -802,8 +816,9 @@ def pattern_scene(result, case=None, name: str = "", view: str = "head-on",
         with np.errstate(all="ignore"):
             n = np.nan_to_num(_normals(flank, U, V))
         surface.points = surface.points + 0.5 * lift * n.reshape(-1, 3, order="F")
-    bar = dict(title=f"least separation over the mesh cycle (µm); paint where it is at most "
-                     f"the approach, {approach_um:.2f} µm", n_labels=5, fmt="%.1f", color=INK,
+    plotter._bar_title = (f"least separation over the mesh cycle (µm); paint where it is at "
+                          f"most the approach, {approach_um:.2f} µm")
+    bar = dict(title=" ", n_labels=5, fmt="%.1f", color=INK,
                position_x=0.17, position_y=0.035, width=0.62, height=0.055, title_font_size=15,
                label_font_size=14, above_label="no paint", vertical=False)
     plotter.add_mesh(surface, scalars="separation (µm)", cmap=_paint_lut(pv, approach_um),
@@ -1164,7 +1179,8 @@ def pressure_scene(result, case=None, name: str = "", patch: Patch | None = None
         if (pressure > 0).any() else 1.0
     shown = np.where(pressure > 0, pressure, np.nan)
     surface = _grid_surface(pv, warp(points), {"pressure (MPa)": shown})
-    bar = dict(title="largest contact pressure over the mesh cycle (MPa)", n_labels=5,
+    plotter._bar_title = "largest contact pressure over the mesh cycle (MPa)"
+    bar = dict(title=" ", n_labels=5,
                fmt="%.0f", color=INK, position_x=0.17, position_y=0.035, width=0.62,
                height=0.055, title_font_size=15, label_font_size=14, vertical=False,
                above_label="above")
