@@ -1,5 +1,5 @@
 """The loaded contact beside an earlier commit's, on the bundled spur cases, in one run: the
-loaded stage's time (analyses._loaded_sections, the load sharing and every pressure solve)
+loaded stage's time (analyses.contact.loaded_sections, the load sharing and every pressure solve)
 and the whole analysis without the interference check, best of `--repeat`. The earlier
 code is taken from git (`git archive`) and run in a subprocess of this run. Prints a table
 and writes benchmarks/<out>: loaded_teeth.json records the tooth bending along the face
@@ -29,15 +29,20 @@ import json, sys, time
 from pathlib import Path
 from toothcontact import analyses
 from toothcontact.case import load_case
+try:                                   # the analyses package (one module per kind)
+    from toothcontact.analyses import contact as owner
+    name = "loaded_sections"
+except ImportError:                    # before it: one module
+    owner, name = analyses, "_loaded_sections"
 stage = []
-inner = analyses._loaded_sections
+inner = getattr(owner, name)
 def timed(*args, **kwargs):
     start = time.perf_counter()
     try:
         return inner(*args, **kwargs)
     finally:
         stage.append(time.perf_counter() - start)
-analyses._loaded_sections = timed
+setattr(owner, name, timed)
 out = {}
 for name in sys.argv[2:]:
     case = load_case(Path(sys.argv[1]) / f"{name}.toml")[0]

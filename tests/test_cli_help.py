@@ -61,3 +61,24 @@ def test_importing_the_package_leaves_mallopt_alone():
     out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True,
                          check=True)
     assert out.stdout.strip() == "0"
+
+
+def test_verbose_logs_the_stages_and_quiet_prints_nothing(tmp_path):
+    """-v logs each stage and its time to stderr through the package's loggers; -q prints
+    nothing but errors (the exit code tells the rest); a bad case still gets its line."""
+    def toothcontact(*args):
+        return subprocess.run([sys.executable, "-m", "toothcontact", *args],
+                              capture_output=True, text=True, timeout=300, cwd=tmp_path)
+
+    loud = toothcontact("-v", "run", "hertz_sphere_on_flat", "--out", "loud")
+    assert loud.returncode == 0
+    assert "INFO toothcontact.runner: hertz_sphere_on_flat.toml: hertz analysis in" in loud.stderr
+    assert "INFO toothcontact.runner: writing the reports" in loud.stderr
+    assert "wrote result.json" in loud.stdout
+    quiet = toothcontact("-q", "run", "hertz_sphere_on_flat", "--out", "quiet")
+    assert quiet.returncode == 0 and quiet.stdout == "" and quiet.stderr == ""
+    assert (tmp_path / "quiet" / "result.json").is_file()
+    plain = toothcontact("run", "hertz_sphere_on_flat", "--out", "plain")
+    assert "INFO" not in plain.stderr and "wrote result.json" in plain.stdout
+    bad = toothcontact("-q", "run", "no_such_case")
+    assert bad.returncode == 2 and bad.stderr.startswith("error: no_such_case")

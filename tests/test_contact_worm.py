@@ -23,15 +23,33 @@ def contact(name, misalignment=WormMisalignment(), settings=SETTINGS):
                           settings).rows
 
 
+class OneStartOn(WormMesh):
+    """The same worm set read one start's pitch further on: its roll phi is phi + pitch."""
+
+    def driver_turn(self, phi1, tooth):
+        return super().driver_turn(phi1 + self.driver_pitch, tooth)
+
+    def gear_frame(self, phi1, tooth=0, delta=0.0):
+        return super().gear_frame(phi1 + self.driver_pitch, tooth, delta)
+
+
 def test_a_two_start_worm_meshes_periodically_over_one_start_pitch():
-    """The cycle's ends are one start's pitch apart: the same mesh, met by the other thread
-    start and the next wheel tooth. Equal transmission error and contact there shows both
-    starts take part (one start's thread alone gives a jump)."""
-    rows = contact("worm_eps_oversized_hob", WormMisalignment(centre_distance_error=0.05),
-                   CycleSettings(positions=3, grid=(11, 81), pairs=(-2, -1, 0, 1, 2)))
-    first = [r for r in rows if r["roll_deg"] == rows[0]["roll_deg"]]
-    last = [r for r in rows if r["roll_deg"] == rows[-1]["roll_deg"]]
-    assert rows[-1]["roll_deg"] - rows[0]["roll_deg"] == pytest.approx(180.0)
+    """Positions one start's pitch apart are the same mesh, met by the other thread start
+    and the next wheel tooth. Equal transmission error and contact there shows both starts
+    take part (one start's thread alone gives a jump). The cycle's positions hold each
+    position once (its ends are one), so the later one is read on the mesh turned on by
+    one pitch."""
+    def rows_at(mesh_type):
+        case, _ = load_case(bundled_cases_dir() / "worm_eps_oversized_hob.toml")
+        parts = gearset.worm_set(case)
+        mesh = mesh_type(parts.wheel["left"], WormMisalignment(centre_distance_error=0.05))
+        rows = parallel_cycle(mesh, parts.worm["left"], parts.wheel["left"], 500.0,
+                              STEEL_BRONZE, CycleSettings(positions=2, grid=(11, 81),
+                                                          pairs=(-2, -1, 0, 1, 2))).rows
+        assert rows[0]["roll_deg"] == pytest.approx(-90.0)       # 2 starts: a 180 deg pitch
+        return [r for r in rows if r["roll_deg"] == rows[0]["roll_deg"]]
+
+    first, last = rows_at(WormMesh), rows_at(OneStartOn)
     assert len(first) == len(last)
     for a, b in zip(first, last):
         assert b["transmission_error_urad"] == pytest.approx(a["transmission_error_urad"], abs=0.05)

@@ -21,7 +21,7 @@ def spur(teeth, module, face, helix=0.0, slope=0.0, line_load=300.0, positions=9
         "module": f"{module} mm", "pressure_angle": "20 deg", "helix_angle": f"{helix} deg",
         "face_width": f"{face} mm", "misalignment": {"slope": f"{slope}"},
         "load": {"tangential_load": f"{line_load * face} N"},
-        "analysis": {"positions": positions, "interference": False}}))
+        "analysis": {"positions": positions, "interference": False, "positions_check": False}}))
 
 
 @pytest.fixture(scope="module")

@@ -133,6 +133,28 @@ def test_ease_off_map_puts_the_lowest_colour_at_the_fields_minimum(tmp_path):
     assert r1 - r2 > 0.2 * size[1]  # radius 22.5 mm lies below 27.5 mm
 
 
+def test_ease_off_contours_leave_the_flat_bottom_alone(tmp_path, monkeypatch):
+    """A field flat at its least separation (a conjugate patch, its round-off ±0.01 µm)
+    rising to 100 µm: no contour level within 2 % of the range above the least, so the
+    flat bottom's noise draws no islands; the levels above it are drawn and labelled."""
+    x, y = np.linspace(-10.0, 10.0, 41), np.linspace(20.0, 30.0, 31)
+    X, _ = np.meshgrid(x, y)
+    noise = 0.01 * np.random.default_rng(1).standard_normal(X.shape)
+    z = np.maximum(np.abs(X) - 4.0, 0.0) ** 2 + noise
+    levels = []
+    saved = plots._save
+
+    def keep(fig, path):
+        levels.extend(float(v) for c in fig.axes[0].collections if hasattr(c, "levels")
+                      for v in c.levels)
+        return saved(fig, path)
+
+    monkeypatch.setattr(plots, "_save", keep)
+    plots.ease_off_map(x, y, z, tmp_path / "flat.png")
+    lo, hi = z.min(), z.max()
+    assert levels and min(levels) > lo + 0.02 * (hi - lo)
+
+
 def test_ease_off_map_blank_where_no_flank_and_the_approach_contour(tmp_path):
     size = (WIDTH, 624)
     x, y, z = _field(0.0, 25.0)

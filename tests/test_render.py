@@ -2,6 +2,7 @@
 contact turns the warning colour on (and only then), every picture is written whole."""
 
 import math
+from dataclasses import replace
 from pathlib import Path
 from types import SimpleNamespace
 
@@ -101,6 +102,44 @@ def test_pattern_is_not_blank_and_paints_where_the_contact_is(aligned):
     assert is_warning_colour(image).sum() == 0
 
 
+def test_pressure_at_the_position_of_the_largest_pressure(aligned):
+    """Beside the envelope over the cycle, the pressure at one position: the position whose
+    loaded contact holds the largest design pressure (its rows' bem_p_max_MPa), only its
+    pairs painted: the map's peak is that position's and it covers a part of the envelope's
+    painted area."""
+    case, result = aligned
+    cycle = result.cycle
+    rows = [dict(r, bem_p_max_MPa=r["p_max_MPa"]) for r in cycle.rows]
+    roll = render.peak_position(rows)
+    assert roll == max(rows, key=lambda r: r["p_max_MPa"])["roll_deg"]
+    cycle = replace(cycle, rows=rows)
+    loaded = SimpleNamespace(cycle=cycle, loaded=synthetic_loaded(cycle))
+    patch = render.flank_patch(cycle)
+    at_roll = [item if r["roll_deg"] == roll else None for item, r in zip(loaded.loaded, rows)]
+    _, envelope = render.pressure_on_flank(cycle, loaded.loaded, patch)
+    _, one = render.pressure_on_flank(cycle, at_roll, patch)
+    here = max(r["p_max_MPa"] for r in rows if r["roll_deg"] == roll)
+    assert one.max() == pytest.approx(here, rel=0.05)
+    assert 0 < (one > 0).sum() < 0.5 * (envelope > 0).sum()
+    plotter = render.pressure_scene(loaded, case, "test", patch, roll)
+    image = render.screenshot(plotter)
+    plotter.close()
+    assert len(np.unique(image.reshape(-1, 3), axis=0)) > 300
+    assert render.peak_position([{"roll_deg": 0.0, "bem_p_max_MPa": None}]) is None
+
+
+def test_a_cut_ellipse_is_drawn_along_the_edge_not_past_it(tilted):
+    """Under a 4 mrad slope every ellipse crosses end B: its outline runs along the flank's
+    edge there (every point on the flank: inside its face to 1 µm), and it reaches that
+    edge (the cut shows)."""
+    case, result = tilted
+    outlines = render.ellipse_outlines(result.cycle)
+    half = 0.5 * case.face_width
+    assert np.isfinite(outlines).all()
+    assert np.abs(outlines[..., 2]).max() <= half + 1e-3
+    assert all(np.abs(line[:, 2]).max() > half - 1e-3 for line in outlines)
+
+
 def test_edge_contact_turns_the_warning_colour_on_at_its_edge(tilted):
     case, result = tilted
     cycle = result.cycle
@@ -165,7 +204,8 @@ def test_pressure_map_from_the_loaded_contact(aligned):
 
 def test_pictures_of_a_contact_case_are_written_whole(aligned, tmp_path):
     case, result = aligned
-    result = SimpleNamespace(cycle=result.cycle, loaded=synthetic_loaded(result.cycle))
+    result = SimpleNamespace(cycle=result.cycle, loaded=synthetic_loaded(result.cycle),
+                             parts=result.parts)
     written = render.pictures_for(result, case, tmp_path, name="test", exaggerate=20.0)
     assert [p.name for p in written] == ["pattern_head_on.png", "pattern_perspective.png",
                                          "pair.png", "pressure.png"]
@@ -262,3 +302,27 @@ def test_the_colour_bars_title_stands_clear_of_its_tick_labels(aligned):
     tx, ty = coordinate.GetValue()[:2]
     assert tx == pytest.approx(x) and ty > y + height
     plotter.close()
+
+
+def test_a_helical_pair_is_seen_across_its_contact_lines(tmp_path):
+    """A 20 deg helical pair's contact line, 20 mm long on the flank, drawn in pair.png
+    seen from nearer the contact normal than the axis: on the screen it spans more than
+    300 px (measured 495 px; seen from the end, mostly along the axis, 161 px)."""
+    case = parse_case({"kind": "spur", "title": "helical view", "teeth": [23, 57],
+                       "module": "2.5 mm", "pressure_angle": "20 deg", "helix_angle": "20 deg",
+                       "face_width": "25 mm", "pinion": {"crown": {"radius": "8000 mm"}},
+                       "load": {"tangential_load": "6000 N"},
+                       "analysis": {"positions": 1, "interference": False, "pressure_grid": 0,
+                                    "positions_check": False}})
+    result = analyses.analyse(case)
+    plotter = render.pair_scene(result, case, "test")
+    cycle = result.cycle
+    k = max(range(len(cycle.rows)), key=lambda j: cycle.rows[j]["p_max_MPa"])
+    outline = cycle.pinion_frames[np.array([k])].to_world(render.ellipse_outlines(cycle)[k][None])[0]
+    pixels = render.project(plotter, outline)
+    axis = cycle.pinion_frames.R[k][:, 2]
+    looking = np.asarray(plotter.camera.direction)
+    plotter.close()
+    assert cycle.rows[k]["a_mm"] > 9.0
+    assert np.ptp(pixels, axis=0).max() > 300
+    assert abs(np.dot(looking, axis)) < math.cos(math.radians(45))

@@ -168,3 +168,35 @@ document.body.append(p); });</script></body>"""), encoding="utf-8")
     colours = image.getcolors(maxcolors=1 << 20)
     assert len(colours) > 50                             # text, boxes and the red pictures
     assert sum(n for n, c in colours if c == (214, 39, 40)) > 40 * 30 / 2   # a picture shows
+
+
+@pytest.mark.skipif(chromium() is None, reason="no Chromium installed")
+def test_no_text_overflows_the_page_in_a_browser(tmp_path):
+    """A real report (the bundled relieved spur pair: its load distribution's note, the
+    transmission error's arm, long texts in value columns) in a 1000 px wide window: the
+    page never scrolls sideways, and every table of quantities fits its box (only a wide
+    table of many columns may scroll inside its own frame); a long text in a number column
+    wraps."""
+    from toothcontact import runner
+
+    document = runner.analyse_file(runner.bundled_cases_dir() / "spur_relieved_20_60.toml")
+    text = report.html(document, [])
+    assert "line loads along the pinion" in text
+    probe = tmp_path / "probe.html"
+    probe.write_text(text.replace("</body>", """<script>
+addEventListener("load", () => { const root = document.documentElement;
+const wide = [...document.querySelectorAll("div.wide")].filter(d =>
+  d.querySelector("tr").children.length <= 2 && d.scrollWidth > d.clientWidth + 1);
+const p = document.createElement("p"); p.id = "probe";
+p.textContent = root.scrollWidth + ":" + root.clientWidth + ":" + wide.length;
+document.body.append(p); });</script></body>"""), encoding="utf-8")
+    flags = ["--headless", "--no-sandbox", "--disable-gpu", "--no-first-run",
+             "--disable-background-networking", "--disable-component-update", "--disable-sync",
+             f"--user-data-dir={tmp_path / 'profile'}", "--virtual-time-budget=5000",
+             "--window-size=1000,1400"]
+    done = subprocess.run([chromium(), *flags, "--dump-dom", probe.as_uri()],
+                          capture_output=True, text=True, timeout=120, check=False)
+    assert done.returncode == 0, done.stderr[-2000:]
+    scroll, client, overflowing = map(int, re.search(r'<p id="probe">([^<]*)</p>',
+                                                     done.stdout).group(1).split(":"))
+    assert scroll <= client and overflowing == 0

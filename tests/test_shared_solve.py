@@ -92,7 +92,8 @@ HELICAL = {"kind": "spur", "teeth": [23, 57], "module": "2.5 mm", "pressure_angl
            "gear": {"profile_shift": -0.2,
                     "tip_relief": {"amount": "10 um", "start_diameter": "153.6 mm"}},
            "load": {"tangential_load": "6000 N"},
-           "analysis": {"positions": 3, "interference": False, "pressure_grid": 64}}
+           "analysis": {"positions": 3, "interference": False,
+                        "positions_check": False, "pressure_grid": 64}}
 
 
 @pytest.fixture(scope="module")

@@ -7,6 +7,8 @@ from __future__ import annotations
 
 import json
 import math
+import re
+from pathlib import Path
 
 import numpy as np
 import pytest
@@ -214,3 +216,108 @@ def test_an_optimisation_bound_that_is_no_case_is_refused_before_anything_runs(t
     with pytest.raises(CaseError, match=r"pinion\.crown\.radius.*-5\.0 mm"):
         runner.run_sweep(path, tmp_path / "out")
     assert not (tmp_path / "out").exists()
+
+
+@pytest.mark.parametrize("objective, base, named", [
+    ("P95 a_mm", "hertz_sphere_on_flat", "'a_mm' is not a figure the base design reports"),
+    ("edge_loading", "hertz_sphere_on_flat", "'edge_loading': the base design reports no edge"),
+])
+def test_an_objective_the_samples_cannot_answer_is_refused_before_anything_runs(
+        tmp_path, objective, base, named):
+    """An objective naming a figure the base design's analysis does not report (a Hertz
+    contact has no a_mm in its summary, and no edge counts): refused after the one analysis
+    of the base design, naming optimise.objective and what the design does report, before
+    any sample runs or any output is written (it was refused only after every sample)."""
+    from toothcontact import runner
+
+    path = tmp_path / "sweep.toml"
+    path.write_text(f'kind = "sweep"\nbase = "{base}"\n[[tolerance]]\n'
+                    'field = "load"\ndistribution = "uniform"\nlow = "90 N"\nhigh = "110 N"\n'
+                    f'[optimise]\nobjective = "{objective}"\n[[optimise.variable]]\n'
+                    'field = "body1.E"\nlow = "0.8 GPa"\nhigh = "1.2 GPa"\n')
+    with pytest.raises(CaseError, match=r"optimise\.objective: " + re.escape(named)):
+        runner.run_sweep(path, tmp_path / "out")
+    assert not (tmp_path / "out").exists()
+
+
+def test_a_rank_correlations_interval_covers_the_true_one_95_times_in_100():
+    """Fisher's z with Bonett & Wright's variance: over 1500 samples of 30 draws from a
+    bivariate normal of correlation 0.6 (Spearman's rho (6/π)·asin(r/2) = 0.582), the 95 %
+    interval covers the population's rho in 93-97 % of them; under 10 draws there is none."""
+    from scipy.stats import spearmanr
+
+    from toothcontact.sweep.statistics import spearman_interval
+
+    rng = np.random.default_rng(7)
+    r, n = 0.6, 30
+    truth = 6 / math.pi * math.asin(r / 2)
+    covered = 0
+    for _ in range(1500):
+        x = rng.standard_normal(n)
+        y = r * x + math.sqrt(1 - r * r) * rng.standard_normal(n)
+        low, high = spearman_interval(float(spearmanr(x, y).statistic), n)
+        covered += low <= truth <= high
+    assert 0.93 <= covered / 1500 <= 0.97
+    assert spearman_interval(1.0, 4) is None and spearman_interval(0.3, 9) is None
+    assert spearman_interval(0.5, 30) == pytest.approx([0.148, 0.740], abs=1e-3)
+
+
+def spectrum_rows():
+    """Two load levels, 70 % and 30 % of the time, 20 draws each: the pressure's humps at
+    1000 and 1500 MPa, rising with the slope drawn."""
+    rng = np.random.default_rng(3)
+    rows = []
+    for level, (load, share, base) in enumerate([(4000.0, 0.7, 1000.0), (8000.0, 0.3, 1500.0)]):
+        for i in range(20):
+            slope = float(rng.uniform(0.0, 0.001))
+            rows.append({"sample": 20 * level + i, "status": "ok", "time_share": share / 20,
+                         "input:load.tangential_load": load, "input:misalignment.slope": slope,
+                         "bem_max_p_max_MPa": base + 1e5 * slope})
+    return rows
+
+
+def test_sweep_figures_show_each_load_level_and_how_sure_a_rank_is(tmp_path, monkeypatch):
+    """Under a spectrum the histogram has one histogram and median per load level, named
+    by its level and time share, beside the percentiles over the operating time; the
+    tornado's bar carries its 95 % interval and the draws it rests on; an optimisation that
+    met no constraint stars no design as the best and says so; axes read as words."""
+    from toothcontact import plots
+
+    rows = spectrum_rows()
+    stats = {"title": "spectrum", "inputs": ["misalignment.slope"],
+             "grid": ["load.tangential_load"],
+             "spectrum": {"field": "load.tangential_load", "levels": ["4000 N", "8000 N"],
+                          "shares": [0.7, 0.3]},
+             **summarise(rows, ["misalignment.slope"], ["load.tangential_load"])}
+    interval = stats["sensitivity_interval"]["misalignment.slope"]["bem_max_p_max_MPa"]
+    assert stats["sensitivity_draws"] == 20 and interval[0] > 0.9
+    stats["optimise"] = {"objective": "P95 bem_max_p_max_MPa", "constraints": [
+        {"statistic": "end_loading", "max": 0.05}], "variables": [
+        {"field": "pinion.crown.radius", "low": "2 m", "high": "8 m"}], "evaluations": 2,
+        "history": [{"evaluation": i, "design": {"pinion.crown.radius": f"{r} m"},
+                     "objective": o, "constraints": [0.2], "feasible": False}
+                    for i, (r, o) in enumerate([(5.0, 900.0), (6.5, 850.0)])]}
+    stats["optimise"]["best"] = stats["optimise"]["history"][1]
+    seen = {}
+    saved = plots._save
+
+    def keep(fig, path):
+        seen[Path(path).name] = (
+            [t.get_text() for legend in fig.legends + [a.get_legend() for a in fig.axes
+                                                      if a.get_legend()] for t in legend.get_texts()],
+            [a.get_xlabel() for a in fig.axes] + [a.get_ylabel() for a in fig.axes],
+            [len(c.get_children()) for a in fig.axes for c in a.containers])
+        return saved(fig, path)
+
+    monkeypatch.setattr(plots, "_save", keep)
+    plots.sweep_figures(rows, stats, tmp_path)
+    texts, labels, _ = seen["histograms.png"]
+    assert "load.tangential_load = 4000 N (70% of the time)" in texts
+    assert "load.tangential_load = 8000 N (30% of the time)" in texts
+    assert "P50 over the operating time" in texts
+    texts, labels, _ = seen["tornado.png"]
+    assert any("20 draws per point, 95 % intervals" in t for t in labels)
+    texts, labels, _ = seen["optimisation.png"]
+    assert "best tried: no design met the constraints" in texts
+    assert "best feasible design" not in texts
+    assert "P95 of the largest loaded pressure (MPa)" in labels

@@ -19,12 +19,12 @@ from toothcontact.surfaces.generation import generate_side
 FZG = tomllib.loads((Path(__file__).parent.parent / "cases" / "fzg_c_type.toml").read_text())
 
 
-def rounded(radius="0.45 mm", positions=9) -> dict:
+def rounded(radius="0.45 mm", positions=8) -> dict:
     """The FZG C-type pair with both tips rounded."""
     raw = copy.deepcopy(FZG)
     for member in ("pinion", "gear"):
         raw[member]["tip_edge"] = {"radius": radius}
-    raw["analysis"] = {"positions": positions, "interference": False}
+    raw["analysis"] = {"positions": positions, "interference": False, "positions_check": False}
     return raw
 
 
@@ -146,7 +146,8 @@ def test_a_helical_pairs_rounded_tip_corners_converge_with_the_grid():
             "kind": "spur", "title": "helical corners", "teeth": [23, 61], "module": "3 mm",
             "pressure_angle": "20 deg", "helix_angle": "30 deg", "face_width": "30 mm",
             "misalignment": {"slope": "0"}, "load": {"tangential_load": "9000 N"},
-            "analysis": {"positions": 3, "interference": False, "pressure_grid": grid}}))
+            "analysis": {"positions": 3, "interference": False,
+                         "positions_check": False, "pressure_grid": grid}}))
         return [(r["bem_p_max_MPa"], r["edge_pressure_at"]) for r in result.sections["positions"]
                 if r["bem_load_N"]]
 

@@ -56,7 +56,13 @@ UNCOMPARED = ("inputs", "bem_iterations", "bem_relative_error")
 def tolerance(where: str) -> tuple[float, float]:
     """(relative, absolute) agreement asked of the number at `where`."""
     key = where.rsplit(".", 1)[-1].split("[")[0]
-    if key.startswith(LOADED) or ".bem_" in where:
+    if key.endswith("_percent"):          # a change between two loaded figures
+        return LOADED_RTOL, 100 * 2 * LOADED_RTOL
+    loaded = key.startswith(LOADED) or ".bem_" in where or ".positions_check." in where
+    if key.startswith(("transmission_error", "loaded_transmission_error", "doubled_loaded")) \
+            and key.endswith("_um"):      # µrad times the arm (mm), µm: below 0.2 of µrad's
+        return (LOADED_RTOL, 0.2 * LOADED_TE_ATOL) if loaded else (RTOL, 0.2 * TE_ATOL)
+    if loaded:
         return LOADED_RTOL, LOADED_TE_ATOL if key.endswith("_urad") else 1e-9
     if key.endswith("_urad"):
         return RTOL, TE_ATOL

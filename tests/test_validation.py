@@ -14,7 +14,7 @@ from toothcontact.cli import app
 from toothcontact.runner import bundled_cases_dir
 
 SMALL = {"positions": 3, "grid": [9, 15], "field_grid": 41, "pressure_grid": 32,
-         "interference": False}
+         "interference": False, "positions_check": False}
 
 
 def bundled(name: str) -> dict:

@@ -12,9 +12,8 @@ import numpy as np
 import pytest
 from mutations import CASES
 
-import toothcontact.analyses as analyses
 from toothcontact import gearset
-from toothcontact.analyses import analyse
+from toothcontact.analyses import analyse, contact
 from toothcontact.case import parse_case
 from toothcontact.contact.compliance import (ThreadCompliance, ToothCompliance,
                                              WheelToothCompliance)
@@ -119,13 +118,13 @@ def test_the_bending_adds_what_a_pasternak_line_allows():
     smallest c, the thread's long line adding more)."""
     case = eps_case(positions=3)
     bent = analyse(case).sections["positions"]
-    original = analyses._loaded_sections
+    original = contact.loaded_sections
     try:
-        analyses._loaded_sections = lambda cycle, C_E, grid, teeth, text, result: original(
+        contact.loaded_sections = lambda cycle, C_E, grid, teeth, text, result: original(
             cycle, C_E, grid, None, text, result)
         rigid = analyse(case).sections["positions"]
     finally:
-        analyses._loaded_sections = original
+        contact.loaded_sections = original
     parts = gearset.worm_set(case)
     worm, wheel = parts.worm[case.load.flank], parts.wheel[case.load.flank]
     material = case.wheel_material or case.material

@@ -388,9 +388,16 @@ class AnalysisSpec(Model):
                                description="n: the loaded-contact (half-space) grid of each "
                                            "contact has about n² cells, as square as the "
                                            "contact's box allows; 0 = Hertz only")
+    positions_check: bool = Field(
+        True, description="solve the loaded contact again midway between the positions (twice "
+                          "as many in all) and report how far the largest loaded pressure "
+                          "moves (summary positions_check)")
 
 
 STEEL = {"E": "206 GPa", "nu": 0.3}
+#: the default material, steel, in core units (MPa); built without parsing its units, so
+#: that importing the schema does not build the unit registry (a test checks it is STEEL)
+DEFAULT_STEEL = Material.model_construct(E=206000.0, nu=0.3)
 
 
 class SpurCase(GearPairGeometry):
@@ -409,7 +416,7 @@ class SpurCase(GearPairGeometry):
     rack: Rack = Rack()
     pinion: Member = Member()
     gear: Member = Member()
-    material: Material = Field(Material.model_validate(STEEL), description="default steel")
+    material: Material = Field(DEFAULT_STEEL, description="default steel")
     gear_material: Material | None = None
     misalignment: MisalignmentSpec = MisalignmentSpec()
     deflection: DeflectionSpec | None = None
@@ -442,7 +449,7 @@ class SplineCase(CaseInfo, ModuleOrPitch):
                           "none given: sharp tips")
     crown: CrownSpec | None = Field(None, description="lead crown of the hub teeth, measured in "
                                                       "the tooth-thickness direction (seed 003)")
-    material: Material = Field(Material.model_validate(STEEL), description="default steel")
+    material: Material = Field(DEFAULT_STEEL, description="default steel")
     misalignment: Slope = Field(0.0, description="angular misalignment of the sleeve, rad")
     torque: Torque | None = Field(None, description="with a torque, run analyses the contact")
     analysis: AnalysisSpec = Field(AnalysisSpec(positions=3, grid=(9, 41)),
@@ -548,7 +555,7 @@ class WormCase(CaseInfo):
     kind: Literal["worm"]
     worm: WormSpec
     wheel: WheelSpec
-    material: Material = Field(Material.model_validate(STEEL), description="worm, default steel")
+    material: Material = Field(DEFAULT_STEEL, description="worm, default steel")
     wheel_material: Material | None = None
     misalignment: WormMisalignmentSpec = WormMisalignmentSpec()
     anti_rattle_spring: SpringSpec | None = None
@@ -628,7 +635,7 @@ class KimContact(Model):
     the hob that cut the wheel, the materials."""
 
     hob_pitch_diameter: Length = Field(description="the (oversized) hob, e.g. '22 mm'")
-    worm: Material = Field(Material.model_validate({"E": "206 GPa", "nu": 0.3}))
+    worm: Material = Field(DEFAULT_STEEL, description="default steel")
     wheel: Material = Field(description="e.g. nylon: E = '3 GPa', nu = 0.4")
     friction: FrictionLaw
 
@@ -740,7 +747,7 @@ class ImportedCase(CaseInfo):
                                                    "pitches of it (default 180 deg: a tooth on "
                                                    "the file's +x axis faces the pinion)")
     step_tolerance: Length = Field(0.002, description="chordal tolerance to tessellate STEP")
-    material: Material = Field(Material.model_validate(STEEL), description="default steel")
+    material: Material = Field(DEFAULT_STEEL, description="default steel")
     gear_material: Material | None = None
     misalignment: MisalignmentSpec = MisalignmentSpec()
     load: LoadSpec

@@ -23,6 +23,35 @@ def _fail(message: str, code: int) -> None:
     raise typer.Exit(code)
 
 
+def _say(text: str) -> None:
+    """A line of the command's account on stdout, unless --quiet (which sets the package's
+    log to errors only, see _logging)."""
+    import logging
+
+    if logging.getLogger("toothcontact").isEnabledFor(logging.WARNING):
+        typer.echo(text)
+
+
+#: the log levels of the package's loggers by -v count: warnings, the stages and their
+#: times (-v), every step (-vv: a failed stage's traceback among them)
+LOG_LEVELS = ("WARNING", "INFO", "DEBUG")
+
+
+def _logging(verbose: int, quiet: bool) -> None:
+    """The package's log (logger "toothcontact") on stderr at the level -v/-q ask for;
+    other libraries' loggers are left as they are."""
+    import logging
+
+    logger = logging.getLogger("toothcontact")
+    logger.setLevel("ERROR" if quiet else LOG_LEVELS[min(verbose, len(LOG_LEVELS) - 1)])
+    for old in [h for h in logger.handlers if getattr(h, "toothcontact_cli", False)]:
+        logger.removeHandler(old)        # a command run before in this process
+    handler = logging.StreamHandler()    # today's stderr
+    handler.toothcontact_cli = True
+    handler.setFormatter(logging.Formatter("%(levelname)s %(name)s: %(message)s"))
+    logger.addHandler(handler)
+
+
 def _guarded(action):
     """Run `action`; bad input, or a task whose extra is not installed, becomes one line
     and exit 2, never a traceback."""
@@ -96,10 +125,16 @@ def _version(value: bool) -> None:
 
 @app.callback()
 def main(version: bool = typer.Option(False, "--version", callback=_version, is_eager=True,
-                                      help="print the version and exit")):
+                                      help="print the version and exit"),
+         verbose: int = typer.Option(0, "--verbose", "-v", count=True,
+                                     help="log the stages and their times to stderr (-vv: "
+                                          "every step)"),
+         quiet: bool = typer.Option(False, "--quiet", "-q",
+                                    help="print errors only; the exit code tells the rest")):
     """Tooth-contact analysis of gears under misalignment and deflection."""
     from .memory import keep_freed_memory
 
+    _logging(verbose, quiet)
     keep_freed_memory()
 
 
@@ -123,18 +158,18 @@ def run(case: Path = typer.Argument(..., help="case file (TOML), or the name of 
                                                              command))
     failed = [c for c in document["checks"] if not c["ok"] and c["kind"] == "design"]
     folder = written[0].parent if written else out
-    typer.echo(f"{case.stem}: wrote {_wrote(written)} -> {folder}")
+    _say(f"{case.stem}: wrote {_wrote(written)} -> {folder}")
     for name, stage in document.get("stages", {}).items():
         if stage["status"] == "failed":
-            typer.echo(f"  warning: the {name} could not be made here: {stage['reason']}")
+            _say(f"  warning: the {name} could not be made here: {stage['reason']}")
     for check in failed:
-        typer.echo(f"  check failed: {check['name']}: {check['detail']}")
+        _say(f"  check failed: {check['name']}: {check['detail']}")
     unanswered = [c for c in document["checks"] if not c["ok"] and c["kind"] == "solver"]
     for check in unanswered:
-        typer.echo(f"  incomplete: {check['name']}: {check['detail']}")
+        _say(f"  incomplete: {check['name']}: {check['detail']}")
     for check in document["checks"]:
         if not check["ok"] and check["kind"] not in ("design", "solver"):
-            typer.echo(f"  note ({check['kind']}): {check['name']}: {check['detail']}")
+            _say(f"  note ({check['kind']}): {check['name']}: {check['detail']}")
     if unanswered:
         raise typer.Exit(EXIT_INCOMPLETE)
     if failed:
@@ -178,12 +213,12 @@ def sweep(file: Path = typer.Argument(..., help="sweep file (TOML, kind = \"swee
         stats, written = _guarded(lambda: runner.run_sweep(
             file, out, scheduler=scheduler, workers=workers, resume=resume,
             positions=positions, planned=planned, on_done=done))
-    typer.echo(f"{file.stem}: {stats['samples']} samples, {stats['ok']} answered, "
-               f"{stats['failed']} failed; wrote {_wrote(written)} -> {written[0].parent}")
+    _say(f"{file.stem}: {stats['samples']} samples, {stats['ok']} answered, "
+         f"{stats['failed']} failed; wrote {_wrote(written)} -> {written[0].parent}")
     best = (stats.get("optimise") or {}).get("best")
     if best is not None and not best["feasible"]:
-        typer.echo(f"  no design met the constraints: the best tried, {best['design']}, "
-                   "breaks one (see the report's optimisation table)")
+        _say(f"  no design met the constraints: the best tried, {best['design']}, "
+             "breaks one (see the report's optimisation table)")
         raise typer.Exit(EXIT_CHECK_FAILED)
 
 
@@ -210,10 +245,10 @@ def render(cases: list[Path] = typer.Argument(..., help="case files (TOML)"),
                 case, target, position, exaggerate,
                 lambda what: progress.stage(f"{case.stem}: {what}")))
             if written:
-                typer.echo(f"{case.stem}: wrote {_wrote(written)} -> {target}")
+                _say(f"{case.stem}: wrote {_wrote(written)} -> {target}")
             else:
-                typer.echo(f"{case.stem}: no 3D picture for this kind of case "
-                           "(its plots come with `toothcontact run`)")
+                _say(f"{case.stem}: no 3D picture for this kind of case "
+                     "(its plots come with `toothcontact run`)")
             progress.advance()
 
 
@@ -231,8 +266,8 @@ def export(cases: list[Path] = typer.Argument(..., help="case files (TOML)"),
         target = (out or Path("geometry")) / case.stem
         record = _guarded(lambda: runner.export_case(case, target, formats))
         for name, part in record["parts"].items():
-            typer.echo(f"{case.stem}/{name}: {part['built']}, flank deviation "
-                       f"{part['flank_deviation_um']:.3f} µm, valid {part['valid']} -> {target}")
+            _say(f"{case.stem}/{name}: {part['built']}, flank deviation "
+                 f"{part['flank_deviation_um']:.3f} µm, valid {part['valid']} -> {target}")
 
 
 @app.command()

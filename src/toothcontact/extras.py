@@ -2,14 +2,15 @@
 
 The core install analyses every case kind and writes results, reports and plots. Three
 extras add the rest: `cad` (OCP: STEP export and STEP input), `viz` (pyvista/VTK: the 3D
-pictures) and `sweep` (Dask, pyarrow, SALib: tolerance sweeps); `all` holds the three."""
+pictures) and `sweep` (Dask, pyarrow, SALib: tolerance sweeps; pandas: the API's tables);
+`all` holds the three."""
 
 from __future__ import annotations
 
 #: the top-level module -> the extra that installs it
 EXTRA_OF = {"OCP": "cad", "cadquery": "cad", "pyvista": "viz", "vtk": "viz",
             "vtkmodules": "viz", "dask": "sweep", "distributed": "sweep", "pyarrow": "sweep",
-            "SALib": "sweep"}
+            "SALib": "sweep", "pandas": "sweep"}
 
 
 def missing_extra(exc: BaseException) -> str | None:

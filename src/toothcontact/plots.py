@@ -48,7 +48,7 @@ def _figure(height_in: float) -> Figure:
 
 def _save(fig: Figure, path: str | Path) -> Path:
     """Write `fig` as PNG to `path` atomically; the figure is cleared afterwards."""
-    from .report import write_atomic
+    from .writing import write_atomic
 
     try:
         return write_atomic(path, lambda handle: fig.savefig(
@@ -97,9 +97,26 @@ def _plain_log(axis) -> None:
     axis.set_minor_formatter(FuncFormatter(minor))
 
 
-#: the least span (µrad) of the transmission-error axis: a flat curve's round-off ripple
-#: is not blown up to fill the panel
-TE_LEAST_SPAN = 2.0
+def _labelled_log_limits(ax) -> None:
+    """Widen a log y axis to the labelled values (1, 2, 3, 5 per decade) just outside its
+    data, so each end carries a label."""
+    steps = np.array([1.0, 2.0, 3.0, 5.0, 10.0])
+    lo, hi = ax.get_ylim()
+    if not (lo > 0 and hi > lo):
+        return
+
+    def nice(value, below):
+        decade = 10.0 ** math.floor(math.log10(value))
+        marks = steps * decade
+        return float(marks[marks <= value * (1 + 1e-9)].max() if below
+                     else marks[marks >= value * (1 - 1e-9)].min())
+
+    ax.set_ylim(nice(lo, True), nice(hi, False))
+
+
+#: the least span of the transmission-error axis (µrad, µm): a flat curve's round-off
+#: ripple is not blown up to fill the panel
+TE_LEAST_SPAN = {"µrad": 2.0, "µm": 0.1}
 
 
 def _least_span(ax, values: np.ndarray, span: float) -> None:
@@ -128,8 +145,9 @@ def _gapped(x: np.ndarray, y: np.ndarray, step: float) -> tuple[np.ndarray, np.n
 def mesh_cycle(result: dict, path: str | Path) -> Path:
     """The contact over the mesh cycle of a contact case (result['positions']).
 
-    Four panels: transmission error (µrad, the gear's lag; loaded beside unloaded where
-    solved, the axis at least TE_LEAST_SPAN tall) over roll angle (deg); peak contact
+    Four panels: transmission error (the gear's lag as a length in µm at the result's
+    transmission_error_arm, else in µrad; loaded beside unloaded where solved, each about its
+    own mean, the axis at least TE_LEAST_SPAN tall) over roll angle (deg); peak contact
     pressure (MPa: the loaded solution's where solved, Hertz's dotted beside it), the
     ellipse semi-axes a and b (mm, log scale) and the worst edge margin
     (mm, zero line = edge of the flank, edge contact in the warning colour) per tooth pair
@@ -157,6 +175,12 @@ def mesh_cycle(result: dict, path: str | Path) -> Path:
     def label(g: float) -> str:
         return f"roll {g:g}°" if by_tooth else (f"pair {int(g):+d}" if g else "pair 0")
 
+    pair_legend = ("" if by_tooth else
+                   "wheel teeth: the next (+1) meshes one start's pitch of worm roll later"
+                   if result.get("kind") == "worm" else
+                   "tooth pairs: 0 the pair in mid-mesh at roll 0; +1, +2 one, two pitches "
+                   "further through the mesh, −1, −2 behind")
+
     steps = np.diff(np.unique(x[np.isfinite(x)]))
     step = float(np.min(steps)) if len(steps) else 0.0
     groups = [g for g in np.unique(group[np.isfinite(group)])]
@@ -165,20 +189,33 @@ def mesh_cycle(result: dict, path: str | Path) -> Path:
     (ax_te, ax_p), (ax_ab, ax_m) = fig.subplots(2, 2)
     fig.suptitle(_title(result, "Mesh cycle", 110), fontsize=11)
 
-    # transmission error: one value per position, unloaded and (where solved) loaded
+    # transmission error: one value per position, unloaded and (where solved) loaded, each
+    # about its own mean (a loaded TE's mean is the mesh's compliance, hundreds of µrad; its
+    # ripple is what excites the mesh), in µm where the analysis gave them as a length
     rolls = np.unique(roll[np.isfinite(roll)])
     first = [np.nonzero(roll == r)[0][0] for r in rolls]
-    loaded_te = _column(rows, "loaded_transmission_error_urad")
-    ax_te.plot(rolls, te[first], "o-", color="black", ms=4, lw=1.2, label="unloaded")
-    shown = [te[first]]
-    if np.isfinite(loaded_te).any():
-        ax_te.plot(rolls, loaded_te[first], "s-", color=WARNING, ms=4, lw=1.2, label="loaded")
-        shown.append(loaded_te[first])
-        ax_te.legend(fontsize=8, loc="best")
-    ax_te.set(title=f"Transmission error ({'wheel' if result.get('kind') == 'worm' else 'gear'} lag)",
+    unit = "µm" if "transmission_error_um" in rows[0] else "µrad"
+    suffix = "um" if unit == "µm" else "urad"
+    for name, column, style, colour in (
+            ("unloaded", f"transmission_error_{suffix}", "o-", "black"),
+            ("loaded", f"loaded_transmission_error_{suffix}", "s-", WARNING)):
+        values = _column(rows, column)[first]
+        if not np.isfinite(values).any():
+            continue
+        mean, digits = float(np.nanmean(values)), 3 if unit == "µm" else 2
+        ax_te.plot(rolls, values - mean, style, color=colour, ms=4, lw=1.2,
+                   label=f"{name}: mean {mean:.{digits}f} {unit}, peak to peak "
+                         f"{np.nanmax(values) - np.nanmin(values):.{digits}f} {unit}")
+    ax_te.legend(fontsize=7, loc="upper center", bbox_to_anchor=(0.5, -0.16), frameon=False)
+    arm = (result.get("summary") or {}).get("transmission_error_arm_mm")
+    driven = "wheel" if result.get("kind") == "worm" else "gear"
+    ax_te.set(title=f"Transmission error ({driven} lag"
+                    + (f" × r = {arm:.4g} mm)" if arm and unit == "µm" else ")"),
               xlabel="roll angle (deg)" if by_tooth else x_label,
-              ylabel="transmission error (µrad)")
-    _least_span(ax_te, np.concatenate(shown), TE_LEAST_SPAN)
+              ylabel=f"TE about its mean ({unit})")
+    _least_span(ax_te, np.concatenate([np.asarray(line.get_ydata(), float)
+                                       for line in ax_te.get_lines()] or [np.array([])]),
+                TE_LEAST_SPAN[unit])
     _plain_axis(ax_te.yaxis)
     loaded_p = np.where(touching | (_column(rows, "bem_load_N") > 0),
                         _column(rows, "bem_p_max_MPa"), np.nan)
@@ -206,6 +243,7 @@ def mesh_cycle(result: dict, path: str | Path) -> Path:
     if np.any(np.isfinite(a) & (a > 0)) or np.any(np.isfinite(b) & (b > 0)):
         ax_ab.set_yscale("log")
         _plain_log(ax_ab.yaxis)
+        _labelled_log_limits(ax_ab)
     ax_m.axhline(0.0, color="black", ls="--", lw=1.0)
     ax_m.set(title="Worst edge margin", xlabel=x_label,
              ylabel="edge margin (mm), < 0 = edge loading")
@@ -243,12 +281,16 @@ def mesh_cycle(result: dict, path: str | Path) -> Path:
     entries = handles + style
     fig.legend(handles=entries, loc="outside lower center",
                ncol=min(len(entries), max(4, math.ceil(len(entries) / 2))), fontsize=8,
-               frameon=False)
+               frameon=False, title=pair_legend or None, title_fontsize=8)
     return _save(fig, path)
 
 
 # ---------------------------------------------------------------------------------------
 # 2. ease-off map
+
+
+#: ease-off contours start this fraction of the map's range above its least separation
+EASE_OFF_FLOOR = 0.02
 
 
 def ease_off_map(face_mm, radius_mm, separation_um, path: str | Path,
@@ -276,10 +318,14 @@ def ease_off_map(face_mm, radius_mm, separation_um, path: str | Path,
     lo, hi = float(field.min()), float(field.max())
     handles = []
     if hi > lo:
-        levels = [v for v in MaxNLocator(8).tick_values(lo, hi) if lo < v < hi]
-        lines = ax.contour(x, y, field, levels=levels, colors="white", linewidths=0.6,
-                           alpha=0.7)
-        ax.clabel(lines, fmt="%g", fontsize=7)
+        # no level within EASE_OFF_FLOOR of the least: there the map is flat and a contour
+        # traces its round-off as islands
+        floor = lo + EASE_OFF_FLOOR * (hi - lo)
+        levels = [v for v in MaxNLocator(8).tick_values(lo, hi) if floor < v < hi]
+        if levels:
+            lines = ax.contour(x, y, field, levels=levels, colors="white", linewidths=0.6,
+                               alpha=0.7)
+            ax.clabel(lines, fmt="%g", fontsize=7)
     if approach_um is not None:
         if lo < approach_um < hi:
             ax.contour(x, y, field, levels=[approach_um], colors=WARNING, linewidths=2.0)
@@ -291,7 +337,10 @@ def ease_off_map(face_mm, radius_mm, separation_um, path: str | Path,
     ax.plot(x[imin[1]], y[imin[0]], "+", color="white", ms=10, mew=1.5)
     handles.append(Line2D([], [], color="black", marker="+", ls="none", ms=9, mew=1.5,
                           label=f"least separation {lo:.3g} µm at ({x[imin[1]]:.2f}, "
-                                f"{y[imin[0]]:.2f}) mm"))
+                                f"{y[imin[0]]:.2f}) mm" + (
+                                    "\n(the contact search holds each position's least at "
+                                    "0; below 0 is the map's own sampling of it)" if lo < 0
+                                    else "")))
     if not np.isfinite(z).all():
         handles.append(Patch(facecolor="white", edgecolor="0.5", label="blank: no flank"))
     colorbar = fig.colorbar(mesh, ax=ax, pad=0.02)
@@ -338,71 +387,21 @@ def load_distribution(result: dict, path: str | Path) -> Path:
 # 3. crown design chart (seed 003)
 
 
-def crown_design_curves(result: dict, points: int = 80) -> dict:
-    """The two rules of seed 003's crown design over a range of slopes, from a
-    crown_design result (mm, rad, MPa).
-
-    Edge rule (eq 13): for each slope theta, the largest crown radius whose ellipse stays
-    inside the room on that side of the chosen crown centre (F - c toward end A, c toward
-    end B, less the edge clearance): `analytic.crown.design_crown` of a face twice that room
-    with slope theta at both ends. Stress rule: the smallest radius whose crowned Hertz
-    stress (`analytic.crown.crowned_contact`, eqs 6-11) stays at or under the allowable
-    stress, or under the stress of the chosen design when the case gives no allowable. In
-    this model the stress does not depend on theta, so that rule is one radius.
-    Returns theta, edge radii per end ('A', 'B'; one curve 'A' for a full crown), the
-    stress rule's radius, reference stress and its kind, and the design point."""
-    from scipy.optimize import brentq
-
-    from . import case as schema
-    from .analytic import crown, hertz
-
-    case = schema.parse_case(result["inputs"])
-    contact, chosen = result["contact"], result["crown"]
-    gear_material = case.gear_material or case.material
-    C_E = hertz.compliance(case.material.E, case.material.nu, gear_material.E, gear_material.nu)
-    internal = case.teeth[1] < 0
-    profile = 1.0 / contact["rho1_mm"] + (-1.0 if internal else 1.0) / contact["rho2_mm"]
-    load = contact["normal_load_N"]
-    F, R, c = case.face_width, chosen["radius_mm"], chosen["center_from_B_mm"]
-    slope_A = case.slope_A
-    slope_B = case.slope_A if case.crown == "full" else case.slope_B
-    rooms = {"A": F - c} if case.crown == "full" else {"A": F - c, "B": c}
-
-    top = 2.5 * max(slope_A, slope_B)
-    theta = np.linspace(0.0, top, points + 1)
-    edge = {}
-    for end, room in rooms.items():
-        radii = []
-        for t in theta:
-            try:
-                radii.append(crown.design_crown(2.0 * room, t, t, profile, load, C_E,
-                                                case.edge_clearance).radius)
-            except ValueError:
-                radii.append(math.nan)
-        edge[end] = np.array(radii)
-
-    def stress(radius: float) -> float:
-        return crown.crowned_contact(radius, profile, load, C_E).ellipse.p0
-
-    design_stress = stress(R)
-    limit = case.allowable_stress
-    reference = "allowable" if limit is not None else "design"
-    limit = design_stress if limit is None else limit
-    if reference == "design":
-        R_min = R
-    else:
-        lo, hi = math.log(1e-3 * F), math.log(1e6 * F)
-        if stress(math.exp(lo)) <= limit:
-            R_min = math.exp(lo)
-        elif stress(math.exp(hi)) > limit:
-            R_min = math.nan  # no crown this flat gets under the limit
-        else:
-            R_min = math.exp(brentq(lambda s: stress(math.exp(s)) - limit, lo, hi, xtol=1e-10))
-    return {"theta": theta, "edge_radius_mm": edge, "stress_radius_mm": R_min,
-            "reference_stress_MPa": limit, "reference": reference,
-            "design_radius_mm": R, "design_stress_MPa": design_stress,
-            "slope_A": slope_A, "slope_B": slope_B, "center_from_B_mm": c, "face_width_mm": F,
-            "edge_clearance_mm": case.edge_clearance, "full": case.crown == "full"}
+def crown_design_curves(result: dict) -> dict:
+    """The crown design chart's curves as the analysis computed them (result['crown_chart'],
+    analytic.crown.design_chart), as arrays (NaN where a rule has no radius), with the
+    chosen crown's radius, centre and face width."""
+    chart = result["crown_chart"]
+    return {"theta": np.asarray(chart["theta_rad"], float),
+            "edge_radius_mm": {end: np.array([_num(r) for r in radii])
+                               for end, radii in chart["edge_radius_mm"].items()},
+            "stress_radius_mm": _num(chart["stress_radius_mm"]),
+            "reference_stress_MPa": chart["reference_stress_MPa"],
+            "reference": chart["reference"], "design_radius_mm": result["crown"]["radius_mm"],
+            "design_stress_MPa": chart["design_stress_MPa"], "slope_A": chart["slope_A"],
+            "slope_B": chart["slope_B"], "center_from_B_mm": result["crown"]["center_from_B_mm"],
+            "face_width_mm": chart["face_width_mm"], "edge_clearance_mm": chart["edge_clearance_mm"],
+            "full": chart["full"]}
 
 
 def crown_design_chart(result: dict, path: str | Path) -> Path:
@@ -506,12 +505,9 @@ def worm_efficiency_vs_temperature(result: dict, path: str | Path) -> Path:
     rows = [r for r in result.get("efficiency") or [] if r.get("temperature_C") is not None]
     if not rows:
         raise ValueError("worm_efficiency_vs_temperature: no efficiency rows with a temperature")
-    conditions = (result.get("inputs") or {}).get("conditions") or []
-    published = []
-    if conditions:
-        from . import case as schema
-
-        published = [c.model_dump() for c in schema.parse_case(result["inputs"]).conditions]
+    published = [{"temperature": r["temperature_C"], **{k: v for k, v in r.items()
+                                                        if k.startswith("published_")}}
+                 for r in rows]
     order = np.argsort([r["temperature_C"] for r in rows])
     rows = [rows[i] for i in order]
     T = _column(rows, "temperature_C")
@@ -569,32 +565,16 @@ def worm_efficiency_vs_temperature(result: dict, path: str | Path) -> Path:
     return _save(fig, path)
 
 
-def worm_torque_curves(result: dict, points: int = 200) -> dict:
-    """Seed 001's anti-rattle-spring model over output torque, from a worm_efficiency result
-    with an [anti_rattle_spring] (N·m, N, mm): spring force (eq 20), shaft-end misalignment
-    (eq 21), tooth normal load (eq 3) and the tooth efficiency of eq (2) at the case's mu_zm,
-    each by the functions of `analytic.worm_efficiency`."""
-    from . import case as schema
-    from .analytic import worm_efficiency as we
-
-    case = schema.parse_case(result["inputs"])
-    spring = case.anti_rattle_spring
-    if spring is None:
-        raise ValueError("worm_torque_curves: the case has no [anti_rattle_spring]")
-    gamma = math.radians(result["worm"]["lead_angle_deg"])
-    Rp = result["worm"]["wheel_pitch_radius_mm"]
-    alpha_n = case.normal_pressure_angle
-    mu = result["efficiency"][0]["mu_zm"]
-    top = 1.1 * max(max(spring.output_torques), 1.0)
-    torque = np.linspace(0.0, top, points)  # N·mm
-    force = np.array([we.anti_rattle_spring_force(t, spring.mount_moment, spring.d1, spring.d2,
-                                                  Rp, alpha_n, gamma) for t in torque])
-    return {"output_torque_Nm": torque / 1000.0, "spring_force_N": force,
-            "misalignment_mm": np.array([we.anti_rattle_misalignment(f, spring.stiffness)
-                                         for f in force]),
-            "normal_load_N": np.array([we.normal_tooth_load(t, Rp, gamma, alpha_n)
-                                       for t in torque]),
-            "eta_aligned": np.full(points, we.efficiency_kim(gamma, alpha_n, mu)), "mu_zm": mu}
+def worm_torque_curves(result: dict) -> dict:
+    """Seed 001's anti-rattle-spring model over output torque as the analysis computed it
+    (result['anti_rattle_curve']: N·m, N, mm), as arrays."""
+    curve = result.get("anti_rattle_curve")
+    if not curve:
+        raise ValueError("worm_torque_curves: the result has no anti-rattle spring curve")
+    return {**{key: np.asarray(curve[key], float) for key in
+               ("output_torque_Nm", "spring_force_N", "misalignment_mm", "normal_load_N")},
+            "eta_aligned": np.full(len(curve["output_torque_Nm"]), curve["eta_aligned"]),
+            "mu_zm": curve["mu_zm"]}
 
 
 def worm_efficiency_vs_torque(result: dict, path: str | Path) -> Path:
@@ -782,8 +762,11 @@ def sweep_figures(rows: list[dict], stats: dict, out_dir: str | Path) -> list[Pa
                                      if primary in sobol[f]}, primary, title,
                                     out / "tornado.png"))
     elif any(rho is not None for rho in ranks.values()):
+        intervals = {f: stats.get("sensitivity_interval", {}).get(f, {}).get(primary)
+                     for f in ranks}
         written.append(_sweep_tornado({f: r for f, r in ranks.items() if r is not None},
-                                      primary, title, out / "tornado.png"))
+                                      intervals, stats.get("sensitivity_draws"), primary,
+                                      title, out / "tornado.png"))
     response = stats.get("response", {})
     axes = [f for f in stats.get("grid", []) if f in response]
     if axes:
@@ -889,8 +872,13 @@ def _sweep_optimisation(opt, title, path) -> Path:
     ax.plot(np.array(n)[~feasible], objective[~feasible], "o", mfc="none", color=SERIES[2],
             label="infeasible")
     best = opt["best"]
-    ax.plot([best["evaluation"]], [best["objective"]], "*", ms=14, color="k", label="best")
-    ax.set_ylabel(opt["objective"])
+    if best["feasible"]:
+        ax.plot([best["evaluation"]], [best["objective"]], "*", ms=14, color="k",
+                label="best feasible design")
+    else:
+        ax.plot([best["evaluation"]], [best["objective"]], "*", ms=14, mfc="none",
+                mec=WARNING, mew=1.5, label="best tried: no design met the constraints")
+    ax.set_ylabel(_statistic_label(opt["objective"]))
     ax.legend(fontsize="small")
     for k, variable in enumerate(opt["variables"]):
         axv = fig.add_subplot(grid[k + 1], sharex=ax)
@@ -901,9 +889,22 @@ def _sweep_optimisation(opt, title, path) -> Path:
     fig.axes[-1].set_xlabel("evaluation (one sweep over the samples each)")
     fig.suptitle(textwrap.fill(f"{title}: optimisation ({opt['evaluations']} designs; "
                                f"constraints: " + (", ".join(
-                                   f"{c['statistic']} <= {c['max']:g}"
+                                   f"{_statistic_label(c['statistic'])} ≤ {c['max']:g}"
                                    for c in opt["constraints"]) or "none") + ")", 90))
     return _save(fig, path)
+
+
+def _statistic_label(text: str) -> str:
+    """A sweep statistic as a reader names it: 'P95 bem_max_p_max_MPa' -> 'P95 of the
+    largest loaded pressure (MPa)', 'end_loading' -> 'probability of loading at a face end'."""
+    from .report_view import label
+    from .sweep.spec import PROBABILITIES
+
+    if text in PROBABILITIES:
+        return {"edge_loading": "probability of edge loading",
+                "end_loading": "probability of loading at a face end"}[text]
+    name, _, figure = text.partition(" ")
+    return f"{name} of the {SWEEP_FIGURES.get(figure) or label(figure)}"
 
 
 def _sweep_sobol(indices: dict, primary: str, title: str, path) -> Path:
@@ -926,35 +927,82 @@ def _sweep_sobol(indices: dict, primary: str, title: str, path) -> Path:
 
 
 def _sweep_histograms(rows, stats, keys, title, path) -> Path:
+    """Each figure's histogram with its P5, P50 and P95; under a load spectrum one
+    histogram and median per load level (the levels' figures differ: pooled, they make
+    one histogram with a median between its humps) and the time-weighted percentiles."""
     columns = 2 if len(keys) > 1 else 1
     lines = math.ceil(len(keys) / columns)
-    fig = _figure(2.6 * lines + 0.6)
+    fig = _figure(2.6 * lines + 0.9)
     fig.suptitle(textwrap.fill(f"{title}: {len(rows)} samples answered", 90))
+    spectrum = stats.get("spectrum")
+    levels = ([("all samples", 1.0, np.ones(len(rows), bool))] if not spectrum
+              else _spectrum_levels(rows, spectrum))
+    quantiles = (stats.get("time_weighted") or stats).get("percentiles", {})
     for i, key in enumerate(keys):
         ax = fig.add_subplot(lines, columns, i + 1)
-        values = _column(rows, key)
-        values = values[np.isfinite(values)]
-        ax.hist(values, bins=min(30, max(5, values.size // 5)), color=SERIES[0])
+        every = _column(rows, key)
+        bins = np.histogram_bin_edges(every[np.isfinite(every)],
+                                      bins=min(30, max(5, np.isfinite(every).sum() // 5)))
+        for j, (text, share, chosen) in enumerate(levels):
+            values = every[chosen & np.isfinite(every)]
+            colour = SERIES[j % len(SERIES)]
+            ax.hist(values, bins=bins, color=colour, alpha=0.55 if spectrum else 1.0,
+                    label=f"{spectrum['field']} = {text} ({share:.0%} of the time)"
+                    if spectrum else None)
+            if spectrum and values.size:
+                ax.axvline(float(np.median(values)), color=colour, linewidth=1.6)
         for q, style in (("P5", ":"), ("P50", "-"), ("P95", ":")):
-            at = stats.get("percentiles", {}).get(key, {}).get(q)
+            at = quantiles.get(key, {}).get(q)
             if at is not None:
-                ax.axvline(at, color="k", linestyle=style, linewidth=1.0, label=q)
+                ax.axvline(at, color="k", linestyle=style, linewidth=1.0,
+                           label=f"{q} over the operating time" if spectrum else q)
         ax.set_xlabel(SWEEP_FIGURES[key])
         ax.set_ylabel("samples")
-        if i == 0:
-            ax.legend(fontsize="small")
+    handles, labels = fig.axes[0].get_legend_handles_labels()
+    if spectrum:
+        handles.append(Line2D([], [], color="0.3", linewidth=1.6))
+        labels.append("a level's median (its colour)")
+    fig.legend(handles, labels, loc="outside lower center", fontsize="small", frameon=False,
+               ncol=2 if spectrum else 3)
     return _save(fig, path)
 
 
-def _sweep_tornado(ranks: dict, primary: str, title: str, path) -> Path:
+def _spectrum_levels(rows: list[dict], spectrum: dict) -> list[tuple[str, float, np.ndarray]]:
+    """Per load level of a spectrum: its text, its share of the time and which rows ran
+    at it. The sampler runs the levels in their order, so the rows' values in their order
+    of appearance are the levels'; where a level has no answered sample, the levels are
+    named by their values (core units) and shares by the rows' time shares."""
+    column = _column(rows, f"input:{spectrum['field']}")
+    values = list(dict.fromkeys(v for v in column.tolist() if math.isfinite(v)))
+    if len(values) == len(spectrum["levels"]):
+        return [(str(text), share, column == value)
+                for text, share, value in zip(spectrum["levels"], spectrum["shares"], values)]
+    shares = _column(rows, "time_share")
+    total = float(np.nansum(shares)) or 1.0
+    return [(f"{value:g}", float(np.nansum(shares[column == value])) / total, column == value)
+            for value in values]
+
+
+def _sweep_tornado(ranks: dict, intervals: dict, draws: int | None, primary: str,
+                   title: str, path) -> Path:
+    """Each toleranced input's rank correlation with the primary figure, with its 95 %
+    interval where the draws allow one (sweep.statistics.spearman_interval); the number of
+    draws it rests on in the axis label."""
     order = sorted(ranks, key=lambda f: abs(ranks[f]))
-    fig = _figure(1.5 + 0.45 * len(order))
+    fig = _figure(1.7 + 0.45 * len(order))
     ax = fig.add_subplot()
     values = [ranks[f] for f in order]
-    ax.barh(order, values, color=[SERIES[0] if v >= 0 else SERIES[2] for v in values])
+    bounds = [intervals.get(f) for f in order]
+    errors = np.array([[v - b[0], b[1] - v] if b else [0.0, 0.0]
+                       for v, b in zip(values, bounds)]).T
+    ax.barh(order, values, color=[SERIES[0] if v >= 0 else SERIES[2] for v in values],
+            xerr=errors if any(bounds) else None, capsize=4, ecolor="k")
     ax.axvline(0.0, color="k", linewidth=0.8)
     ax.set_xlim(-1.0, 1.0)
-    ax.set_xlabel(f"Spearman rank correlation with the {SWEEP_FIGURES[primary]}")
+    basis = (f"; {draws} draws per point" if draws else "") + (
+        ", 95 % intervals" if any(bounds) else
+        ": too few for an interval, read it as a hint" if draws else "")
+    ax.set_xlabel(f"Spearman rank correlation with the {SWEEP_FIGURES[primary]}{basis}")
     fig.suptitle(textwrap.fill(f"{title}: sensitivity to the toleranced inputs", 90))
     return _save(fig, path)
 

@@ -10,7 +10,8 @@ pattern on the flank as a paint pattern would show it, the pair in mesh, the pre
   in numpy: no CAD kernel), the contact points and ellipses, and the misalignment, which
   may be exaggerated;
 - pressure.png: the loaded contact's pressure painted on the flank, the largest over the
-  mesh cycle (when the result carries `loaded`).
+  mesh cycle (when the result carries `loaded`), and pressure_peak.png: the pressure of
+  every pair at the position of the cycle's largest pressure.
 
 Nothing here opens a window: pyvista.OFF_SCREEN is set, and on a Linux machine without a
 display VTK is pointed at EGL. Only this module imports pyvista, and only inside functions.
@@ -87,11 +88,11 @@ def screenshot(plotter) -> np.ndarray:
 
 
 def write_png(image: np.ndarray, path: str | Path) -> Path:
-    """Write an RGB image as PNG whole or not at all (report.write_atomic)."""
+    """Write an RGB image as PNG whole or not at all (writing.write_atomic)."""
     from PIL import Image
     from PIL.PngImagePlugin import PngInfo
 
-    from .report import write_atomic
+    from .writing import write_atomic
 
     info = PngInfo()
     info.add_text("Software", f"toothcontact {__version__} (pyvista)")
@@ -230,7 +231,8 @@ def ellipse_outlines(cycle, member: str = "pinion", samples: int = 97) -> np.nda
     the common normal: (K, samples, 3) in that member's own frame. The rays march out from
     the contact point, each starting where the last one landed, so that the outline follows
     this part of the flank (as contact.ellipse does); beyond the flank's edges the outline
-    runs along them (3 % of the span outside), so a cut ellipse shows where it is cut."""
+    runs along them, so a cut ellipse shows where it is cut and nothing is drawn off the
+    flank."""
     from .contact.rays import intersect
 
     flank = getattr(cycle, member)
@@ -255,10 +257,9 @@ def ellipse_outlines(cycle, member: str = "pinion", samples: int = 97) -> np.nda
             hits = intersect(flank, frames.to_local(world), direction, u, v, iterations=40)
             ok = hits.converged & (np.abs(hits.s) < 0.5)
             u, v = np.where(ok, hits.u, u), np.where(ok, hits.v, v)
-        # an ellipse larger than the flank is drawn cut at its edges (slightly outside them)
+        # an ellipse larger than the flank is drawn cut at its edges: the cut runs along them
         (fu0, fu1), (fv0, fv1) = flank.domain
-        du, dv = 0.03 * (fu1 - fu0), 0.03 * (fv1 - fv0)
-        u, v = np.clip(u, fu0 - du, fu1 + du), np.clip(v, fv0 - dv, fv1 + dv)
+        u, v = np.clip(u, fu0, fu1), np.clip(v, fv0, fv1)
         on_flank = _flank_points(flank, u, v)
     in_plane = frames.to_local(centre[:, None, :] + along + across)
     return np.where(np.isfinite(on_flank).all(axis=-1)[..., None], on_flank, in_plane)
@@ -286,7 +287,7 @@ def _patch_boundary(patch: Patch, n: int = 121) -> dict[str, np.ndarray]:
 def row_name(case, member: str) -> str:
     """The name the result rows give `member` ("pinion" or "gear", the contact engine's
     driver and driven member): a worm set's are the worm and the wheel."""
-    from .analyses import PUBLISHED_NAMES
+    from .analyses.worm import PUBLISHED_NAMES
 
     return PUBLISHED_NAMES.get(getattr(case, "kind", ""), {}).get(member, member)
 
@@ -520,24 +521,21 @@ class Members:
         return self.driver_tooth if member == "pinion" else self.driven_tooth
 
 
-def members(pv, case) -> Members | None:
-    """The bodies of a spur, spline or worm case; None for any other kind."""
-    from . import gearset
-
-    kind = getattr(case, "kind", None)
+def members(pv, kind: str, parts) -> Members | None:
+    """The bodies of a spur, spline or worm case from the members its analysis generated
+    (analyses.Result.parts); None for any other kind."""
     if kind == "spur":
-        pair = gearset.gear_pair(case)
+        pair = parts
         pinion = cylindrical_body(pv, pair.pinion, pair.pinion_modifications, (7, 3))
         shown = 5 if pair.gear.internal else 7
         gear = cylindrical_body(pv, pair.gear, pair.gear_modifications, (shown, 3))
         return Members(pinion[7], gear[shown], pinion[3], gear[3], MEMBER_NAMES[kind])
     if kind == "spline":
-        pair = gearset.spline_pair(case)
+        pair = parts
         hub = cylindrical_body(pv, pair.hub, pair.hub_modifications, (pair.hub.teeth, 3))
         sleeve = cylindrical_body(pv, pair.sleeve, pair.sleeve_modifications, (5, 3))
         return Members(hub[pair.hub.teeth], sleeve[5], hub[3], sleeve[3], MEMBER_NAMES[kind])
     if kind == "worm":
-        parts = gearset.worm_set(case)
         worm = worm_body(pv, parts.worm["left"], parts.worm["right"])
         wheel = wheel_body(pv, parts.wheel["left"], parts.wheel["right"], (7, 3))
         return Members(worm, wheel[7], worm, wheel[3], MEMBER_NAMES[kind])
@@ -928,21 +926,20 @@ def position_rows(rows: list[dict], position: int | None) -> tuple[int, list[int
     return position % len(rolls), [k for k, r in enumerate(rows) if r["roll_deg"] == roll]
 
 
-def _nominal_mesh(case):
-    """The same set without misalignment (frames to measure the misalignment against)."""
-    from . import gearset
+def _nominal_mesh(case, parts):
+    """The same set without misalignment (frames to measure the misalignment against), from
+    the members the analysis generated."""
     from .assembly import ParallelMesh, WormMesh
 
     if case.kind == "spur":
-        return ParallelMesh(gearset.gear_pair(case))
+        return ParallelMesh(parts)
     if case.kind == "spline":
         from .gearset import GearPair
-    
-        pair = gearset.spline_pair(case)
-        return ParallelMesh(GearPair(pair.hub, pair.sleeve, pair.hub_modifications,
-                                     pair.sleeve_modifications, 0.0, case.pressure_angle))
+
+        return ParallelMesh(GearPair(parts.hub, parts.sleeve, parts.hub_modifications,
+                                     parts.sleeve_modifications, 0.0, case.pressure_angle))
     flank = case.load.flank if getattr(case, "load", None) is not None else "left"
-    return WormMesh(gearset.worm_set(case).wheel[flank])
+    return WormMesh(parts.wheel[flank])
 
 
 def _rotation_power(R: np.ndarray, n: float) -> np.ndarray:
@@ -1013,7 +1010,7 @@ def pair_scene(result, case, name: str = "", position: int | None = None,
     `exaggerate` when asked."""
     pv = _pyvista()
     cycle = result.cycle
-    bodies = bodies or members(pv, case)
+    bodies = bodies or members(pv, case.kind, result.parts)
     index, ks = position_rows(cycle.rows, position)
     # the pairs in contact (pairs kept only for the loaded contact have no ellipse)
     ks = [j for j in ks if cycle.rows[j].get("rigid_contact", True)]
@@ -1025,7 +1022,7 @@ def pair_scene(result, case, name: str = "", position: int | None = None,
     if exaggerate != 1.0:
         from .assembly import Frame
 
-        mesh0 = _nominal_mesh(case)
+        mesh0 = _nominal_mesh(case, result.parts)
         phi, delta = math.radians(row["roll_deg"]), row["transmission_error_urad"] * 1e-6
         p0 = Frame.stack([mesh0.pinion_frame(phi, row["pair"])])
         g0 = Frame.stack([mesh0.gear_frame(phi, row["pair"], delta)])
@@ -1064,6 +1061,10 @@ def pair_scene(result, case, name: str = "", position: int | None = None,
     return plotter
 
 
+#: a helical pair's view direction: the contact normal's part to the axis's (see _pair_camera)
+HELICAL_OBLIQUE = 1.6
+
+
 def _pair_camera(plotter, case, focus, normal, pinion_frame, gear_frame, m: float,
                  scene: np.ndarray, oblique: float = 0.35):
     """A view of the mesh through the see-through driven member. Gears and splines: from
@@ -1089,6 +1090,11 @@ def _pair_camera(plotter, case, focus, normal, pinion_frame, gear_frame, m: floa
         direction = axis + 0.3 * normal + 0.3 * radial
         reach, centre = np.inf, focus
     else:
+        # a helical pair's contact lines run across the face: seen from nearer the contact
+        # normal, through the driven member, they lie on the flank (from the end they are
+        # edge-on)
+        if getattr(case, "helix_angle", 0.0):
+            oblique = max(oblique, HELICAL_OBLIQUE)
         direction = axis + oblique * normal + 0.25 * radial
         reach = 7.0 * m
         centre = focus
@@ -1144,12 +1150,13 @@ def pressure_on_flank(cycle, loaded: list, patch: Patch, refine: int = 4):
     return local, best.reshape(U.shape)
 
 
-def loaded_edges(cycle) -> dict[str, float]:
+def loaded_edges(cycle, rows: list[int] | None = None) -> dict[str, float]:
     """Edges of the loaded contacts' fields that carry load (the row's edge_loaded, or more
-    than 1 % of its load in the edge strip), with the largest edge pressure (MPa). A row
-    the solver could not answer (its keys None) flags nothing."""
+    than 1 % of its load in the edge strip), with the largest edge pressure (MPa), over the
+    rows given (all by default). A row the solver could not answer (its keys None) flags
+    nothing."""
     out = {}
-    for row in cycle.rows:
+    for row in (cycle.rows if rows is None else [cycle.rows[k] for k in rows]):
         flagged = row.get("edge_loaded")
         if flagged is None:
             flagged = (row.get("edge_load_fraction") or 0.0) > 0.01
@@ -1159,27 +1166,40 @@ def loaded_edges(cycle) -> dict[str, float]:
     return out
 
 
-def pressure_scene(result, case=None, name: str = "", patch: Patch | None = None):
-    """The loaded contact: the largest pressure over the cycle painted on the pattern's
-    flank, head-on; the colour scale tops out at the largest design pressure of the rows
+def peak_position(rows: list[dict]) -> float | None:
+    """The roll angle (deg) of the position whose loaded contact holds the largest design
+    pressure (bem_p_max_MPa); None where no contact was solved."""
+    solved = [r for r in rows if r.get("bem_p_max_MPa")]
+    return max(solved, key=lambda r: r["bem_p_max_MPa"])["roll_deg"] if solved else None
+
+
+def pressure_scene(result, case=None, name: str = "", patch: Patch | None = None,
+                   roll: float | None = None):
+    """The loaded contact painted on the pattern's flank, head-on: the largest pressure at
+    each point over the cycle, or (`roll`, deg) the pressure of every pair at that one
+    position; the colour scale tops out at the largest design pressure of the rows shown
     (bem_p_max_MPa, which leaves out the singular cells at a sharp edge)."""
     pv = _pyvista()
     cycle = result.cycle
     patch = patch or flank_patch(cycle)
     flank = patch.flank
-    points, pressure = pressure_on_flank(cycle, result.loaded, patch)
+    shown_rows = [k for k, r in enumerate(cycle.rows) if roll is None or r["roll_deg"] == roll]
+    loaded = [item if k in shown_rows else None for k, item in enumerate(result.loaded or [])]
+    points, pressure = pressure_on_flank(cycle, loaded, patch)
     plotter = _plotter(pv)
     centre, normal, up, across = _flank_frame(patch)
     warp, stretch = _stretcher(patch, centre, up, across, "head-on")
     plotter._scene_warp = warp
     span = float(np.ptp(patch.points.reshape(-1, 3) @ across))
     lift = 2e-3 * span
-    design = [r["bem_p_max_MPa"] for r in cycle.rows if r.get("bem_p_max_MPa")]
+    design = [cycle.rows[k]["bem_p_max_MPa"] for k in shown_rows
+              if cycle.rows[k].get("bem_p_max_MPa")]
     top = max(design) if design else float(np.percentile(pressure[pressure > 0], 99)) \
         if (pressure > 0).any() else 1.0
     shown = np.where(pressure > 0, pressure, np.nan)
     surface = _grid_surface(pv, warp(points), {"pressure (MPa)": shown})
-    plotter._bar_title = "largest contact pressure over the mesh cycle (MPa)"
+    plotter._bar_title = ("largest contact pressure over the mesh cycle (MPa)" if roll is None
+                          else f"contact pressure at roll {roll:.2f} deg (MPa)")
     bar = dict(title=" ", n_labels=5,
                fmt="%.0f", color=INK, position_x=0.17, position_y=0.035, width=0.62,
                height=0.055, title_font_size=15, label_font_size=14, vertical=False,
@@ -1187,7 +1207,7 @@ def pressure_scene(result, case=None, name: str = "", patch: Patch | None = None
     plotter.add_mesh(surface, scalars="pressure (MPa)", cmap=PRESSURE_CMAP, clim=(0.0, top),
                      nan_color=NO_PAINT, above_color="#fde725", scalar_bar_args=bar,
                      **_surface_props())
-    crossed = edge_contacts(cycle.rows, row_name(case, patch.member))
+    crossed = edge_contacts([cycle.rows[k] for k in shown_rows], row_name(case, patch.member))
     edges = _patch_boundary(patch)
     for edge, line in edges.items():
         if len(line) < 2:
@@ -1197,16 +1217,18 @@ def pressure_scene(result, case=None, name: str = "", patch: Patch | None = None
     _edge_labels(plotter, edges, centre, 0.035 * span, set(), warp)
     names = MEMBER_NAMES.get(getattr(case, "kind", ""), ("pinion", "gear"))
     owner = names[0] if patch.member == "pinion" else names[1]
-    solved = sum(item is not None for item in result.loaded or [])
-    peak = max((r.get("bem_raw_peak_MPa") or 0.0 for r in cycle.rows), default=0.0)
+    solved = sum(item is not None for item in loaded)
+    peak = max((cycle.rows[k].get("bem_raw_peak_MPa") or 0.0 for k in shown_rows), default=0.0)
     legend = [f"the largest pressure at each point over the {solved} loaded contacts of the "
-              f"cycle; design peak {top:.0f} MPa"]
+              f"cycle; design peak {top:.0f} MPa" if roll is None else
+              f"the {solved} loaded contact{'s' if solved != 1 else ''} at roll {roll:.2f} "
+              f"deg, the position of the cycle's largest pressure: peak {top:.0f} MPa"]
     if stretch > 1.05:
         legend.append(f"NOTE: the profile direction is drawn {stretch:.1f} times its scale")
     if peak > top * 1.001:
         legend.append(f"(cells at a sharp edge reach {peak:.0f} MPa: singular, "
                       "not a design value)")
-    edges_loaded = loaded_edges(cycle)
+    edges_loaded = loaded_edges(cycle, shown_rows)
     warnings = []
     if edges_loaded:
         sections = {member: result.sections.get(member) or {} for member in ("pinion", "gear")}
@@ -1222,7 +1244,8 @@ def pressure_scene(result, case=None, name: str = "", patch: Patch | None = None
     if crossed:
         warnings.append("Hertz ellipses cross the " + ", ".join(
             e.replace("_", " ") for e in crossed))
-    _texts(plotter, _title(case, name, f"loaded contact on the {owner}'s flank, head-on"),
+    _texts(plotter, _title(case, name, f"loaded contact on the {owner}'s flank, head-on"
+                                       + ("" if roll is None else f", at roll {roll:.2f} deg")),
            legend, warnings)
     _head_on_layout(plotter, warp(patch.points.reshape(-1, 3)), centre, normal, up, stretch)
     return plotter
@@ -1232,14 +1255,14 @@ def pressure_scene(result, case=None, name: str = "", patch: Patch | None = None
 # a pair without a contact analysis
 
 
-def geometry_scene(case, name: str = "", bodies: Members | None = None):
-    """The members of a spur, spline or worm case without a load, placed in mesh at roll 0
-    (nominal, no lag)."""
+def geometry_scene(case, parts, name: str = "", bodies: Members | None = None):
+    """The members of a spur, spline or worm case without a load (`parts`, as its analysis
+    generated them), placed in mesh at roll 0 (nominal, no lag)."""
     pv = _pyvista()
     from .assembly import Frame
 
-    bodies = bodies or members(pv, case)
-    mesh = _nominal_mesh(case)
+    bodies = bodies or members(pv, case.kind, parts)
+    mesh = _nominal_mesh(case, parts)
     pf, gf = Frame.stack([mesh.pinion_frame(0.0)]), Frame.stack([mesh.gear_frame(0.0)])
     plotter = _plotter(pv)
     driver, driven = _placed(bodies.driver, pf), _placed(bodies.driven, gf)
@@ -1252,10 +1275,8 @@ def geometry_scene(case, name: str = "", bodies: Members | None = None):
     if case.kind == "worm":
         focus, normal = np.array([mesh.wheel.worm.reference_radius, 0.0, 0.0]), gf.R[0][:, 2]
     else:
-        from . import gearset
-
-        pitch = gearset.gear_pair(case).operating_pitch_radius if case.kind == "spur" else \
-            0.5 * gearset.spline_pair(case).spline.pitch_diameter
+        pitch = parts.operating_pitch_radius if case.kind == "spur" else \
+            0.5 * parts.spline.pitch_diameter
         focus, normal = np.array([pitch, 0.0, 0.0]), np.array([0.0, 1.0, 0.0])
     scene = np.concatenate([np.asarray(driver.points)[::3], np.asarray(driven.points)[::3]])
     _pair_camera(plotter, case, focus, normal, pf, gf, m, scene, oblique=0.9)
@@ -1270,8 +1291,9 @@ def pictures_for(result, case, out_dir: str | Path, name: str = "", position: in
                  exaggerate: float = 1.0) -> list[Path]:
     """Every picture that applies to a result (analyses.Result of `case`), written into
     `out_dir`: pattern_head_on.png, pattern_perspective.png and pair.png for a contact case
-    (spur, spline or worm with a load), pressure.png when the result carries the loaded
-    contact; pair.png alone for a spur, spline or worm case without a load; [] for every
+    (spur, spline or worm with a load), pressure.png (the largest over the cycle) and
+    pressure_peak.png (at the position of the largest pressure) when the result carries the
+    loaded contact; pair.png alone for a spur, spline or worm case without a load; [] for every
     other kind (analytic kinds, imported meshes)."""
     out = Path(out_dir)
     kind = getattr(case, "kind", None)
@@ -1281,10 +1303,11 @@ def pictures_for(result, case, out_dir: str | Path, name: str = "", position: in
     if cycle is not None:
         position_rows(cycle.rows, position)          # a bad position fails before any write
     pv = _pyvista()
-    bodies = members(pv, case) if kind in MEMBER_NAMES else None
+    bodies = members(pv, kind, result.parts) if kind in MEMBER_NAMES else None
     written = []
     if cycle is None:
-        written.append(_finish(geometry_scene(case, name, bodies), out / "pair.png"))
+        written.append(_finish(geometry_scene(case, result.parts, name, bodies),
+                               out / "pair.png"))
         return written
     patch = flank_patch(cycle)
     for view, filename in (("head-on", "pattern_head_on.png"),
@@ -1296,4 +1319,8 @@ def pictures_for(result, case, out_dir: str | Path, name: str = "", position: in
                                out / "pair.png"))
     if getattr(result, "loaded", None) and any(x is not None for x in result.loaded):
         written.append(_finish(pressure_scene(result, case, name, patch), out / "pressure.png"))
+        roll = peak_position(cycle.rows)
+        if roll is not None:
+            written.append(_finish(pressure_scene(result, case, name, patch, roll),
+                                   out / "pressure_peak.png"))
     return written

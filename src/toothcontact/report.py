@@ -4,17 +4,14 @@ embedded as base64), each written whole or not at all."""
 from __future__ import annotations
 
 import base64
-import contextlib
 import json
 import math
-import os
 import re
-import shutil
-import tempfile
 from pathlib import Path
 
 from . import __version__
 from .report_view import view
+from .writing import write_atomic, write_text
 
 
 def result_document(name: str, case, raw: dict, result, provenance: dict | None = None
@@ -65,6 +62,7 @@ CAPTIONS = {
     "pattern_perspective.png": "Contact pattern on the flank, in perspective",
     "pair.png": "The pair in mesh: contact points and ellipses",
     "pressure.png": "Loaded contact: the largest pressure over the mesh cycle",
+    "pressure_peak.png": "Loaded contact at the position of the largest pressure",
     "mesh_cycle.png": "Over the mesh cycle: transmission error, stress, semi-axes, edge margin",
     "ease_off.png": "Ease-off of the flank",
     "crown_design.png": "Crown design chart",
@@ -76,76 +74,6 @@ CAPTIONS = {
 def caption(path) -> str:
     name = Path(path).name
     return CAPTIONS.get(name, Path(name).stem.replace("_", " "))
-
-
-def write_atomic(target: str | Path, write, binary: bool = False) -> Path:
-    """Write a file whole or not at all: `write(handle)` fills a temporary file beside
-    `target` (opened "wb" if binary, else UTF-8 text), which is then renamed onto it."""
-    target = Path(target)
-    target.parent.mkdir(parents=True, exist_ok=True)
-    fd, tmp = tempfile.mkstemp(dir=target.parent, prefix=f".{target.name}.", suffix=".tmp")
-    try:
-        with (os.fdopen(fd, "wb") if binary else os.fdopen(fd, "w", encoding="utf-8")) as handle:
-            write(handle)
-        os.chmod(tmp, 0o644)
-        os.replace(tmp, target)
-    except BaseException:
-        Path(tmp).unlink(missing_ok=True)
-        raise
-    return target
-
-
-_STAGING = ".staging"
-
-
-@contextlib.contextmanager
-def staging_folder(target: str | Path):
-    """Yield an empty folder beside `target` to write a run into; on success it replaces
-    `target` (the old folder is renamed away first, then removed), on any failure it is
-    removed and `target` stays as it was. Staging folders that a killed run left behind
-    (their process gone) are removed on the way in."""
-    target = Path(target).absolute()
-    target.parent.mkdir(parents=True, exist_ok=True)
-    _remove_abandoned(target)
-    staging = Path(tempfile.mkdtemp(dir=target.parent,
-                                    prefix=f".{target.name}.{os.getpid()}.", suffix=_STAGING))
-    try:
-        yield staging
-        os.chmod(staging, 0o755)
-        retired = None
-        if target.exists():
-            retired = staging.with_name(staging.name[:-len(_STAGING)] + ".retired")
-            os.replace(target, retired)
-        os.replace(staging, target)
-        if retired is not None:
-            shutil.rmtree(retired, ignore_errors=True)
-    except BaseException:
-        shutil.rmtree(staging, ignore_errors=True)
-        raise
-
-
-def _remove_abandoned(target: Path) -> None:
-    for folder in target.parent.glob(f".{target.name}.*.*"):
-        if folder.suffix not in (_STAGING, ".retired"):
-            continue
-        pid = folder.name[len(target.name) + 2:].split(".")[0]
-        if pid.isdigit() and not _alive(int(pid)):
-            shutil.rmtree(folder, ignore_errors=True)
-
-
-def _alive(pid: int) -> bool:
-    try:
-        os.kill(pid, 0)
-    except ProcessLookupError:
-        return False
-    except PermissionError:
-        return True
-    return True
-
-
-def write_text(target: Path, text: str) -> Path:
-    """Write a text file whole or not at all (write_atomic)."""
-    return write_atomic(target, lambda handle: handle.write(text))
 
 
 def json_text(document) -> str:
@@ -199,6 +127,11 @@ def write_sweep_report(out_dir: Path, stats: dict, images=()) -> Path:
     return write_text(Path(out_dir) / "report.html", text)
 
 
+#: a table cell of a numeric column this long or shorter is a number with its unit, kept on
+#: one line and aligned right; a longer one is text and wraps
+NUMBER_CHARS = 24
+
+
 def _template(name: str):
     import jinja2
 
@@ -207,4 +140,5 @@ def _template(name: str):
         autoescape=jinja2.select_autoescape(["html.j2"]), trim_blocks=name.endswith("html.j2"),
         lstrip_blocks=True, keep_trailing_newline=True, undefined=jinja2.StrictUndefined)
     environment.filters["cell"] = lambda text: str(text).replace("|", "\\|").replace("\n", " ")
+    environment.globals["NUMBER_CHARS"] = NUMBER_CHARS
     return environment.get_template(name)

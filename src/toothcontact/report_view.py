@@ -13,6 +13,9 @@ from dataclasses import dataclass, field
 #: sections of a document that are not result tables
 META = {"case", "kind", "title", "source", "assumptions", "toothcontact_version", "units",
         "inputs", "checks", "notes", "stages", "provenance"}
+#: sections that are a chart's curves: drawn in the chart, kept whole in result.json, not
+#: tabulated
+CHARTS = {"crown_chart", "anti_rattle_curve"}
 
 #: key suffix -> unit shown in a label (longest first)
 UNITS = [("_N_per_mm_um", "N/(mm·µm)"), ("_N_per_mm", "N/mm"), ("_sqrt_MPa", "√MPa"),
@@ -39,6 +42,19 @@ LABELS = {
     "loaded_transmission_error_urad": "transmission error (loaded)",
     "transmission_error_peak_to_peak_urad": "transmission error, peak to peak (unloaded)",
     "loaded_transmission_error_peak_to_peak_urad": "transmission error, peak to peak (loaded)",
+    "transmission_error_um": "transmission error (unloaded)",
+    "loaded_transmission_error_um": "transmission error (loaded)",
+    "transmission_error_peak_to_peak_um": "transmission error, peak to peak (unloaded)",
+    "loaded_transmission_error_peak_to_peak_um": "transmission error, peak to peak (loaded)",
+    "doubled_positions": "positions, doubled", "checked": "checked",
+    "doubled_bem_max_p_max_MPa": "largest loaded pressure, twice the positions",
+    "bem_max_p_max_change_percent": "its change with twice the positions (%)",
+    "doubled_loaded_transmission_error_peak_to_peak_um":
+    "transmission error, peak to peak (loaded), twice the positions",
+    "doubled_failed_contacts": "contacts not solved at the positions between",
+    "tolerance_percent": "tolerance (%)", "converged": "within the tolerance",
+    "transmission_error_arm_mm": "radius at which the transmission error is a length",
+    "transmission_error_arm": "transmission error as a length at the",
     "edge_margin_mm": "edge margin", "edge_margins_mm": "edge margins",
     "contact_radius_pinion_mm": "contact radius on the pinion",
     "face_position_mm": "position along the face", "separation_mm": "separation",
@@ -79,6 +95,8 @@ MARGIN_RESOLUTION = 1e-3
 #: transmission errors are shown to 0.01 µrad (the unloaded TE of conjugate flanks is the
 #: contact search's tolerance, a few hundredths)
 TE_RESOLUTION = 0.01
+#: transmission error as a length (µm): a measuring machine's resolution
+TE_UM_RESOLUTION = 0.001
 
 
 def label(key: str, kind: str = "") -> str:
@@ -212,7 +230,7 @@ def view(document: dict) -> ReportView:
     for key in ("load_sharing", "transmission_error_note", "edge_pressure_note"):
         if summary.get(key):
             tool.append(summary[key])
-    tables = [t for key, value in document.items() if key not in META
+    tables = [t for key, value in document.items() if key not in META | CHARTS
               for t in _tables(key, value, document["kind"])]
     stages = [(name, stage.get("reason", "")) for name, stage in
               (document.get("stages") or {}).items() if stage.get("status") == "failed"]
@@ -241,18 +259,25 @@ def provenance(document: dict) -> list[tuple[str, str]]:
             + [(name, str(given[key])) for name, key in PROVENANCE if given.get(key)])
 
 
+def _is_note(key: str) -> bool:
+    """A section's explanation (its `note`, a summary's `..._note`): text under the table."""
+    return key == "note" or key.endswith("_note")
+
+
 def _tables(key: str, value, kind: str) -> list[Table]:
     """A document section as a table: a dict as quantity/value rows (those that do not
     apply, None, left out), a list of dicts as one row each."""
     title = key.replace("_", " ")
     if isinstance(value, dict):
-        plain = {k: v for k, v in value.items() if not k.endswith("_note")
-                 and k not in ("load_sharing",) and v is not None}
+        plain = {k: v for k, v in value.items() if not _is_note(k)
+                 and k not in ("load_sharing",) and v is not None and not isinstance(v, dict)}
+        # a table within the section (the summary's positions check) follows as its own
+        inner = [t for k, v in value.items() if isinstance(v, dict) for t in _tables(k, v, kind)]
         if not plain:
-            return []
-        note = "; ".join(f"{number(v)}" for k, v in value.items() if k.endswith("_note"))
+            return inner
+        note = "; ".join(f"{number(v)}" for k, v in value.items() if _is_note(k))
         rows = [[label(k, kind), number(v)] for k, v in plain.items()]
-        return [Table(title, ["quantity", "value"], rows, [False, True], note=note)]
+        return [Table(title, ["quantity", "value"], rows, [False, True], note=note)] + inner
     if isinstance(value, list) and value and all(isinstance(r, dict) for r in value):
         keys = list(dict.fromkeys(k for row in value for k in row))
         scale = {k: max((abs(r[k]) for r in value if isinstance(r.get(k), float)
@@ -372,12 +397,25 @@ def _contact_figures(summary: dict, rows: list[dict], driven: str) -> list[KeyRe
         out.append(KeyResult("pattern centre on the face", value,
                              "from mid-face, toward end B positive"))
     for label_, key in (("transmission error, peak to peak (unloaded)",
-                         "transmission_error_peak_to_peak_urad"),
+                         "transmission_error_peak_to_peak"),
                         ("transmission error, peak to peak (loaded)",
-                         "loaded_transmission_error_peak_to_peak_urad")):
-        if summary.get(key) is not None:
-            out.append(KeyResult(label_, f"{number(summary[key], resolution=TE_RESOLUTION)} µrad",
-                                 f"the {driven}'s lag"))
+                         "loaded_transmission_error_peak_to_peak")):
+        if summary.get(f"{key}_urad") is not None:
+            length = summary.get(f"{key}_um")
+            value = f"{number(summary[f'{key}_urad'], resolution=TE_RESOLUTION)} µrad"
+            if length is not None:
+                value = f"{number(length, resolution=TE_UM_RESOLUTION)} µm ({value})"
+            out.append(KeyResult(label_, value, f"the {driven}'s lag"
+                                 + (f", as a length at its {summary['transmission_error_arm']}"
+                                    if length is not None else "")))
+    check = summary.get("positions_check") or {}
+    if check.get("checked"):
+        out.append(KeyResult(
+            "largest loaded pressure with twice the positions",
+            f"{number(check['doubled_bem_max_p_max_MPa'])} MPa "
+            f"({check['bem_max_p_max_change_percent']:+.1f} %)",
+            f"{check['doubled_positions']} positions: the case's {check['positions']} and one "
+            "midway between each two", not check["converged"]))
     return out
 
 
@@ -460,15 +498,30 @@ def sweep_view(stats: dict, version: str) -> SweepView:
                                  "share over the draws"))
         tables.append(_percentile_table("percentiles over the operating time",
                                         weighted["percentiles"]))
+    from .sweep.statistics import LEAST_DRAWS
+
     sensitivity = stats.get("sensitivity", {})
+    intervals = stats.get("sensitivity_interval", {})
     figures = sorted({k for ranks in sensitivity.values() for k in ranks})
+    draws = stats.get("sensitivity_draws")
+
+    def rank(field: str, key: str) -> str:
+        rho, interval = sensitivity[field].get(key), intervals.get(field, {}).get(key)
+        if rho is None:
+            return "–"
+        return number(rho) + (f" ({number(interval[0])} to {number(interval[1])})"
+                              if interval else "")
+
     if figures:
-        tables.append(Table("sensitivity: Spearman rank correlation",
+        tables.append(Table("sensitivity: Spearman rank correlation (95 % interval)",
                             ["toleranced input"] + [label(k) for k in figures],
-                            [[field] + [number(ranks.get(k)) for k in figures]
-                             for field, ranks in sensitivity.items()],
+                            [[field] + [rank(field, k) for k in figures]
+                             for field in sensitivity],
                             [False] + [True] * len(figures),
-                            note="within each grid point, averaged over the grid"))
+                            note="within each grid point, averaged over the grid"
+                                 + (f"; {draws} draws per grid point" if draws else "")
+                                 + (f"; too few draws for an interval ({LEAST_DRAWS} or more)"
+                                    if draws is not None and draws < LEAST_DRAWS else "")))
     sobol = stats.get("sobol")
     if sobol:
         rows = [[field, label(k), number(i["S1"]), number(i["S1_conf"]), number(i["ST"]),

@@ -3,16 +3,20 @@
 from __future__ import annotations
 
 import difflib
+import logging
 import math
 import os
+import time
 from collections.abc import Callable
 from dataclasses import dataclass
 from pathlib import Path
 
 import numpy as np
 
-from . import analyses, case as schema, report
+from . import analyses, case as schema, report, writing
 from .extras import missing_extra
+
+log = logging.getLogger(__name__)
 
 _HERE = Path(__file__).resolve().parent
 
@@ -104,10 +108,12 @@ def analyse_path(path: str | Path) -> Analysis:
     """Load and analyse a case file (raises CaseError, naming the file, on bad input)."""
     path = Path(path)
     case, raw = schema.load_case(path)
+    start = time.perf_counter()
     try:
         result = analyses.analyse(case)
     except schema.CaseError as exc:
         raise schema.CaseError(f"{path}: {exc}") from None
+    log.info("%s: %s analysis in %.2f s", path.name, case.kind, time.perf_counter() - start)
     return Analysis(path, case, raw, result, report.result_document(
         path.stem, case, raw, result, report.provenance_of(path)))
 
@@ -117,7 +123,16 @@ def analyse_file(path: str | Path) -> dict:
     return analyse_path(path).document
 
 
+def analyse_record(path: str | Path):
+    """Load and analyse a case file (or a bundled case's name); returns its typed record,
+    records.CaseResult (raises CaseError)."""
+    from .records import CaseResult
+
+    return CaseResult.from_document(analyse_file(case_path(path)))
+
+
 def _step(progress: Callable[[str], None] | None, what: str) -> None:
+    log.info("%s", what)
     if progress is not None:
         progress(what)
 
@@ -130,7 +145,7 @@ def run_case(path: str | Path, out_dir: str | Path | None = None, pictures: bool
     pictures (render.pictures_for). Nothing is written when the case is bad.
 
     The folder is all or nothing: everything is written into a staging folder beside it,
-    which then replaces it (report.publish_folder), so a reader sees the previous complete
+    which then replaces it (writing.staging_folder), so a reader sees the previous complete
     run or the new one. A stage that cannot answer (plots, pictures) says so in the
     document's `stages` and leaves the rest standing. `progress(stage)` is called before
     each stage; `command`: the command line that asked for it, for the traceability block."""
@@ -142,7 +157,7 @@ def run_case(path: str | Path, out_dir: str | Path | None = None, pictures: bool
         document["provenance"]["command"] = command
     target = Path(out_dir) if out_dir is not None else Path("out") / path.stem
     stages = document.setdefault("stages", {})
-    with report.staging_folder(target) as staging:
+    with writing.staging_folder(target) as staging:
         _step(progress, "plotting")
         images = _stage(stages, "plots", lambda: _plots(document, staging))
         if not pictures:
@@ -167,6 +182,7 @@ def _plots(document: dict, folder: Path) -> list[Path]:
 def _stage(stages: dict, name: str, action: Callable[[], list[Path]]) -> list[Path]:
     """Run an output stage; its failure (no OpenGL here, say) is recorded in
     stages[name] and the run goes on without its files."""
+    start = time.perf_counter()
     try:
         files = action()
     except Exception as exc:  # noqa: BLE001 - the numbers stand without the pictures
@@ -174,8 +190,11 @@ def _stage(stages: dict, name: str, action: Callable[[], list[Path]]) -> list[Pa
             raise
         stages[name] = {"status": "failed",
                         "reason": missing_extra(exc) or f"{type(exc).__name__}: {exc}"}
+        log.warning("the %s failed: %s", name, stages[name]["reason"])
+        log.debug("the %s's failure", name, exc_info=True)
         return []
     stages[name] = {"status": "done", "files": [p.name for p in files]}
+    log.info("%s: %d files in %.2f s", name, len(files), time.perf_counter() - start)
     return files
 
 
@@ -194,7 +213,7 @@ def run_sweep(path: str | Path, out_dir: str | Path | None = None, *,
     import shutil
 
     from .sweep import run as sweep_run, statistics, store
-    from .sweep.optimise import designs, optimise
+    from .sweep.optimise import check_statistics, designs, optimise
     from .sweep.sampling import plan
 
     path = sweep_path(path)
@@ -205,6 +224,11 @@ def run_sweep(path: str | Path, out_dir: str | Path | None = None, *,
         for corner in (0.0, 1.0):
             plan(spec, base, base_path.parent, source=f"{path}: optimise",
                  design=design_of(np.full(len(spec.optimise.variables), corner)))
+        # what the objective and constraints name, against the figures the base design
+        # reports (one analysis, here, before any output is written)
+        record, _ = sweep_run.sample_record(0, {}, base, str(base_path.parent))
+        if record["status"] == "ok":
+            check_statistics(spec.optimise, record, f"{path}: optimise")
     total = [len(samples)]
     if planned is not None:
         planned(total[0])
@@ -242,7 +266,7 @@ def run_sweep(path: str | Path, out_dir: str | Path | None = None, *,
     if positions:
         written.append(store.write_table(out / "positions.parquet", store.position_rows(
             out, [s.sample for s in samples])))
-    written.append(report.write_text(out / "sweep.json", report.json_text(stats)))
+    written.append(writing.write_text(out / "sweep.json", report.json_text(stats)))
     from . import plots
 
     figures = plots.sweep_figures(rows, stats, out)
@@ -295,7 +319,7 @@ def export_case(path: str | Path, out_dir: str | Path | None = None,
     import json
 
     from . import cad
-    from .report import write_text
+    from .writing import write_text
 
     path = case_path(path)
     case, _ = schema.load_case(path)

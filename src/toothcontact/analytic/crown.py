@@ -14,7 +14,7 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass
 
-from scipy.optimize import brentq
+import numpy as np
 
 from .hertz import PointContact, relative_curvature, roark_point, semi_axis_along
 
@@ -109,6 +109,8 @@ def design_crown(face_width: float, slope_A: float, slope_B: float, profile_curv
 
     Solves R·(theta_A + theta_B) + 2·a(R) + 2·clearance = F for R (a from Hertz), then
     c = R·theta_B + a + clearance. A full crown is the case theta_B = theta_A (c = F/2)."""
+    from scipy.optimize import brentq
+
     usable = face_width - 2.0 * edge_clearance
     if usable <= 0:
         raise CrownDesignError("edge_clearance / face_width",
@@ -144,3 +146,63 @@ def check_crown(radius: float, center_from_B: float, face_width: float, slope_A:
     """An existing crown of `radius` centred `center_from_B`: its contact and edge margins."""
     contact = crowned_contact(radius, profile_curvature, load, C_E)
     return Crown(radius, center_from_B, face_width, slope_A, slope_B, contact)
+
+
+@dataclass(frozen=True)
+class DesignChart:
+    """Seed 003's two rules over a range of slopes (the crown design chart): per slope
+    `theta` (rad) and face end ("A"; "B" too for a bias crown) the edge rule's largest
+    radius (mm, NaN where no crown fits), the stress rule's least radius (mm, NaN where no
+    crown gets under the reference), the reference stress (MPa) and whether it is the
+    case's allowable ("allowable") or the chosen design's own ("design")."""
+
+    theta: np.ndarray
+    edge_radius: dict
+    stress_radius: float
+    reference_stress: float
+    reference: str
+    design_stress: float
+
+
+def design_chart(design: Crown, full: bool, profile_curvature: float, load: float, C_E: float,
+                 edge_clearance: float = 0.0, allowable: float | None = None,
+                 points: int = 80) -> DesignChart:
+    """The chart of a chosen crown (`design`, from design_crown or check_crown).
+
+    Edge rule (eq 13): for each slope theta up to 2.5 times the larger design slope, the
+    largest radius whose ellipse stays inside the room on that side of the crown's centre
+    (F - c toward end A, c toward end B, less the edge clearance): design_crown of a face
+    twice that room with slope theta at both ends. Stress rule: the least radius whose
+    crowned Hertz stress (crowned_contact, eqs 6-11) is at most the allowable, or the
+    chosen design's stress where none is given; in this model the stress does not depend
+    on theta, so that rule is one radius."""
+    from scipy.optimize import brentq
+
+    F, c = design.face_width, design.center_from_B
+    rooms = {"A": F - c} if full else {"A": F - c, "B": c}
+    theta = np.linspace(0.0, 2.5 * max(design.slope_A, design.slope_B), points + 1)
+    edge = {}
+    for end, room in rooms.items():
+        radii = []
+        for t in theta:
+            try:
+                radii.append(design_crown(2.0 * room, t, t, profile_curvature, load, C_E,
+                                          edge_clearance).radius)
+            except ValueError:
+                radii.append(math.nan)
+        edge[end] = np.array(radii)
+
+    def stress(radius: float) -> float:
+        return crowned_contact(radius, profile_curvature, load, C_E).ellipse.p0
+
+    design_stress = stress(design.radius)
+    if allowable is None:
+        return DesignChart(theta, edge, design.radius, design_stress, "design", design_stress)
+    lo, hi = math.log(1e-3 * F), math.log(1e6 * F)
+    if stress(math.exp(lo)) <= allowable:
+        least = math.exp(lo)
+    elif stress(math.exp(hi)) > allowable:
+        least = math.nan             # no crown this flat gets under the allowable
+    else:
+        least = math.exp(brentq(lambda s: stress(math.exp(s)) - allowable, lo, hi, xtol=1e-10))
+    return DesignChart(theta, edge, least, allowable, "allowable", design_stress)

@@ -16,9 +16,6 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass
 
-from scipy.optimize import brentq
-from scipy.special import ellipe, ellipkm1
-
 
 @dataclass(frozen=True)
 class RelativeCurvature:
@@ -93,6 +90,8 @@ def relative_curvature(k1: tuple[float, float], k2: tuple[float, float],
 def _aspect_from_curvature_ratio(ratio: float) -> float:
     """k = b/a of the Hertz ellipse for B/A = ratio >= 1 (Johnson eq 4.39a):
     B/A = ((a/b)² E(e) - K(e)) / (K(e) - E(e)), e² = 1 - k²."""
+    from scipy.optimize import brentq
+
     if ratio < 1.0:
         raise ValueError(f"B/A must be >= 1, got {ratio}")
     if ratio - 1.0 < 1e-8:
@@ -101,12 +100,21 @@ def _aspect_from_curvature_ratio(ratio: float) -> float:
 
     def excess(log_k: float) -> float:
         k2 = math.exp(2.0 * log_k)
-        K, E = float(ellipkm1(k2)), float(ellipe(1.0 - k2))
+        K, E = _complete_integrals(k2)
         return (E / k2 - K) - ratio * (K - E)
 
     log_k = brentq(excess, math.log(1e-12), math.log(1.0 - 1e-9), xtol=1e-15, rtol=1e-15,
                    maxiter=200)
     return math.exp(log_k)
+
+
+def _complete_integrals(k2: float) -> tuple[float, float]:
+    """K(e) and E(e), the complete elliptic integrals of the first and second kind, of the
+    ellipse of aspect k = b/a (k2 = k², e² = 1 - k²); scipy's ellipkm1 keeps K exact as
+    k -> 0 (imported here: scipy.special is slow to import)."""
+    from scipy.special import ellipe, ellipkm1
+
+    return float(ellipkm1(k2)), float(ellipe(1.0 - k2))
 
 
 def hertz_point(A: float, B: float, load: float, C_E: float) -> PointContact:
@@ -119,7 +127,7 @@ def hertz_point(A: float, B: float, load: float, C_E: float) -> PointContact:
     if not (A > 0 and load > 0 and C_E > 0):
         raise ValueError(f"need A > 0, load > 0, C_E > 0; got A={A}, load={load}, C_E={C_E}")
     k = _aspect_from_curvature_ratio(B / A)
-    K, E = float(ellipkm1(k * k)), float(ellipe(1.0 - k * k))
+    K, E = _complete_integrals(k * k)
     b = (3.0 * load * k * E * C_E / (2.0 * math.pi * (A + B))) ** (1.0 / 3.0)
     a = b / k
     p0 = 3.0 * load / (2.0 * math.pi * a * b)
@@ -137,7 +145,7 @@ def roark_coefficients(cos_theta: float) -> tuple[float, float, float]:
     if not 0.0 <= cos_theta < 1.0:
         raise ValueError(f"cos(theta) must lie in [0, 1), got {cos_theta}")
     k = _aspect_from_curvature_ratio((1.0 + cos_theta) / (1.0 - cos_theta))
-    K, E = float(ellipkm1(k * k)), float(ellipe(1.0 - k * k))
+    K, E = _complete_integrals(k * k)
     beta = (2.0 * k * E / math.pi) ** (1.0 / 3.0)
     alpha = beta / k
     return alpha, beta, 3.0 * K / (2.0 * math.pi * alpha)

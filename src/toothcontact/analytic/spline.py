@@ -9,7 +9,6 @@ from __future__ import annotations
 import math
 
 import numpy as np
-from scipy.optimize import minimize_scalar
 
 
 def dudley_crown(engaged_length: float, misalignment: float) -> tuple[float, float]:
@@ -52,6 +51,8 @@ def tilted_tooth_clearance(crown_radius: float, tooth_thickness: float, clearanc
 
     Found by maximising the rotated flank arc numerically (an independent check of eq 19);
     negative means the tooth does not fit."""
+    from scipy.optimize import minimize_scalar
+
     R, T, th = crown_radius, tooth_thickness, misalignment
 
     def rotated_x(z: float) -> float:

@@ -39,16 +39,17 @@ def write_step(shape, path: Path) -> Path:
     from OCP.IFSelect import IFSelect_RetDone
     from OCP.STEPControl import STEPControl_AsIs, STEPControl_Writer
 
+    from ..writing import write_through_path
+
     _quiet_occt()
-    path = Path(path)
-    tmp = path.with_name(f".{path.name}.tmp")
     writer = STEPControl_Writer()
     writer.Transfer(shape, STEPControl_AsIs)
-    if writer.Write(str(tmp)) != IFSelect_RetDone:
-        tmp.unlink(missing_ok=True)
-        raise RuntimeError(f"could not write {path}")
-    tmp.replace(path)
-    return path
+
+    def write(tmp: Path) -> None:
+        if writer.Write(str(tmp)) != IFSelect_RetDone:
+            raise RuntimeError(f"could not write {path}")
+
+    return write_through_path(path, write)
 
 
 def read_step(path: Path):
@@ -110,8 +111,6 @@ def tessellate(shape, tolerance: float = 0.005, angular: float = 0.2):
 
 def write_mesh(mesh, path: Path) -> Path:
     """Write a trimesh mesh as binary STL through a temporary file."""
-    path = Path(path)
-    tmp = path.with_name(f".{path.name}.tmp")
-    mesh.export(tmp, file_type="stl")
-    tmp.replace(path)
-    return path
+    from ..writing import write_through_path
+
+    return write_through_path(path, lambda tmp: mesh.export(tmp, file_type="stl"))

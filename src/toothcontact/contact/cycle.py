@@ -17,7 +17,9 @@ among the pairs in contact. Units: mm, N, MPa, rad.
 
 from __future__ import annotations
 
+import logging
 import math
+import time
 from dataclasses import dataclass, fields, replace
 
 import numpy as np
@@ -30,6 +32,8 @@ from .field import EaseOff, ease_off, rigid_patterns
 from .line import contact_lines
 from .local import TangentPlanes, analytic_gaps, face_length, fit_gaps, planes_at, tangent_planes
 from .search import ContactPoints, lowest, refine_minima, separation, solve_transmission_error
+
+log = logging.getLogger(__name__)
 
 LOAD_SHARING_RULE = ("the normal load split among the tooth pairs in contact (rigid_contact): "
                      "by their lengths in contact where all are contact lines (one rigid "
@@ -48,9 +52,21 @@ UNTOUCHED = {"normal_load_N": 0.0, "a_mm": 0.0, "b_mm": 0.0, "p_max_MPa": 0.0,
              "edge_contact": False, "edge_contact_at": None, "edge_margins_mm": {}}
 
 
+def mesh_positions(pitch: float, count: int, phase: float = 0.0) -> np.ndarray:
+    """`count` driver roll angles (rad) spread evenly over one pitch (rad), 0 among them
+    unless shifted.
+
+    One pitch is periodic, so its two ends are one position: the angles are k·pitch/count
+    for k from -(count // 2), each position once. `phase` shifts them all by that fraction
+    of a step: 0.5 puts one midway between each two (with them, twice the count)."""
+    return pitch * (np.arange(count) - count // 2 + phase) / count
+
+
 @dataclass(frozen=True)
 class CycleSettings:
     positions: int = 21
+    #: the positions' shift, as a fraction of their step (mesh_positions)
+    phase: float = 0.0
     grid: tuple[int, int] = (25, 41)      # pinion flank grid for the separation search
     approach: float = 0.00632             # mm, Litvin's rigid approach for the pattern
     fit_points: int = 21
@@ -115,12 +131,13 @@ def parallel_cycle(mesh, pinion: Flank, gear: Flank, normal_load: float,
     `mesh` places the driver ("pinion": a pinion or a worm) and the driven member ("gear":
     a gear or a worm wheel): assembly.ParallelMesh or assembly.WormMesh. The search runs on
     all positions and pairs at once."""
+    start = time.perf_counter()
     (u0, u1), (v0, v1) = pinion.domain
     grid = np.meshgrid(np.linspace(u0, u1, settings.grid[0]), np.linspace(v0, v1, settings.grid[1]),
                        indexing="ij")
     pitch = mesh.driver_pitch
     half = ((u1 - u0) / (settings.grid[0] - 1), (v1 - v0) / (settings.grid[1] - 1))
-    phis = np.linspace(-0.5 * pitch, 0.5 * pitch, settings.positions)
+    phis = mesh_positions(pitch, settings.positions, settings.phase)
     pairs = np.array(settings.pairs)
     pinion_frames = Frame.stack([[mesh.pinion_frame(phi, j) for j in pairs] for phi in phis])
 
@@ -202,6 +219,8 @@ def parallel_cycle(mesh, pinion: Flank, gear: Flank, normal_load: float,
                         "rigid_pattern_along_face_mm": pattern.along_face,
                         "rigid_pattern_across_face_mm": pattern.across_face,
                         "rigid_pattern_cut": pattern.cut})
+    log.info("contact cycle: %d contacts at %d positions in %.2f s", len(rows), len(phis),
+             time.perf_counter() - start)
     return cycle
 
 

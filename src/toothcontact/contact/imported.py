@@ -42,7 +42,7 @@ import numpy as np
 from ..analytic.hertz import hertz_line, hertz_point
 from ..assembly import ParallelMesh
 from ..mesh import TriangleSurface
-from .cycle import CycleSettings
+from .cycle import CycleSettings, mesh_positions
 
 #: band (mm) of the gear's reach beyond its outer radius in which pinion flanks are probed
 PROBE_BAND = 0.5
@@ -104,7 +104,7 @@ def imported_cycle(mesh: ParallelMesh, pinion: TriangleSurface, gear: TriangleSu
     driving = np.zeros(len(pinion.faces), bool)
     driving[leading] = True
     rows, placed, lag = [], [], None
-    for phi in np.linspace(-0.5 * pitch, 0.5 * pitch, settings.positions):
+    for phi in mesh_positions(pitch, settings.positions, settings.phase):
         frame = mesh.pinion_frame(phi)
         corners = frame.to_world(pinion.triangles[leading].reshape(-1, 3))[:, :2] - mesh.center[:2]
         near = np.hypot(corners[:, 0], corners[:, 1]).reshape(-1, 3).min(axis=1)

@@ -24,6 +24,30 @@ from .spec import PROBABILITIES, Optimise
 INITIAL_RADIUS, FINAL_RADIUS = 0.25, 0.01
 
 
+def check_statistics(spec: Optimise, figures: dict, where: str) -> None:
+    """Before any sample runs: a CaseError naming the field where the objective or a
+    constraint names a figure that `figures` (the base design's record, sweep.run's
+    sample_record) does not report, or a probability of edge loading where it reports no
+    edge count."""
+    from .statistics import FLAGS
+
+    named = [("objective", spec.objective)] + [
+        (f"constraint[{i}].statistic", c.statistic) for i, c in enumerate(spec.constraints)]
+    numbers = sorted(k for k, v in figures.items() if isinstance(v, (int, float))
+                     and not isinstance(v, bool) and k != "sample" and not k.startswith("input:"))
+    for field, text in named:
+        if text in PROBABILITIES:
+            if not any(key in figures for key in FLAGS[text]):
+                raise CaseError(f"{where}.{field}: {text!r}: the base design reports no edge "
+                                "loading (no loaded contact or pattern): name a figure, "
+                                "e.g. 'P95 " + (numbers[0] if numbers else "FIGURE") + "'")
+            continue
+        figure = text.partition(" ")[2].strip()
+        if figure not in numbers:
+            raise CaseError(f"{where}.{field}: {figure!r} is not a figure the base design "
+                            f"reports; it reports: {', '.join(numbers)}")
+
+
 def statistic(text: str, stats: dict, rows: list[dict], where: str) -> float:
     """The statistic `text` of a sweep ('edge_loading', 'end_loading', or 'P95 FIGURE'
     etc. over the samples that answered; time-weighted under a load spectrum); inf where no

@@ -30,7 +30,8 @@ def sample_record(number: int, inputs: dict, raw: dict, folder: str | None,
     a Dask worker's process may not fork, see toothcontact.parallel): its
     record, `sample`, each varied input (the case's value in core units, or its text),
     `status` ("ok" or the error) and the summary's figures (the case's `summary` under its
-    own names; numbers, flags and texts); and, if `positions`, the result's rows per mesh
+    own names; numbers, flags and texts; no positions check); and, if `positions`, the
+    result's rows per mesh
     position and pair (their table cells, with `sample`), else []."""
     from ..analyses import analyse
     from ..case import parse_case
@@ -45,6 +46,10 @@ def sample_record(number: int, inputs: dict, raw: dict, folder: str | None,
                           base=None if folder is None else Path(folder))
         for field in inputs:
             record[f"input:{field}"] = _value(case, field)
+        if getattr(case, "analysis", None) is not None:
+            # the positions' convergence is the base design's question: a sample skips it
+            case = case.model_copy(update={
+                "analysis": case.analysis.model_copy(update={"positions_check": False})})
         with workers(cores):
             sections = analyse(case).sections
         record.update(_cells(sections.get("summary", {})))

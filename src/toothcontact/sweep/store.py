@@ -1,5 +1,5 @@
 """A sweep's records on disk: one Parquet file per finished sample under OUT/parts
-(written whole or not at all by report.write_atomic), so a killed sweep loses nothing and
+(written whole or not at all by writing.write_atomic), so a killed sweep loses nothing and
 a resumed one knows what is done; the sweep's table (samples.parquet) stacks them in
 sample order."""
 
@@ -64,7 +64,7 @@ def write_table(target: Path, rows: list[dict]) -> Path:
     import pyarrow as pa
     import pyarrow.parquet as pq
 
-    from ..report import write_atomic
+    from ..writing import write_atomic
 
     columns = list(dict.fromkeys(key for row in rows for key in row))
     table = (pa.Table.from_pylist([{key: row.get(key) for key in columns} for row in rows])

@@ -1,0 +1,266 @@
+"""What every contact kind (spur, spline, worm, imported) reports from its contact cycle: the
+positions and summary, the loaded contact, the loaded transmission error and the
+positions check."""
+
+from __future__ import annotations
+
+import logging
+import math
+import time
+
+import numpy as np
+
+from .. import case as schema
+from ..case import CaseError
+from .result import Check, Result
+
+log = logging.getLogger(__name__)
+
+
+def cycle_settings(a: schema.AnalysisSpec, phase: float = 0.0, **kind_settings):
+    """The contact cycle's settings from a case's [analysis] table, its positions shifted
+    by `phase` of their step (contact.cycle.mesh_positions)."""
+    from ..contact.cycle import CycleSettings
+
+    return CycleSettings(a.positions, phase, a.grid, a.approach, field_grid=a.field_grid,
+                         **kind_settings)
+
+
+#: the largest loaded pressure may move by this much (fraction) with twice the positions
+#: before the result says that the case needs more
+POSITIONS_TOLERANCE = 0.05
+
+
+def check_positions(result: Result, positions: int, midway) -> None:
+    """summary["positions_check"]: the largest loaded pressure and the loaded transmission
+    error's peak to peak at the case's positions and with the same again midway between
+    them (`midway(scratch)` runs the contact and the loaded contact with the positions
+    shifted by half a step into a scratch Result), and how far they move; a note where the
+    pressure moves by more than POSITIONS_TOLERANCE. Nothing where no loaded contact was
+    solved."""
+    summary = result.sections.get("summary") or {}
+    here = summary.get("bem_max_p_max_MPa")
+    if here is None:
+        return
+    scratch, start = Result(), time.perf_counter()
+    try:
+        midway(scratch)
+        between = scratch.sections["summary"]
+    except CaseError as exc:
+        summary["positions_check"] = {"positions": positions, "checked": False,
+                                      "reason": str(exc)}
+        return
+    both = max(here, between.get("bem_max_p_max_MPa") or 0.0)
+    te = [r.get("loaded_transmission_error_um") for rows in
+          (result.sections["positions"], scratch.sections["positions"]) for r in rows]
+    spread = summary.get("loaded_transmission_error_peak_to_peak_um")
+    check = {"positions": positions, "checked": True, "doubled_positions": 2 * positions,
+             "bem_max_p_max_MPa": here, "doubled_bem_max_p_max_MPa": both,
+             "bem_max_p_max_change_percent": 100.0 * (both - here) / here,
+             "loaded_transmission_error_peak_to_peak_um": spread,
+             "doubled_loaded_transmission_error_peak_to_peak_um":
+                 None if spread is None or None in te else max(te) - min(te),
+             "doubled_failed_contacts": between.get("bem_failed_contacts", 0),
+             "tolerance_percent": 100.0 * POSITIONS_TOLERANCE,
+             "converged": both <= (1.0 + POSITIONS_TOLERANCE) * here}
+    summary["positions_check"] = check
+    log.info("positions check: largest loaded pressure %.0f MPa at %d positions, %.0f MPa at "
+             "%d (%+.1f %%), in %.2f s", here, positions, both, 2 * positions,
+             check["bem_max_p_max_change_percent"], time.perf_counter() - start)
+    if not check["converged"]:
+        result.notes.append(
+            f"positions: the largest loaded pressure rises from {here:.0f} to {both:.0f} MPa "
+            f"(+{check['bem_max_p_max_change_percent']:.1f} %) with twice the positions "
+            f"({2 * positions}); the peak falls between the case's positions: give [analysis] "
+            f"positions = {4 * positions} or more")
+
+
+def _loaded_transmission_error(cycle, summary: dict) -> None:
+    """loaded_transmission_error_urad on every row of a position whose loaded contact was
+    solved: the unloaded one plus D/turn_slope, D (mm) the position's common approach (a
+    loaded pair's approach: its contact deformation and, where modelled, its teeth's
+    bending), and its peak to peak in the summary. None where the position has no solved
+    pair."""
+    positions: dict[float, list[int]] = {}
+    for k, row in enumerate(cycle.rows):
+        positions.setdefault(row["roll_deg"], []).append(k)
+    values, arm = [], summary["transmission_error_arm_mm"]
+    for ks in positions.values():
+        solved = [k for k in ks if cycle.rows[k]["bem_status"] == "solved"]
+        te = None
+        if solved:
+            k = max(solved, key=lambda j: cycle.rows[j]["bem_load_N"])
+            row, slope = cycle.rows[k], float(cycle.turn_slope[k])
+            if math.isfinite(slope) and slope > 0.0:
+                te = row["transmission_error_urad"] + 1e6 * row["bem_approach_mm"] / slope
+                values.append(te)
+        for k in ks:
+            cycle.rows[k]["loaded_transmission_error_urad"] = te
+            cycle.rows[k]["loaded_transmission_error_um"] = None if te is None else 1e-3 * arm * te
+    spread = max(values) - min(values) if len(values) == len(positions) else None
+    summary["loaded_transmission_error_peak_to_peak_urad"] = spread
+    summary["loaded_transmission_error_peak_to_peak_um"] = (
+        None if spread is None else 1e-3 * arm * spread)
+    summary["transmission_error_note"] = (
+        "transmission errors are the gear's (a worm set's wheel's) rotation from where "
+        "conjugate flanks would hold it, in µrad, positive where it lags behind, and that "
+        f"rotation as a length (µm) at the {summary['transmission_error_arm']} "
+        f"(r = {arm:.3f} mm); the loaded one adds the turn that closes the position's common "
+        "approach D (half-space contact and, where modelled, tooth bending): "
+        "D/r_b2·cos(beta_b) on a parallel pair")
+
+
+def loaded_sections(cycle, C_E: float, grid: int, teeth, bending: str,
+                     result: Result) -> None:
+    """The loaded contact of every row (contact.loaded): bem_* and edge keys on each row
+    (bem_status "solved", "unloaded" or "failed" with bem_reason: a position the solver
+    cannot answer says so in its own rows and the others keep theirs), their worst in the
+    summary, and the checks that every contact was solved and none is edge-loaded."""
+    if not grid:
+        return
+    from ..contact.loaded import (EDGE_PRESSURE_RATIO, EDGE_STRIP, END_LOAD_RATIO,
+                                 edge_breaks, loaded_cycle, unsolved)
+
+    rows = cycle.rows
+    start = time.perf_counter()
+    try:
+        loaded, failed = loaded_cycle(cycle, C_E, grid, teeth)
+    except (ValueError, RuntimeError) as exc:   # no gap field to solve on: the stage fails
+        loaded, failed = [None] * len(rows), {k: str(exc) for k in range(len(rows))}
+    log.info("loaded contact: %d contacts at %d positions, %d not solved, in %.2f s",
+             len(rows), len({r["roll_deg"] for r in rows}), len(failed),
+             time.perf_counter() - start)
+    for k in sorted(failed)[:1]:
+        log.warning("loaded contact not solved at roll %.3f deg: %s", rows[k]["roll_deg"],
+                    failed[k])
+    result.loaded = loaded
+    for k, (row, contact) in enumerate(zip(rows, loaded)):
+        row.update(unsolved("failed", failed[k]) if k in failed else
+                   unsolved("unloaded") if contact is None else contact.summary)
+    summary = result.sections["summary"]
+    summary.update(
+        load_sharing="one rigid rotation for all pairs of a position; each pair's approach "
+                     f"from its half-space solution; {bending}",
+        bem_failed_contacts=len(failed))
+    _loaded_transmission_error(cycle, summary)
+    _reach_check(cycle, result)
+    result.checks.append(Check(
+        "loaded contact solved at every contact", not failed,
+        f"{len(failed)} of {len(rows)} contacts not solved"
+        + (f", first at roll {rows[min(failed)]['roll_deg']:.2f} deg: {failed[min(failed)]}"
+           if failed else ""), kind="solver"))
+    answered = [r for r in rows if r["bem_status"] != "failed"]
+    if not answered:
+        return
+    edged = [r for r in answered if r["edge_loaded"]]
+    breaks = edge_breaks(cycle)
+    rounded = ({f"{member}_tip" for member in breaks.roundings}
+               | {f"{member}_end_{end}" for member in breaks.chamfers for end in "AB"})
+    candidates = edged or answered
+    highest = max(r["edge_pressure_MPa"] for r in candidates)
+    # the first of those within 0.1 % (a spline's teeth all press alike, to the pressure
+    # grid's resolution of their edges)
+    worst = next(r for r in candidates if r["edge_pressure_MPa"] >= (1 - 1e-3) * highest)
+    summary.update(
+        bem_max_p_max_MPa=max(r["bem_p_max_MPa"] for r in answered),
+        max_flank_p_max_MPa=max(r["flank_p_max_MPa"] for r in answered),
+        max_edge_pressure_MPa=max(r["edge_pressure_MPa"] for r in answered),
+        max_edge_load_fraction=max(r["edge_load_fraction"] for r in answered),
+        edge_loaded_contacts=len(edged),
+        end_loaded_contacts=sum(bool(r["end_loaded"]) for r in answered),
+        max_end_load_ratio=max(r["end_load_ratio"] for r in answered),
+        edge_pressure_note=f"edge_pressure_MPa is the pressure averaged over a {EDGE_STRIP} mm "
+                           "strip at a sharp edge, the largest on the rounding at a rounded tip "
+                           "(a smooth surface: Hertz on its radius), flank_p_max_MPa the "
+                           f"active flank's peak more than {EDGE_STRIP} mm inside its edges "
+                           "(a tip rounding's start among them: what a lead crown sizes), and "
+                           "bem_p_max_MPa the larger of the two: both converge as the "
+                           "grid is refined; bem_raw_peak_MPa, the largest cell pressure, grows "
+                           "without bound at a sharp edge and is not a design value; free face "
+                           "ends are quarter-spaces (mirror-pressure correction); a contact is "
+                           "end_loaded when its load per mm of face in the strip at a face end "
+                           f"exceeds {END_LOAD_RATIO:g} times its mean over its length in contact "
+                           "(end_load_ratio: what a lead crown is for), edge_loaded when "
+                           "end-loaded or when the pressure at a tip, root or form edge exceeds "
+                           f"{EDGE_PRESSURE_RATIO:g} times the contact's interior peak")
+    result.checks.append(Check(
+        "loaded contact: no edge load", not edged,
+        f"{len(edged)} of {len(answered)} contacts edge-loaded; highest edge pressure "
+        f"{worst['edge_pressure_MPa']:.0f} MPa "
+        + ("on the rounded edge" if worst["edge_pressure_at"] in rounded
+           else f"averaged over {EDGE_STRIP} mm")
+        + f" ({worst['edge_pressure_at']}), "
+        f"{worst['edge_pressure_MPa'] / max(worst['bem_p_max_MPa'], 1e-300):.2f} of the "
+        f"contact's peak {worst['bem_p_max_MPa']:.0f} MPa, at roll {worst['roll_deg']:.2f} deg "
+        f"pair {worst['pair']}; largest end load ratio "
+        f"{max(r['end_load_ratio'] for r in answered):.2f} (end-loaded above "
+        f"{END_LOAD_RATIO:g})"))
+
+
+def _reach_check(cycle, result: Result) -> None:
+    """Where pairs were kept beyond the approach for the loaded contact (the cycle's reach),
+    a check that no position's loaded approach D reaches a pair the cycle left out (its
+    least separation on the search grid): that pair's share would be missing."""
+    if not cycle.settings.reach:
+        return
+    rolls = sorted({r["roll_deg"] for r in cycle.rows})
+    short = []
+    for roll, unkept in zip(rolls, cycle.unkept_separation):
+        approach = max((r["bem_approach_mm"] for r in cycle.rows
+                        if r["roll_deg"] == roll and r["bem_status"] == "solved"), default=0.0)
+        if approach >= unkept:
+            short.append((roll, approach, unkept))
+    reach_um = 1e3 * cycle.settings.reach
+    result.checks.append(Check(
+        "loaded contact: every tooth pair the load brings in was considered", not short,
+        f"pairs within {reach_um:.1f} µm of contact were considered"
+        + (f"; at roll {short[0][0]:.2f} deg the loaded approach {1e3 * short[0][1]:.1f} µm "
+           f"reaches a pair {1e3 * short[0][2]:.1f} µm apart that was not: its share is "
+           "missing" if short else "")))
+
+
+def contact_sections(cycle, loads: dict, result: Result, arm: tuple[float, str]) -> None:
+    """positions, summary, ease-off and the edge checks of a contact cycle: a
+    contact.cycle.ContactCycle (kept whole in result.cycle for pictures and the pressure
+    solver), or the rows of an imported pair. `arm` is the radius (mm) at which the gear's
+    lag is read as a length (transmission_error_um) and what that radius is."""
+    from ..contact.cycle import LOAD_SHARING_RULE
+
+    rows = cycle if isinstance(cycle, list) else cycle.rows
+    for row in rows:
+        row["transmission_error_um"] = 1e-3 * arm[0] * row["transmission_error_urad"]
+    if not isinstance(cycle, list):
+        ease = cycle.ease_off
+        result.cycle = cycle
+        result.sections["ease_off"] = {
+            "face_mm": ease.face_mm.round(4).tolist(), "radius_mm": ease.radius_mm.round(4).tolist(),
+            "separation_um": [[None if not np.isfinite(s) else round(float(s) * 1e3, 3)
+                               for s in line] for line in ease.separation],
+            "approach_um": cycle.settings.approach * 1e3,
+            "member": cycle.settings.ease_off_member}
+    result.sections["positions"] = rows
+    # the rigid analysis's figures: pairs kept beyond the approach for the loaded contact
+    # (rigid_contact false) touch nowhere
+    rows = [r for r in rows if r.get("rigid_contact", True)]
+    te = [r["transmission_error_urad"] for r in rows]
+    summary = {**loads, "max_p_max_MPa": max(r["p_max_MPa"] for r in rows),
+               "transmission_error_peak_to_peak_urad": max(te) - min(te),
+               "transmission_error_peak_to_peak_um": 1e-3 * arm[0] * (max(te) - min(te)),
+               "transmission_error_arm_mm": arm[0], "transmission_error_arm": arm[1],
+               "face_position_range_mm": [min(r["face_position_mm"] for r in rows),
+                                          max(r["face_position_mm"] for r in rows)],
+               "line_contacts": sum(r["contact_model"] == "line" for r in rows),
+               "area_contacts": sum(r["contact_model"] == "area" for r in rows),
+               "edge_contacts": sum(r["edge_contact"] for r in rows),
+               "load_sharing": LOAD_SHARING_RULE}
+    for kind, label in (("face", "at the face ends (edge loading)"),
+                        ("profile", "at the tip and form edges (corner contact)")):
+        candidates = [(v, k, r["roll_deg"]) for r in rows for k, v in r["edge_margins_mm"].items()
+                      if ("end_" in k) == (kind == "face")]
+        if not candidates:
+            continue
+        margin, edge, roll = min(candidates)
+        summary[f"worst_{kind}_edge_margin_mm"], summary[f"worst_{kind}_edge"] = margin, edge
+        result.checks.append(Check(f"contact pattern clear of the edges {label}", margin >= 0,
+                                   f"worst margin {margin:.3f} mm ({edge}) at roll {roll:.2f} deg"))
+    result.sections["summary"] = summary

@@ -1,0 +1,149 @@
+"""The worm efficiency kind: tooth efficiency over lubricant conditions (DIN 3996, seed 000)
+and seed 001's anti-rattle spring."""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+from .. import case as schema
+from ..analytic import hertz, worm_efficiency
+from ..case import CaseError
+from .result import Check, Result
+
+
+def worm_efficiency_case(case: schema.WormEfficiencyCase) -> Result:
+    """Tooth efficiency of a worm set over lubricant conditions (seeds 000 and 001)."""
+    if case.lead_angle is not None:
+        gamma = case.lead_angle
+    else:
+        try:
+            gamma = worm_efficiency.lead_angle_from_pitch_diameter(
+                case.starts, case.normal_module, case.worm_pitch_diameter)
+        except ValueError as exc:
+            raise CaseError(f"worm_pitch_diameter: {exc}") from None
+    alpha_n = case.normal_pressure_angle
+    result = Result()
+    rows = []
+    for i, cond in enumerate(case.conditions or [None]):
+        if cond is None:
+            Y_VISC, mu = 1.0, case.mu_zm if case.mu_zm is not None else worm_efficiency.mean_friction(
+                **case.din3996.model_dump())
+        else:
+            Y_VISC = worm_efficiency.viscosity_factor(cond.viscosity)
+            mu = worm_efficiency.mean_friction(**case.din3996.model_dump(), Y_VISC=Y_VISC)
+        eta_z = worm_efficiency.efficiency_worm_driving(gamma, mu)
+        eta_back = worm_efficiency.efficiency_wheel_driving(gamma, mu)
+        row = {"temperature_C": cond.temperature if cond else None,
+               "viscosity_mm2_s": cond.viscosity if cond else None,
+               "Y_VISC": Y_VISC, "mu_zm": mu, "eta_z": eta_z,
+               "eta_wheel_driving": max(eta_back, 0.0), "self_locking": eta_back <= 0.0,
+               "eta_kim": worm_efficiency.efficiency_kim(gamma, alpha_n, mu)}
+        if cond is not None:
+            if cond.eta_spindle is not None:
+                row["eta_total"] = eta_z * cond.eta_spindle
+            row.update({f"published_{key}": getattr(cond, f"published_{key}")
+                        for key in ("eta_total", "eta_z", "mu_zm")
+                        if getattr(cond, f"published_{key}") is not None})
+            result.checks.extend(_published_checks(cond, eta_z, gamma))
+        rows.append(row)
+    result.sections["efficiency"] = rows
+    result.sections["worm"] = {"lead_angle_deg": math.degrees(gamma),
+                               "axial_module_mm": case.normal_module / math.cos(gamma),
+                               "wheel_pitch_radius_mm": _wheel_pitch_radius(case, gamma)}
+    if case.anti_rattle_spring is not None:
+        result.sections["misalignment"] = _anti_rattle_rows(case, gamma)
+        result.sections["anti_rattle_curve"] = _anti_rattle_curve(case, gamma, rows[0]["mu_zm"])
+    return result
+
+
+def _anti_rattle_curve(case: schema.WormEfficiencyCase, gamma: float, mu: float,
+                       points: int = 200) -> dict:
+    """Seed 001's anti-rattle-spring model from no torque to 1.1 times the largest output
+    torque of the case (its chart): the spring force (eq 20, N), the shaft-end
+    misalignment (eq 21, mm), the tooth normal load (eq 3, N), and eq (2)'s efficiency at
+    the case's mu_zm, which the misalignment does not change at a constant mu."""
+    spring, alpha = case.anti_rattle_spring, case.normal_pressure_angle
+    Rp = _wheel_pitch_radius(case, gamma)
+    torque = np.linspace(0.0, 1.1 * max(max(spring.output_torques), 1.0), points)   # N·mm
+    force = [worm_efficiency.anti_rattle_spring_force(t, spring.mount_moment, spring.d1,
+                                                      spring.d2, Rp, alpha, gamma)
+             for t in torque]
+    return {"output_torque_Nm": (torque / 1000.0).tolist(), "spring_force_N": force,
+            "misalignment_mm": [worm_efficiency.anti_rattle_misalignment(f, spring.stiffness)
+                                for f in force],
+            "normal_load_N": [worm_efficiency.normal_tooth_load(t, Rp, gamma, alpha)
+                              for t in torque],
+            "eta_aligned": worm_efficiency.efficiency_kim(gamma, alpha, mu), "mu_zm": mu,
+            "note": "seed 001 eqs (2), (3), (20), (21) over the output torque: the chart's "
+                    "curves; the case's own torques are the misalignment rows"}
+
+
+def _wheel_pitch_radius(case: schema.WormEfficiencyCase, gamma: float) -> float:
+    return 0.5 * case.teeth * case.normal_module / math.cos(gamma)
+
+
+def _published_checks(cond: schema.Condition, eta_z: float, gamma: float) -> list[Check]:
+    """Compare a condition with the values its source prints (seed 000 Table 3.5-1 style)."""
+    at = f"at {cond.temperature:g} °C"
+    checks = []
+    if cond.published_eta_z is not None:
+        checks.append(Check(f"eta_z {at} matches the published value", abs(eta_z - cond.published_eta_z) <= 0.01,
+                            f"computed {eta_z:.3f}, published {cond.published_eta_z:.3f} (tolerance 0.01)",
+                            "source"))
+        if cond.published_mu_zm is not None:
+            own = worm_efficiency.efficiency_worm_driving(gamma, cond.published_mu_zm)
+            checks.append(Check(f"published eta_z {at} follows from the published mu_zm",
+                                abs(own - cond.published_eta_z) <= 0.005,
+                                f"eta_z(mu_zm={cond.published_mu_zm}) = {own:.4f}, published "
+                                f"{cond.published_eta_z:.3f} (tolerance 0.005)", "source"))
+    if None not in (cond.published_eta_total, cond.published_eta_z, cond.eta_spindle):
+        product = cond.published_eta_z * cond.eta_spindle
+        checks.append(Check(f"published eta_tot {at} equals eta_z·eta_spindle",
+                            abs(product - cond.published_eta_total) <= 0.01,
+                            f"{cond.published_eta_z:.3f} × {cond.eta_spindle:.3f} = {product:.3f}, "
+                            f"published {cond.published_eta_total:.3f} (tolerance 0.01): "
+                            + ("consistent" if abs(product - cond.published_eta_total) <= 0.01
+                               else "the source's column is inconsistent"), "source"))
+    return checks
+
+
+def _anti_rattle_rows(case: schema.WormEfficiencyCase, gamma: float) -> list[dict]:
+    """Seed 001 eqs (3), (20), (21) per output torque; with [contact], eq (19)'s pressure
+    with and without the spring's preload, the friction law and eq (2)'s efficiency."""
+    spring, alpha = case.anti_rattle_spring, case.normal_pressure_angle
+    Rp = _wheel_pitch_radius(case, gamma)
+    kim = case.contact
+    if kim is not None:
+        rp = 0.5 * case.worm_pitch_diameter
+        # a ZI worm's base cylinder: cos(gamma_b) = cos(alpha_n)·cos(gamma), r_b = r·tan(gamma)/tan(gamma_b)
+        base = rp * math.tan(gamma) / math.tan(math.acos(math.cos(alpha) * math.cos(gamma)))
+        try:
+            radii = worm_efficiency.kim_curvature_radii(rp, base, 0.5 * kim.hob_pitch_diameter,
+                                                         gamma, Rp, alpha)
+        except ValueError as exc:
+            raise CaseError(f"contact: {exc}") from None
+        C_E = hertz.compliance(kim.worm.E, kim.worm.nu, kim.wheel.E, kim.wheel.nu)
+    rows = []
+    for torque in spring.output_torques:
+        force = worm_efficiency.anti_rattle_spring_force(
+            torque, spring.mount_moment, spring.d1, spring.d2, Rp, alpha, gamma)
+        Fn = worm_efficiency.normal_tooth_load(torque, Rp, gamma, alpha)
+        row = {"output_torque_Nm": torque / 1000.0, "normal_load_N": Fn, "spring_force_N": force,
+               "misalignment_mm": worm_efficiency.anti_rattle_misalignment(force, spring.stiffness)}
+        if kim is not None:
+            total = worm_efficiency.preloaded_normal_force(Fn, force, spring.d1, spring.d2, alpha)
+            law = kim.friction
+            for suffix, F in (("_aligned", Fn), ("", total)):
+                p = worm_efficiency.kim_contact_pressure(F, radii, C_E) if F > 0 else 0.0
+                # no load, no pressure: the power law gives no friction (null) and the
+                # set transmits nothing (efficiency 0)
+                mu = worm_efficiency.friction_power_law(p, law.mu_ref, law.pressure_ref,
+                                                        law.exponent) if p > 0 else None
+                row[f"pressure{suffix}_MPa"], row[f"mu{suffix}"] = p, mu
+                row[f"eta_kim{suffix}"] = (worm_efficiency.efficiency_kim_preloaded(
+                    gamma, alpha, mu, Fn, F) if p > 0 else 0.0)
+            row["preloaded_normal_load_N"] = total
+        rows.append(row)
+    return rows
