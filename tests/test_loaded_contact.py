@@ -185,7 +185,7 @@ def test_a_position_the_solver_cannot_answer_keeps_every_other_result(monkeypatc
     other row keeps its loaded solution and every row its geometry, contact and Hertz keys."""
     from toothcontact.contact import loaded
 
-    solve = loaded.solve_shared
+    solve = loaded._precise_enough          # single precision, then double
     calls = []
 
     def fail_first_position(grids, loads, E_star, **options):
@@ -194,7 +194,7 @@ def test_a_position_the_solver_cannot_answer_keeps_every_other_result(monkeypatc
             raise RuntimeError("solve_contact: relative gap error 0.97 after 500 iterations")
         return solve(grids, loads, E_star, **options)
 
-    monkeypatch.setattr(loaded, "solve_shared", fail_first_position)
+    monkeypatch.setattr(loaded, "_precise_enough", fail_first_position)
     with workers(1):                                # the first position is the first call
         result = analyse(parse_case(spur({"radius": "4000 mm"}, 0.0, positions=3, grid=64)))
     rows = result.sections["positions"]

@@ -38,7 +38,7 @@ def strict(text: str):
 
 @pytest.mark.parametrize("failing", ["every position", "one position"])
 def test_a_failed_loaded_solve_leaves_a_complete_run(tmp_path, monkeypatch, failing):
-    solve, once = loaded.solve_shared, tmp_path / "failed_once"
+    solve, once = loaded._precise_enough, tmp_path / "failed_once"   # both precisions
 
     def broken(grids, *args, **kwargs):
         if failing == "one position":
@@ -48,7 +48,7 @@ def test_a_failed_loaded_solve_leaves_a_complete_run(tmp_path, monkeypatch, fail
                 return solve(grids, *args, **kwargs)
         raise RuntimeError(REASON)
 
-    monkeypatch.setattr(loaded, "solve_shared", broken)   # the forked workers inherit it
+    monkeypatch.setattr(loaded, "_precise_enough", broken)   # the forked workers inherit it
     case = tmp_path / "failing.toml"
     case.write_text(CASE)
     document, written = runner.run_case(case, tmp_path / "out")

@@ -177,7 +177,7 @@ class CrownDesignCase(GearPairGeometry):
                           "for an internal gear's concave flank")
     tangential_load: Force = Field(description="e.g. '8000 N'")
     slope_A: Slope = Field(description="total slope at end A in rad, e.g. '0.0015'")
-    slope_B: Slope | None = Field(None, description="total slope at end B (bias crown only)")
+    slope_B: Slope | None = Field(None, description="total slope at end B (an off-centre crown only)")
     radius: CrownRadius | None = Field(None, description="check this crown radius instead of designing")
     center_from_B: Length | None = Field(None, description="crown centre of a checked crown")
     edge_clearance: quantity("length") = Field(0.0, description="margin kept to each end")
@@ -191,7 +191,7 @@ class CrownDesignCase(GearPairGeometry):
             raise ValueError("slope_B: a full crown takes one slope (slope_A); "
                              "use crown = 'bias' for two")
         if self.crown == "bias" and self.slope_B is None:
-            raise ValueError("slope_B: missing; a bias crown needs the slope at end B")
+            raise ValueError("slope_B: missing; an off-centre (bias) crown needs the slope at end B")
         if self.center_from_B is not None and self.radius is None:
             raise ValueError("center_from_B: only with radius (checking a given crown)")
         return self
@@ -225,9 +225,13 @@ class ProfileCrownSpec(Model):
     shape: Literal["circular", "parabolic"] = "parabolic"
 
 
-class TipReliefSpec(Model):
+class ReliefSpec(Model):
+    """A tip relief, or a root relief: a drop growing from its start toward the tip (the
+    form circle)."""
+
     amount: quantity("length", low=0.0) = Field(
-        description="drop at the tip, e.g. '10 um'; '0 um' for none (a sweep's baseline)")
+        description="drop at the tip (a root relief's: at the form circle), e.g. '10 um'; "
+                    "'0 um' for none (a sweep's baseline)")
     start_diameter: Length = Field(description="diameter where the relief begins")
     shape: Literal["linear", "parabolic"] = "linear"
 
@@ -260,6 +264,105 @@ class EndChamferSpec(Model):
     radius: Length | None = Field(
         None, description="the rounding of the chamfer's edge on the flank, e.g. '0.2 mm'; "
                           "none given: 0.1 normal modules")
+
+
+class HelixSlopeSpec(Model):
+    amount: quantity("length") = Field(
+        description="f_Hβ: material removed at end B relative to end A, e.g. '12 um'; "
+                    "negative removes it at end A")
+
+
+class ProfileSlopeSpec(Model):
+    amount: quantity("length") = Field(
+        description="f_Hα: material removed at the tip relative to the form circle, e.g. "
+                    "'6 um'; negative removes it toward the root")
+
+
+class TwistSpec(Model):
+    amount: quantity("length") = Field(
+        description="the profile slope's change from end A to end B (flank twist), e.g. "
+                    "'8 um'")
+
+
+#: the largest deviation a topography may give (µm): a millimetre is a broken tooth
+TOPOGRAPHY_LIMIT_UM = 1000.0
+
+
+class TopographySpec(Model):
+    """A grid of normal deviations over the flank: inline (`face`, `diameter`,
+    `deviation_um`) or from a CSV file (its first row the diameters after a label cell, each
+    next row a face position and its deviations, µm)."""
+
+    face: list[quantity("length")] | None = Field(
+        None, description="face positions from mid-face toward end B, increasing, e.g. "
+                          "['-15 mm', '0 mm', '15 mm']")
+    diameter: list[Length] | None = Field(None, description="diameters, increasing")
+    deviation_um: list[list[float]] | None = Field(
+        None, description="µm, one row per face position, one number per diameter; positive "
+                          "removes material like a relief")
+    file: str | None = Field(None, description="a CSV file of the grid, relative to the case")
+
+    @model_validator(mode="before")
+    @classmethod
+    def _read_file(cls, raw: Any, info) -> Any:
+        if not isinstance(raw, dict) or raw.get("file") is None:
+            return raw
+        if any(raw.get(k) is not None for k in ("face", "diameter", "deviation_um")):
+            raise ValueError("file / face / diameter / deviation_um: give the grid inline or "
+                             "as a file, not both")
+        path = Path(str(raw["file"]))
+        if not path.is_absolute() and info.context and info.context.get("base"):
+            path = Path(info.context["base"]) / path
+        if not path.is_file():
+            raise ValueError(f"file: {shown(raw['file'])}: no such file ({path})")
+        return {**raw, **read_topography_csv(path)}
+
+    @model_validator(mode="after")
+    def _grid(self):
+        if self.face is None or self.diameter is None or self.deviation_um is None:
+            raise ValueError("face / diameter / deviation_um: give all three (or a file)")
+        for name, axis in (("face", self.face), ("diameter", self.diameter)):
+            if len(axis) < 2 or any(b <= a for a, b in zip(axis, axis[1:])):
+                raise ValueError(f"{name}: {len(axis)} values; give two or more, increasing")
+        rows = self.deviation_um
+        if len(rows) != len(self.face) or any(len(r) != len(self.diameter) for r in rows):
+            raise ValueError(f"deviation_um: {len(rows)} rows of "
+                             f"{sorted({len(r) for r in rows})} numbers; give one row per face "
+                             f"position ({len(self.face)}), one number per diameter "
+                             f"({len(self.diameter)})")
+        worst = max((abs(v) for r in rows for v in r if math.isfinite(v)), default=0.0)
+        if not all(math.isfinite(v) for r in rows for v in r) or worst > TOPOGRAPHY_LIMIT_UM:
+            raise ValueError(f"deviation_um: each value must be finite and within "
+                             f"±{TOPOGRAPHY_LIMIT_UM:g} µm")
+        return self
+
+
+def read_topography_csv(path: Path) -> dict:
+    """A topography CSV as TopographySpec's fields: the first row a label cell and the
+    diameters (mm), each next row a face position (mm from mid-face toward end B) and its
+    deviations (µm). Units are those; a cell that is no number is named with its place."""
+    import csv
+
+    rows = [r for r in csv.reader(path.read_text(encoding="utf-8-sig").splitlines())
+            if any(cell.strip() for cell in r)]
+
+    def number(cell: str, where: str) -> float:
+        try:
+            return float(cell)
+        except ValueError:
+            raise ValueError(f"file: {path.name} {where}: {shown(cell)} is not a number") \
+                from None
+
+    if len(rows) < 3:
+        raise ValueError(f"file: {path.name}: a header row of diameters and at least two rows "
+                         "of face positions are needed")
+    diameters = [number(c, f"row 1, column {k + 2}") for k, c in enumerate(rows[0][1:])]
+    face, deviation = [], []
+    for i, row in enumerate(rows[1:], start=2):
+        face.append(number(row[0], f"row {i}, column 1"))
+        deviation.append([number(c, f"row {i}, column {k + 2}") for k, c in enumerate(row[1:])])
+    return {"face": [f"{f} mm" for f in face], "diameter": [f"{d} mm" for d in diameters],
+            "deviation_um": deviation, "file": str(path)}
 
 
 class EndReliefSpec(Model):
@@ -313,7 +416,12 @@ class Member(Model):
                           "inner diameter); default from rack.addendum and the profile shift")
     crown: CrownSpec | None = None
     profile_crown: ProfileCrownSpec | None = None
-    tip_relief: TipReliefSpec | None = None
+    tip_relief: ReliefSpec | None = None
+    root_relief: ReliefSpec | None = None
+    helix_slope: HelixSlopeSpec | None = None
+    profile_slope: ProfileSlopeSpec | None = None
+    twist: TwistSpec | None = None
+    topography: TopographySpec | None = None
     tip_edge: TipEdgeSpec | None = None
     end_relief: EndReliefSpec | None = None
     end_chamfer: EndChamferSpec | None = None

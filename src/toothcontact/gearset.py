@@ -18,8 +18,9 @@ from scipy.optimize import brentq
 from .analytic.spur_mesh import SpurMesh
 from .case import (CrownSpec, EndChamferSpec, Member, SplineCase, SpurCase, TipEdgeSpec,
                    WormCase)
-from .modify import (Deflection, EndChamfer, EndRelief, FlankModifications, LeadCrown,
-                     ProfileCrown, TipEdge, TipRelief)
+from .modify import (Deflection, EndChamfer, EndRelief, FlankModifications, HelixSlope,
+                     LeadCrown, ProfileCrown, ProfileSlope, RootRelief, TipEdge, TipRelief,
+                     Topography, Twist)
 from .surfaces.involute import CylindricalGear, inv
 from .surfaces.spline import InvoluteSpline
 from .surfaces.wheel import BlankError, WormWheelFlank
@@ -473,23 +474,54 @@ def modifications(member: Member, gear: CylindricalGear, name: str) -> FlankModi
     crown = member.crown
     if crown is not None:
         check_crown_span(crown, gear.face_width, f"{name}.crown")
-    tip = member.tip_relief
-    if tip is not None:
-        lo, hi = sorted((2 * gear.base_radius, 2 * gear.tip_radius))
-        if not lo < tip.start_diameter < hi:
-            raise ValueError(f"{name}.tip_relief.start_diameter: {tip.start_diameter:.4g} mm must "
-                             f"lie between the base diameter {lo:.4g} mm and the tip {hi:.4g} mm")
+    lo, hi = sorted((2 * gear.base_radius, 2 * gear.tip_radius))
+    tip, root = member.tip_relief, member.root_relief
+    for field, relief in (("tip_relief", tip), ("root_relief", root)):
+        if relief is not None and not lo < relief.start_diameter < hi:
+            raise ValueError(f"{name}.{field}.start_diameter: {relief.start_diameter:.4g} mm "
+                             f"must lie between the base diameter {lo:.4g} mm and the tip "
+                             f"{hi:.4g} mm")
+    if tip is not None and root is not None and \
+            (root.start_diameter >= tip.start_diameter) != gear.internal:
+        raise ValueError(f"{name}.root_relief.start_diameter: {root.start_diameter:.4g} mm must "
+                         "lie between the form circle and the tip relief's start "
+                         f"({tip.start_diameter:.4g} mm)")
+
+    def roll(diameter: float) -> float:
+        """The roll length (mm) at a diameter of the flank."""
+        return float(gear.base_radius * gear.roll_angle(0.5 * diameter))
+
     return FlankModifications(
         tip_edge=tip_edge(member.tip_edge, gear, f"{name}.tip_edge"),
         lead_crown=None if crown is None else LeadCrown(crown.radius, crown.height, crown.shape,
                                                         crown.center),
         profile_crown=None if member.profile_crown is None else ProfileCrown(
             member.profile_crown.height, member.profile_crown.shape),
-        tip_relief=None if tip is None else TipRelief(
-            tip.amount, float(gear.base_radius * gear.roll_angle(0.5 * tip.start_diameter)), tip.shape),
+        tip_relief=None if tip is None else TipRelief(tip.amount, roll(tip.start_diameter),
+                                                      tip.shape),
+        root_relief=None if root is None else RootRelief(root.amount, roll(root.start_diameter),
+                                                         root.shape),
+        helix_slope=None if member.helix_slope is None else HelixSlope(member.helix_slope.amount),
+        profile_slope=None if member.profile_slope is None else ProfileSlope(
+            member.profile_slope.amount),
+        twist=None if member.twist is None else Twist(member.twist.amount),
+        topography=topography(member.topography, gear, f"{name}.topography"),
         end_relief=None if member.end_relief is None else EndRelief(
             member.end_relief.amount, member.end_relief.length, member.end_relief.shape),
         end_chamfer=end_chamfer(member.end_chamfer, gear, f"{name}.end_chamfer"))
+
+
+def topography(spec, gear: CylindricalGear, field: str) -> Topography | None:
+    """A member's topography grid on its flank: diameters turned into roll lengths, µm into
+    mm. Its diameters must lie on the involute (above the base circle)."""
+    if spec is None:
+        return None
+    base = 2 * gear.base_radius
+    if not spec.diameter[0] > base:
+        raise ValueError(f"{field}.diameter: {spec.diameter[0]:.4g} mm must lie above the base "
+                         f"diameter {base:.4g} mm (the involute starts there)")
+    roll = [float(gear.base_radius * gear.roll_angle(0.5 * d)) for d in spec.diameter]
+    return Topography(spec.face, roll, np.asarray(spec.deviation_um) * 1e-3)
 
 
 #: the tip edge rounding a member gets where its case gives none, in normal modules: the

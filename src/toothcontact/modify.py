@@ -11,7 +11,7 @@ curvature change of a modification is exactly its second derivative.
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
+from dataclasses import dataclass, fields
 
 import numpy as np
 
@@ -42,8 +42,8 @@ def crown_radius_from_height(height: float, half_length: float, shape: str) -> f
 @dataclass(frozen=True)
 class LeadCrown:
     """Lead crowning: a crown along the face centred `center` mm from mid-face toward end B
-    (non-zero = bias crown), given by radius or by height (the drop at the face ends of the
-    same crown centred mid-face)."""
+    (non-zero = an off-centre crown), given by radius or by height (the drop at the face
+    ends of the same crown centred mid-face)."""
 
     radius: float | None = None
     height: float | None = None
@@ -94,6 +94,105 @@ class TipRelief:
         x = (s - self.start) / length
         ramp = x if self.shape == "linear" else x * x
         return where(value(x) > 0, self.amount * ramp, 0.0)
+
+
+@dataclass(frozen=True)
+class RootRelief:
+    """Root relief of `amount` at the form circle (the active profile's root end), starting
+    at roll length `start` (mm) and growing linearly or parabolically toward the form
+    circle: the tip relief's counterpart."""
+
+    amount: float
+    start: float
+    shape: str = "linear"
+
+    def drop(self, s, s_form: float):
+        length = self.start - s_form
+        if abs(length) < 1e-12:
+            raise ValueError("root relief starts at the form circle")
+        x = (self.start - s) / length
+        ramp = x if self.shape == "linear" else x * x
+        return where(value(x) > 0, self.amount * ramp, 0.0)
+
+
+@dataclass(frozen=True)
+class HelixSlope:
+    """Helix slope modification f_Hβ (ISO 21771, ISO 1328-1): `amount` (mm, transverse) of
+    material removed at end B relative to end A, linear along the face and none at
+    mid-face; negative removes it at end A. A slope of f_Hβ/b turns the lead as a
+    misalignment of that slope does, the other way."""
+
+    amount: float
+
+    def drop(self, w, face_width: float):
+        return self.amount * w / face_width
+
+
+@dataclass(frozen=True)
+class ProfileSlope:
+    """Profile slope modification f_Hα (ISO 21771, ISO 1328-1): `amount` (mm, transverse)
+    of material removed at the tip relative to the form circle, linear in the roll length
+    between them and none mid-profile; negative removes it toward the root."""
+
+    amount: float
+
+    def drop(self, s, s_form: float, s_tip: float):
+        return self.amount * (s - 0.5 * (s_form + s_tip)) / (s_tip - s_form)
+
+
+@dataclass(frozen=True)
+class Twist:
+    """Flank twist (ISO 21771's profile twist, the "bias" of grinding): the profile slope
+    (material removed at the tip relative to the form circle, mm) grows linearly along the
+    face by `amount` from end A to end B: -amount/2 at end A, +amount/2 at end B, none at
+    mid-face. Its drop is a saddle, amount·(w/b)·(s - s_mid)/(s_tip - s_form)."""
+
+    amount: float
+
+    def drop(self, w, s, face_width: float, s_form: float, s_tip: float):
+        return (self.amount * (w / face_width) * (s - 0.5 * (s_form + s_tip))
+                / (s_tip - s_form))
+
+
+class Topography:
+    """A grid of normal deviations over the flank (a measured or ordered topography): at face
+    positions `face` (mm from mid-face toward end B, increasing) and roll lengths `roll`
+    (mm, increasing: the grid's diameters on this flank), `deviation` (mm, one row per face
+    position, positive removing material like a relief), interpolated by a tensor-product
+    cubic spline (not-a-knot along each axis: C2 inside the grid, exact for a quadratic or
+    cubic crown; two points give a line, three a parabola) and held at its edge value
+    beyond the grid. Jet-friendly: the patch's polynomial is evaluated on the jet, so the
+    surface's derivatives and curvatures are the spline's."""
+
+    def __init__(self, face, roll, deviation):
+        from scipy.interpolate import CubicSpline
+
+        self.face = np.asarray(face, float)
+        self.roll = np.asarray(roll, float)
+        self.deviation = np.asarray(deviation, float)
+        along = CubicSpline(self.face, self.deviation, axis=0).c     # (4, nf - 1, ns)
+        # each power's coefficient along the face, splined across the profile
+        self._c = np.stack([CubicSpline(self.roll, along[k], axis=1).c for k in range(4)])
+        # (4 face powers, 4 roll powers, ns - 1, nf - 1)
+
+    def drop(self, w, s):
+        def held(x, nodes):
+            x = where(value(x) < nodes[0], 0.0 * x + nodes[0], x)
+            return where(value(x) > nodes[-1], 0.0 * x + nodes[-1], x)
+
+        w, s = held(w, self.face), held(s, self.roll)
+        i = np.clip(np.searchsorted(self.face, value(w), side="right") - 1, 0,
+                    len(self.face) - 2)
+        j = np.clip(np.searchsorted(self.roll, value(s), side="right") - 1, 0,
+                    len(self.roll) - 2)
+        dw, ds = w - self.face[i], s - self.roll[j]
+        total = 0.0 * dw * ds
+        for k in range(4):
+            row = 0.0 * ds
+            for m in range(4):
+                row = row * ds + self._c[k, m, j, i]
+            total = total * dw + row
+        return total
 
 
 def _broken_edge_drop(run, radius: float, angle: float, bend: float = 0.0):
@@ -287,38 +386,51 @@ class FlankModifications:
     deflection: Deflection | None = None
     tip_edge: TipEdge | None = None
     end_chamfer: EndChamfer | None = None
+    root_relief: RootRelief | None = None
+    helix_slope: HelixSlope | None = None
+    profile_slope: ProfileSlope | None = None
+    twist: Twist | None = None
+    topography: Topography | None = None
 
     def drop(self, w, s, face_width: float, s_form: float, s_tip: float):
         total = 0.0 * w + 0.0 * s
         if self.deflection is not None:
             total = total + self.deflection.drop(w, face_width)
+        if self.helix_slope is not None:
+            total = total + self.helix_slope.drop(w, face_width)
         if self.lead_crown is not None:
             total = total + self.lead_crown.drop(w, face_width)
         if self.end_relief is not None:
             total = total + self.end_relief.drop(w, face_width)
         if self.end_chamfer is not None:
             total = total + self.end_chamfer.drop(w, face_width)
+        if self.profile_slope is not None:
+            total = total + self.profile_slope.drop(s, s_form, s_tip)
+        if self.twist is not None:
+            total = total + self.twist.drop(w, s, face_width, s_form, s_tip)
         if self.profile_crown is not None:
             total = total + self.profile_crown.drop(s, s_form, s_tip)
         if self.tip_relief is not None:
             total = total + self.tip_relief.drop(s, s_tip)
+        if self.root_relief is not None:
+            total = total + self.root_relief.drop(s, s_form)
         if self.tip_edge is not None:
             total = total + self.tip_edge.drop(s, s_tip)
+        if self.topography is not None:
+            total = total + self.topography.drop(w, s)
         return total
 
     @property
     def empty(self) -> bool:
-        return all(m is None for m in (self.lead_crown, self.profile_crown, self.tip_relief,
-                                       self.end_relief, self.deflection, self.tip_edge,
-                                       self.end_chamfer))
+        return all(getattr(self, f.name) is None for f in fields(self))
 
     @property
     def profile_breaks(self) -> tuple[float, ...]:
-        """Roll lengths (mm) where the profile's slope or curvature jumps: the start of the
-        tip relief and those of the tip edge (a fitted B-spline needs points close around
-        them)."""
-        relief = () if self.tip_relief is None else (self.tip_relief.start,)
-        return relief + (() if self.tip_edge is None else self.tip_edge.breaks)
+        """Roll lengths (mm) where the profile's slope or curvature jumps: the starts of the
+        tip and root reliefs and those of the tip edge (a fitted B-spline needs points close
+        around them)."""
+        reliefs = tuple(r.start for r in (self.tip_relief, self.root_relief) if r is not None)
+        return reliefs + (() if self.tip_edge is None else self.tip_edge.breaks)
 
     def lead_breaks(self, face_width: float) -> tuple[float, ...]:
         """Face positions (mm from mid-face) where the lead's slope or curvature jumps: an

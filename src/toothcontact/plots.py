@@ -409,7 +409,7 @@ def crown_design_chart(result: dict, path: str | Path) -> Path:
     theta (misalignment + deflection, mrad).
 
     The edge rule (eq 13, R·theta + a = room to the face end) bounds R from above, per face
-    end for a bias crown; the stress rule (crowned Hertz stress = allowable, or the chosen
+    end for an off-centre crown; the stress rule (crowned Hertz stress = allowable, or the chosen
     design's stress when the case gives none) bounds it from below. The chosen crown
     (result['crown']) is marked at the case's slope_A (and slope_B)."""
     curves = crown_design_curves(result)
@@ -484,7 +484,7 @@ def crown_design_chart(result: dict, path: str | Path) -> Path:
     ax.grid(True, which="both", alpha=0.3)
     ax.set(xlabel="total slope θ, misalignment + deflection (mrad = mm/m)",
            ylabel="crown radius R (mm)",
-           title=_title(result, ("Full" if full else "Bias") + " crown design chart"))
+           title=_title(result, ("Full" if full else "Off-centre") + " crown design chart"))
     ax.legend(loc="upper center", fontsize=8, bbox_to_anchor=(0.5, -0.13), ncol=1,
               frameon=False)
     return _save(fig, path)

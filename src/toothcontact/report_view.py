@@ -81,6 +81,8 @@ LABELS = {
     "mu": "friction coefficient μ", "mu_aligned": "friction coefficient μ (aligned)",
     "found": "interference found at", "back_flanks": "back flanks touching at",
     "Cp_sqrt_MPa": "elastic coefficient Cp",
+    "helix_slope_um": "helix slope modification f_Hβ", "twist_um": "flank twist",
+    "profile_slope_um": "profile slope modification f_Hα", "root_relief_um": "root relief",
 }
 
 #: the members' names in a worm set's labels

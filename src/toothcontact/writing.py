@@ -15,18 +15,11 @@ from pathlib import Path
 def write_atomic(target: str | Path, write, binary: bool = False) -> Path:
     """Write a file whole or not at all: `write(handle)` fills a temporary file beside
     `target` (opened "wb" if binary, else UTF-8 text), which is then renamed onto it."""
-    target = Path(target)
-    target.parent.mkdir(parents=True, exist_ok=True)
-    fd, tmp = tempfile.mkstemp(dir=target.parent, prefix=f".{target.name}.", suffix=".tmp")
-    try:
-        with (os.fdopen(fd, "wb") if binary else os.fdopen(fd, "w", encoding="utf-8")) as handle:
+    def fill(tmp: Path) -> None:
+        with open(tmp, "wb") if binary else open(tmp, "w", encoding="utf-8") as handle:
             write(handle)
-        os.chmod(tmp, 0o644)
-        os.replace(tmp, target)
-    except BaseException:
-        Path(tmp).unlink(missing_ok=True)
-        raise
-    return target
+
+    return write_through_path(target, fill)
 
 
 _STAGING = ".staging"

@@ -48,7 +48,10 @@ def spur_geometry_case(case: schema.SpurCase) -> Result:
                    "end_chamfer_mm": (None if mods.end_chamfer is None
                                       else mods.end_chamfer.length),
                    "end_chamfer_angle_deg": (None if mods.end_chamfer is None
-                                             else math.degrees(mods.end_chamfer.angle))}
+                                             else math.degrees(mods.end_chamfer.angle)),
+                   **{f"{kind}_um": None if getattr(mods, kind) is None
+                      else 1e3 * getattr(mods, kind).amount
+                      for kind in ("helix_slope", "profile_slope", "twist", "root_relief")}}
         if not gear.internal:
             generated = generate_side(gear)
             section["form_diameter_mm"] = 2 * generated.form_radius

@@ -3,8 +3,8 @@
 The crown is a circular arc of radius R along the face, centred a distance c from end B.
 Under a total slope theta (misalignment plus deflection) the contact moves R·theta from the
 crown centre, and its ellipse must stay inside the face: R·theta + a <= L (eq 13), a being
-the contact semi-axis along the face. A full crown is centred mid-face; a bias crown is
-placed so that both ends reach their limit together:
+the contact semi-axis along the face. A full crown is centred mid-face; an off-centre crown
+(seed 003's "bias" crown) is placed so that both ends reach their limit together:
     R·theta_A + a = F - c,   R·theta_B + a = c   =>   R·(theta_A + theta_B) + 2a = F.
 Units: mm, N, MPa, rad.
 """
@@ -151,7 +151,7 @@ def check_crown(radius: float, center_from_B: float, face_width: float, slope_A:
 @dataclass(frozen=True)
 class DesignChart:
     """Seed 003's two rules over a range of slopes (the crown design chart): per slope
-    `theta` (rad) and face end ("A"; "B" too for a bias crown) the edge rule's largest
+    `theta` (rad) and face end ("A"; "B" too for an off-centre crown) the edge rule's largest
     radius (mm, NaN where no crown fits), the stress rule's least radius (mm, NaN where no
     crown gets under the reference), the reference stress (MPa) and whether it is the
     case's allowable ("allowable") or the chosen design's own ("design")."""

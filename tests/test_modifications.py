@@ -1,0 +1,237 @@
+"""Flank modifications as gear engineers order them (issue 29): helix slope f_Hβ, profile
+slope f_Hα, root relief and twist, each against what the involute geometry says
+independently of the contact engine: the drop at a contact point is the transmission error
+a rigid pair shows there, a crown's contact moves to where a linear drop tilts its
+parabola's minimum (-R·k), and a helix slope of the misalignment's gap across the face
+brings the loaded pattern back to the aligned one."""
+
+import math
+
+import numpy as np
+import pytest
+
+from toothcontact import cad, gearset
+from toothcontact.analyses import analyse
+from toothcontact.case import parse_case
+from toothcontact.modify import FlankModifications, RootRelief, Topography, Twist
+from toothcontact.surfaces.involute import CylindricalGear
+
+FACE = 30.0
+
+
+def spur(pinion: dict, slope: float = 0.0, positions: int = 12, grid: int = 0) -> dict:
+    """The 20/60 spur pair, m = 3 mm, b = 30 mm, 6000 N, with the pinion's modifications."""
+    return {"kind": "spur", "teeth": [20, 60], "module": "3 mm", "pressure_angle": "20 deg",
+            "face_width": f"{FACE} mm", "pinion": pinion,
+            "misalignment": {"slope": str(slope)}, "load": {"tangential_load": "6000 N"},
+            "analysis": {"positions": positions, "interference": False, "pressure_grid": grid,
+                         "positions_check": False}}
+
+
+def profile_ends(raw: dict) -> tuple[float, float, float]:
+    """The pinion's base radius and the roll lengths (mm) of its form circle and tip."""
+    pair = gearset.gear_pair(parse_case(raw))
+    flank = gearset.working_flank(pair.pinion, pair.pinion_modifications, 1)
+    return pair.pinion.base_radius, flank.base.form_roll, flank.base.tip_roll
+
+
+def roll_length(row: dict, rb: float) -> float:
+    return math.sqrt(row["contact_radius_pinion_mm"] ** 2 - rb ** 2)
+
+
+def test_a_profile_slope_is_the_transmission_error_it_puts_at_each_contact():
+    """A rigid, unloaded pair's transmission error (the gear's lag as a length on its base
+    circle) is the material the pinion's profile slope removed at the point in contact:
+    f_Hα·(s - s_mid)/(s_tip - s_form) at its roll length s, where two pairs touch the
+    lesser of theirs. Measured within 0.016 µm of a 10 µm slope where one pair touches,
+    0.054 µm where the pair low on the pinion takes the contact: second order in f_Hα (4
+    times that at 20 µm), the slope turning the normal by f_Hα/(s_tip - s_form) = 0.7 mrad
+    so that the gear's contact moves along its involute to meet it; asked to 0.06 µm."""
+    raw = spur({"profile_slope": {"amount": "10 um"}})
+    rb, s_form, s_tip = profile_ends(raw)
+    rows = analyse(parse_case(raw)).sections["positions"]
+
+    def drop_um(row):
+        return 10.0 * (roll_length(row, rb) - 0.5 * (s_form + s_tip)) / (s_tip - s_form)
+
+    for roll in sorted({r["roll_deg"] for r in rows}):
+        here = [r for r in rows if r["roll_deg"] == roll]
+        assert here[0]["transmission_error_um"] == pytest.approx(min(map(drop_um, here)),
+                                                                 abs=0.06)
+
+
+@pytest.mark.parametrize("field, amount, expected", [
+    ("helix_slope", "12 um", "helix"), ("twist", "12 um", "twist")])
+def test_a_linear_drop_moves_a_crowned_contact_by_minus_R_k(field, amount, expected):
+    """On a crowned pinion (R = 4000 mm) a drop growing by k per mm of face moves the
+    contact's minimum of w²/(2R) + k·w to w = -R·k: a helix slope f_Hβ by -R·f_Hβ/b at every
+    position (-1.6 mm here), a twist S by -R·S·(s - s_mid)/((s_tip - s_form)·b), the tip
+    contacts one way and the root's the other (the diagonal pattern of a twisted flank):
+    each contact on the involute within 0.02 mm of the closed form (a corner contact at a
+    tip's rounding is placed on the search grid's face positions, 0.75 mm apart)."""
+    R, f = 4000.0, 0.012
+    plain = spur({"crown": {"radius": f"{R} mm"}})
+    modified = spur({"crown": {"radius": f"{R} mm"}, field: {"amount": amount}})
+    rb, s_form, s_tip = profile_ends(plain)
+    before = analyse(parse_case(plain)).sections["positions"]
+    after = analyse(parse_case(modified)).sections["positions"]
+    shifts = []
+    for a, b in zip(before, after):
+        assert (a["roll_deg"], a["pair"]) == (b["roll_deg"], b["pair"])
+        if min(b["edge_margins_mm"].get(tip, math.inf) for tip in ("pinion_tip", "gear_tip")) < 0.1:
+            continue                    # at a tip's rounding (within 0.1 mm of its start)
+        if expected == "helix":
+            k = f / FACE
+        else:
+            k = f * (roll_length(b, rb) - 0.5 * (s_form + s_tip)) / ((s_tip - s_form) * FACE)
+        moved = b["face_position_mm"] - a["face_position_mm"]
+        assert moved == pytest.approx(-R * k, abs=0.02)
+        shifts.append(moved)
+    if expected == "twist":
+        assert min(shifts) < -0.5 and max(shifts) > 0.5
+
+
+def test_a_helix_slope_of_the_misalignments_gap_restores_the_aligned_contact():
+    """An uncrowned pair tilted 0.3 mrad (+ closes end B: 9 µm across the 30 mm face) loads
+    end B (K_Hβ up); the pinion's helix slope f_Hβ = +θ·b = 9 µm, removing that much at end B
+    relative to end A, brings the loaded contact back to the aligned pair's: K_Hβ and the
+    largest line load within 2 %. The opposite sign doubles the tilt."""
+    theta = 0.0003
+    f = f"{theta * FACE * 1e3:.6g} um"
+
+    def loaded(pinion, slope):
+        result = analyse(parse_case(spur(pinion, slope, positions=4, grid=64)))
+        return result.sections["summary"], result.sections["load_distribution"]
+
+    aligned, aligned_lines = loaded({}, 0.0)
+    tilted, _ = loaded({}, theta)
+    corrected, corrected_lines = loaded({"helix_slope": {"amount": f}}, theta)
+    doubled, _ = loaded({"helix_slope": {"amount": f"-{f}"}}, theta)
+    assert tilted["K_H_beta"] > aligned["K_H_beta"] + 0.1
+    assert corrected["K_H_beta"] == pytest.approx(aligned["K_H_beta"], rel=0.02)
+    assert np.max(corrected_lines["line_load_N_per_mm"]) == pytest.approx(
+        np.max(aligned_lines["line_load_N_per_mm"]), rel=0.02)
+    assert doubled["K_H_beta"] > tilted["K_H_beta"] + 0.1
+
+
+def test_a_root_relief_removes_its_amount_at_the_form_circle_and_nothing_above_its_start():
+    """The root relief's drop: its amount at the form circle, linear (or parabolic) to its
+    start, none from there to the tip; the case refuses a start off the flank or above the
+    tip relief's start, naming the field."""
+    raw = spur({"root_relief": {"amount": "15 um", "start_diameter": "58 mm"}})
+    pair = gearset.gear_pair(parse_case(raw))
+    flank = gearset.working_flank(pair.pinion, pair.pinion_modifications, 1)
+    start = pair.pinion_modifications.root_relief.start
+    s = np.array([flank.base.form_roll, 0.5 * (flank.base.form_roll + start), start, start + 1.0,
+                  flank.base.tip_roll - 2.0])
+    drop = pair.pinion_modifications.root_relief.drop(s, flank.base.form_roll)
+    assert drop == pytest.approx([0.015, 0.0075, 0.0, 0.0, 0.0], abs=1e-12)
+    for pinion, says in (
+            ({"root_relief": {"amount": "15 um", "start_diameter": "40 mm"}},
+             "pinion.root_relief.start_diameter: 40 mm must lie between the base diameter"),
+            ({"root_relief": {"amount": "15 um", "start_diameter": "62 mm"},
+              "tip_relief": {"amount": "10 um", "start_diameter": "61 mm"}},
+             "pinion.root_relief.start_diameter: 62 mm must lie between the form circle and "
+             "the tip relief's start")):
+        with pytest.raises(ValueError, match=says):
+            gearset.gear_pair(parse_case(spur(pinion)))
+
+
+def test_the_solid_follows_a_twisted_root_relieved_measured_flank():
+    """The STEP solid's B-spline flanks of a helical pinion with a twist, a root relief and
+    a measured topography (a 5 × 4 grid of bumps of ±3 µm) pass within 1 µm of the exact
+    modified flank (the relief's start is a break of the profile the loft fits around)."""
+    gear = CylindricalGear(23, 2.5, math.radians(20), 25.0, helix_angle=math.radians(20),
+                           profile_shift=0.2)
+    start = float(gear.base_radius * gear.roll_angle(0.5 * 58.5))
+    rolls = [float(gear.base_radius * gear.roll_angle(0.5 * d)) for d in (58, 60.5, 63, 65.5)]
+    bumps = 0.003 * np.sin(np.add.outer(np.linspace(0, 3, 5), np.linspace(0, 2, 4)))
+    mods = FlankModifications(root_relief=RootRelief(0.010, start), twist=Twist(0.012),
+                              topography=Topography(np.linspace(-12.5, 12.5, 5), rolls, bumps))
+    assert start in mods.profile_breaks
+    body = cad.build_gear(gear, mods, teeth=3)
+    assert cad.is_valid(body.solid)
+    assert cad.flank_deviation(body) < 1e-3
+
+
+def test_the_modifications_are_toleranced_in_a_sweep():
+    """[[tolerance]] field = "pinion.helix_slope.amount" (and the profile slope's, the
+    twist's) draws the amount per sample: each sample's case carries its draw, in the
+    band's unit (µm), inside the band."""
+    from mutations import CASES
+
+    from toothcontact.case import read_table
+    from toothcontact.sweep.sampling import plan
+    from toothcontact.sweep.spec import SweepSpec
+
+    tolerances = [{"field": f"pinion.{name}.amount", "distribution": "uniform",
+                   "low": "-8 um", "high": "8 um"}
+                  for name in ("helix_slope", "profile_slope", "twist")]
+    spec = SweepSpec.model_validate({"kind": "sweep", "base": "spur_crowned_20_60",
+                                     "samples": 6, "tolerance": tolerances})
+    samples = plan(spec, read_table(CASES / "spur_crowned_20_60.toml"))
+    assert len(samples) == 6
+    for sample in samples:
+        mods = gearset.gear_pair(parse_case(sample.raw)).pinion_modifications
+        for name, part in (("helix_slope", mods.helix_slope), ("profile_slope", mods.profile_slope),
+                           ("twist", mods.twist)):
+            assert -0.008 <= part.amount <= 0.008
+            assert sample.inputs[f"pinion.{name}.amount"].endswith("µm")
+
+
+def crown_grid(R: float, faces: int = 13, diameters=(58.0, 60.0, 62.0, 64.0, 66.0)) -> dict:
+    """A topography that samples a circular lead crown of radius R (its drop
+    R - sqrt(R² - w²), in µm) on `faces` face positions across the 30 mm face."""
+    face = np.linspace(-0.5 * FACE, 0.5 * FACE, faces)
+    rows = [[1e3 * (R - math.sqrt(R * R - w * w))] * len(diameters) for w in face]
+    return {"face": [f"{w:.6g} mm" for w in face], "diameter": [f"{d} mm" for d in diameters],
+            "deviation_um": rows}
+
+
+def test_a_topography_sampling_a_crown_is_that_crowns_contact():
+    """A measured grid of 13 face positions × 5 diameters that samples a circular crown of
+    R = 4000 mm, on a pinion tilted 0.3 mrad: every contact's Hertz pressure, semi-axes and
+    face position within 1 % (0.02 mm) of the crown's own (the spline is exact for a
+    parabola and a circle this flat differs from one by 1e-10 mm)."""
+    R = 4000.0
+    crowned = analyse(parse_case(spur({"crown": {"radius": f"{R} mm"}}, 0.0003)))
+    measured = analyse(parse_case(spur({"topography": crown_grid(R)}, 0.0003)))
+    a, b = crowned.sections["positions"], measured.sections["positions"]
+    assert [(r["roll_deg"], r["pair"]) for r in a] == [(r["roll_deg"], r["pair"]) for r in b]
+    for x, y in zip(a, b):
+        for key in ("p_max_MPa", "a_mm", "b_mm"):
+            assert y[key] == pytest.approx(x[key], rel=0.01)
+        assert y["face_position_mm"] == pytest.approx(x["face_position_mm"], abs=0.02)
+
+
+def test_a_topography_file_is_the_inline_grid(tmp_path):
+    """The CSV layout of the README (a label cell and the diameters, then a face position and
+    its deviations per row) gives the grid written inline; a bad cell, a ragged row, a
+    diameter below the base circle or a file beside the inline grid are refused naming the
+    field."""
+    grid = crown_grid(4000.0, faces=5)
+    lines = ["face_mm/diameter_mm," + ",".join(d.split()[0] for d in grid["diameter"])]
+    lines += [f"{w.split()[0]}," + ",".join(f"{v:.9g}" for v in row)
+              for w, row in zip(grid["face"], grid["deviation_um"])]
+    (tmp_path / "k.csv").write_text("\n".join(lines) + "\n")
+    from toothcontact.case import load_case
+    import tomli_w
+
+    case_file = tmp_path / "case.toml"
+    case_file.write_text(tomli_w.dumps(spur({"topography": {"file": "k.csv"}})))
+    from_file = gearset.gear_pair(load_case(case_file)[0]).pinion_modifications.topography
+    inline = gearset.gear_pair(parse_case(spur({"topography": grid}))).pinion_modifications.topography
+    assert np.allclose(from_file.deviation, inline.deviation, atol=1e-12)
+    assert np.allclose(from_file.face, inline.face) and np.allclose(from_file.roll, inline.roll)
+
+    import mutations
+
+    (tmp_path / "bad.csv").write_text(lines[0] + "\n" + lines[1] + "\n-3,1,x,1,1,1\n")
+    bad = dict(grid, deviation_um=[row[:-1] for row in grid["deviation_um"]])
+    low = dict(grid, diameter=["50 mm", "60 mm", "62 mm", "64 mm", "66 mm"])
+    for topography, says in (({"file": "bad.csv"}, "row 3, column 3: 'x' is not a number"),
+                             (bad, "deviation_um: 5 rows of [4] numbers"),
+                             (low, "pinion.topography.diameter: 50 mm must lie above the base"),
+                             (dict(grid, file="k.csv"), "give the grid inline or as a file")):
+        line = mutations.refused_line(tomli_w.dumps(spur({"topography": topography})), tmp_path)
+        assert "pinion.topography" in line and says in line, line
