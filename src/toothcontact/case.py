@@ -337,6 +337,44 @@ class TopographySpec(Model):
         return self
 
 
+class KChartSpec(Model):
+    """A measured K-chart: profile traces at face positions and lead traces at diameters
+    (deviations in µm, positive removing material like a relief), turned into the flank's
+    topography grid (Gordon's interpolation: the surface passes through every trace)."""
+
+    profile_face: list[quantity("length")] = Field(
+        min_length=1, description="face positions of the profile traces, increasing")
+    profile_diameter: list[Length] = Field(
+        min_length=2, description="diameters along the profile traces, increasing")
+    profile_um: list[list[float]] = Field(
+        description="µm, one row per profile trace, one number per profile_diameter")
+    lead_diameter: list[Length] = Field(
+        min_length=1, description="diameters of the lead traces, increasing")
+    lead_face: list[quantity("length")] = Field(
+        min_length=2, description="face positions along the lead traces, increasing")
+    lead_um: list[list[float]] = Field(
+        description="µm, one row per lead trace, one number per lead_face position")
+
+    @model_validator(mode="after")
+    def _traces(self):
+        for name, axis in (("profile_face", self.profile_face),
+                           ("profile_diameter", self.profile_diameter),
+                           ("lead_diameter", self.lead_diameter), ("lead_face", self.lead_face)):
+            if any(b <= a for a, b in zip(axis, axis[1:])):
+                raise ValueError(f"{name}: the values must increase")
+        for name, rows, across, along in (
+                ("profile_um", self.profile_um, self.profile_face, self.profile_diameter),
+                ("lead_um", self.lead_um, self.lead_diameter, self.lead_face)):
+            if len(rows) != len(across) or any(len(r) != len(along) for r in rows):
+                raise ValueError(f"{name}: {len(rows)} rows of {sorted({len(r) for r in rows})} "
+                                 f"numbers; give one row per trace ({len(across)}), one number "
+                                 f"per point along it ({len(along)})")
+            if not all(math.isfinite(v) and abs(v) <= TOPOGRAPHY_LIMIT_UM for r in rows for v in r):
+                raise ValueError(f"{name}: each value must be finite and within "
+                                 f"±{TOPOGRAPHY_LIMIT_UM:g} µm")
+        return self
+
+
 def read_topography_csv(path: Path) -> dict:
     """A topography CSV as TopographySpec's fields: the first row a label cell and the
     diameters (mm), each next row a face position (mm from mid-face toward end B) and its
@@ -422,10 +460,18 @@ class Member(Model):
     profile_slope: ProfileSlopeSpec | None = None
     twist: TwistSpec | None = None
     topography: TopographySpec | None = None
+    k_chart: KChartSpec | None = None
     tip_edge: TipEdgeSpec | None = None
     end_relief: EndReliefSpec | None = None
     end_chamfer: EndChamferSpec | None = None
     shaft: ShaftSpec | None = None
+
+    @model_validator(mode="after")
+    def _one_measurement(self):
+        if self.topography is not None and self.k_chart is not None:
+            raise ValueError("topography / k_chart: give the measured flank one way, as a grid "
+                             "or as a K-chart")
+        return self
 
 
 class ExportSpec(Model):
@@ -958,7 +1004,9 @@ def describe(exc: ValidationError, model: type[BaseModel]) -> str:
         return f"{field}: unknown field (check the spelling; see the README for each kind)"
     if not field:
         return message
-    if error["type"] in ("value_error", "assertion_error") and repr(error["input"]) in message:
+    if error["type"] in ("value_error", "assertion_error") and (
+            repr(error["input"]) in message or isinstance(error["input"], dict)):
+        # a table's own check names its fields: the table itself is not repeated
         return f"{field}: {_shortened(message)}"
     return f"{field}: {shown(error['input'])}: {_shortened(message)}"
 

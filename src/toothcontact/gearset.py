@@ -505,23 +505,52 @@ def modifications(member: Member, gear: CylindricalGear, name: str) -> FlankModi
         profile_slope=None if member.profile_slope is None else ProfileSlope(
             member.profile_slope.amount),
         twist=None if member.twist is None else Twist(member.twist.amount),
-        topography=topography(member.topography, gear, f"{name}.topography"),
+        topography=(k_chart(member.k_chart, gear, f"{name}.k_chart")
+                    if member.k_chart is not None
+                    else topography(member.topography, gear, f"{name}.topography")),
         end_relief=None if member.end_relief is None else EndRelief(
             member.end_relief.amount, member.end_relief.length, member.end_relief.shape),
         end_chamfer=end_chamfer(member.end_chamfer, gear, f"{name}.end_chamfer"))
 
 
+def _rolls(diameters, gear: CylindricalGear, field: str) -> list[float]:
+    """Roll lengths (mm) of a member's diameters, which must lie on the involute."""
+    base = 2 * gear.base_radius
+    if not diameters[0] > base:
+        raise ValueError(f"{field}: {diameters[0]:.4g} mm must lie above the base diameter "
+                         f"{base:.4g} mm (the involute starts there)")
+    return [float(gear.base_radius * gear.roll_angle(0.5 * d)) for d in diameters]
+
+
 def topography(spec, gear: CylindricalGear, field: str) -> Topography | None:
     """A member's topography grid on its flank: diameters turned into roll lengths, µm into
-    mm. Its diameters must lie on the involute (above the base circle)."""
+    mm."""
     if spec is None:
         return None
-    base = 2 * gear.base_radius
-    if not spec.diameter[0] > base:
-        raise ValueError(f"{field}.diameter: {spec.diameter[0]:.4g} mm must lie above the base "
-                         f"diameter {base:.4g} mm (the involute starts there)")
-    roll = [float(gear.base_radius * gear.roll_angle(0.5 * d)) for d in spec.diameter]
-    return Topography(spec.face, roll, np.asarray(spec.deviation_um) * 1e-3)
+    return Topography(spec.face, _rolls(spec.diameter, gear, f"{field}.diameter"),
+                      np.asarray(spec.deviation_um) * 1e-3)
+
+
+#: traces of a K-chart that disagree by more than this (µm) where they cross get a note
+K_CHART_CROSSING_UM = 1.0
+
+
+def k_chart(spec, gear: CylindricalGear, field: str) -> Topography:
+    """A member's measured K-chart as its topography (modify.k_chart_grid) over the lead
+    traces' face positions × the profile traces' diameters; a note where the two families
+    of traces disagree by more than K_CHART_CROSSING_UM where they cross."""
+    import warnings
+
+    from .modify import k_chart_grid
+
+    profile_roll = _rolls(spec.profile_diameter, gear, f"{field}.profile_diameter")
+    lead_roll = _rolls(spec.lead_diameter, gear, f"{field}.lead_diameter")
+    grid, crossing = k_chart_grid(spec.profile_face, profile_roll, spec.profile_um, lead_roll,
+                                  spec.lead_face, spec.lead_um)
+    if crossing > K_CHART_CROSSING_UM:
+        warnings.warn(f"{field}: the profile and lead traces differ by up to {crossing:.2f} µm "
+                      "where they cross; the topography takes their mean there")
+    return Topography(spec.lead_face, profile_roll, grid * 1e-3)
 
 
 #: the tip edge rounding a member gets where its case gives none, in normal modules: the

@@ -195,6 +195,43 @@ class Topography:
         return total
 
 
+def k_chart_grid(profile_face, profile_roll, profile, lead_roll, lead_face, lead):
+    """A K-chart (profile traces at face positions, lead traces at roll lengths) as a
+    topography grid over lead_face × profile_roll: Gordon's transfinite interpolation
+    (W. J. Gordon, SIAM J. Numer. Anal. 8 (1971) 158-177, the Boolean sum of the two
+    families' blends) with cubic-spline cardinal functions, so that the surface passes
+    through every trace. `profile` holds one row per profile trace (at `profile_face`) over
+    `profile_roll`, `lead` one row per lead trace (at `lead_roll`) over `lead_face`. Where
+    the traces cross, each family gives a value; the two may differ by a measurement's
+    scatter: the surface takes their mean there. Returns the grid and the largest
+    difference at a crossing (same unit as the traces)."""
+    from scipy.interpolate import CubicSpline
+
+    profile_face, profile_roll = np.asarray(profile_face, float), np.asarray(profile_roll, float)
+    lead_roll, lead_face = np.asarray(lead_roll, float), np.asarray(lead_face, float)
+    profile, lead = np.asarray(profile, float), np.asarray(lead, float)
+
+    def cardinal(nodes, at):
+        """The cardinal functions of the nodes (each 1 at its node, 0 at the others) at `at`:
+        (len(at), len(nodes)); one node: 1 everywhere."""
+        if len(nodes) == 1:
+            return np.ones((len(at), 1))
+        return CubicSpline(nodes, np.eye(len(nodes)))(at)
+
+    def along(nodes, rows, at):
+        return CubicSpline(nodes, rows, axis=1)(at)    # each trace at the points `at`
+
+    profiles = along(profile_roll, profile, profile_roll)          # (np, nr)
+    leads = along(lead_face, lead, lead_face)                      # (nl, nf)
+    by_profile = along(profile_roll, profile, lead_roll)           # (np, nl): P_i(s_j)
+    by_lead = along(lead_face, lead, profile_face)                 # (nl, np): L_j(w_i)
+    crossing = 0.5 * (by_profile + by_lead.T)
+    phi = cardinal(profile_face, lead_face)                        # (nf, np)
+    psi = cardinal(lead_roll, profile_roll)                        # (nr, nl)
+    grid = phi @ profiles + (psi @ leads).T - phi @ crossing @ psi.T
+    return grid, float(np.max(np.abs(by_profile - by_lead.T)))
+
+
 def _broken_edge_drop(run, radius: float, angle: float, bend: float = 0.0):
     """The drop (mm) of an edge broken by a chamfer at `angle` (rad) to the surface, its
     start rounded by `radius` (mm, the curvature the drop adds), at `run` (mm, >= 0) past
