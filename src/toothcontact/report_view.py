@@ -52,7 +52,8 @@ LABELS = {
     "doubled_loaded_transmission_error_peak_to_peak_um":
     "transmission error, peak to peak (loaded), twice the positions",
     "doubled_failed_contacts": "contacts not solved at the positions between",
-    "tolerance_percent": "tolerance (%)", "converged": "within the tolerance",
+    "tolerance_percent": "tolerance (%)", "converged": "largest pressure within the tolerance",
+    "transmission_error_converged": "TE peak to peak within 10 % (or 0.1 µm)",
     "transmission_error_arm_mm": "radius at which the transmission error is a length",
     "transmission_error_arm": "transmission error as a length at the",
     "edge_margin_mm": "edge margin", "edge_margins_mm": "edge margins",

@@ -29,6 +29,9 @@ def cycle_settings(a: schema.AnalysisSpec, phase: float = 0.0, **kind_settings):
 #: the largest loaded pressure may move by this much (fraction) with twice the positions
 #: before the result says that the case needs more
 POSITIONS_TOLERANCE = 0.05
+#: the loaded transmission error's peak to peak may move by this fraction, or by
+#: TE_POSITIONS_FLOOR µm if more, with twice the positions before the result says so
+TE_POSITIONS_TOLERANCE, TE_POSITIONS_FLOOR = 0.10, 0.1
 
 
 def check_positions(result: Result, positions: int, midway) -> None:
@@ -36,8 +39,9 @@ def check_positions(result: Result, positions: int, midway) -> None:
     error's peak to peak at the case's positions and with the same again midway between
     them (`midway(scratch)` runs the contact and the loaded contact with the positions
     shifted by half a step into a scratch Result), and how far they move; a note where the
-    pressure moves by more than POSITIONS_TOLERANCE. Nothing where no loaded contact was
-    solved."""
+    pressure moves by more than POSITIONS_TOLERANCE (`converged` false), or the peak to
+    peak by more than TE_POSITIONS_TOLERANCE (`transmission_error_converged` false).
+    Nothing where no loaded contact was solved."""
     summary = result.sections.get("summary") or {}
     here = summary.get("bem_max_p_max_MPa")
     if here is None:
@@ -54,15 +58,17 @@ def check_positions(result: Result, positions: int, midway) -> None:
     te = [r.get("loaded_transmission_error_um") for rows in
           (result.sections["positions"], scratch.sections["positions"]) for r in rows]
     spread = summary.get("loaded_transmission_error_peak_to_peak_um")
+    doubled = None if spread is None or None in te else max(te) - min(te)
     check = {"positions": positions, "checked": True, "doubled_positions": 2 * positions,
              "bem_max_p_max_MPa": here, "doubled_bem_max_p_max_MPa": both,
              "bem_max_p_max_change_percent": 100.0 * (both - here) / here,
              "loaded_transmission_error_peak_to_peak_um": spread,
-             "doubled_loaded_transmission_error_peak_to_peak_um":
-                 None if spread is None or None in te else max(te) - min(te),
+             "doubled_loaded_transmission_error_peak_to_peak_um": doubled,
              "doubled_failed_contacts": between.get("bem_failed_contacts", 0),
              "tolerance_percent": 100.0 * POSITIONS_TOLERANCE,
-             "converged": both <= (1.0 + POSITIONS_TOLERANCE) * here}
+             "converged": both <= (1.0 + POSITIONS_TOLERANCE) * here,
+             "transmission_error_converged": None if doubled is None else
+             doubled - spread <= max(TE_POSITIONS_TOLERANCE * spread, TE_POSITIONS_FLOOR)}
     summary["positions_check"] = check
     log.info("positions check: largest loaded pressure %.0f MPa at %d positions, %.0f MPa at "
              "%d (%+.1f %%), in %.2f s", here, positions, both, 2 * positions,
@@ -73,6 +79,12 @@ def check_positions(result: Result, positions: int, midway) -> None:
             f"(+{check['bem_max_p_max_change_percent']:.1f} %) with twice the positions "
             f"({2 * positions}); the peak falls between the case's positions: give [analysis] "
             f"positions = {4 * positions} or more")
+    if check["transmission_error_converged"] is False:
+        result.notes.append(
+            f"positions: the loaded transmission error's peak to peak grows from {spread:.3g} "
+            f"to {doubled:.3g} µm with twice the positions ({2 * positions}): its extremes "
+            f"fall between the case's positions: give [analysis] positions = {4 * positions} "
+            "or more for the transmission error")
 
 
 def _loaded_transmission_error(cycle, summary: dict) -> None:
