@@ -55,7 +55,7 @@ LABELS = {
     "tolerance_percent": "tolerance (%)", "converged": "largest pressure within the tolerance",
     "transmission_error_converged": "TE peak to peak within 10 % (or 0.1 µm)",
     "transmission_error_arm_mm": "radius at which the transmission error is a length",
-    "transmission_error_arm": "transmission error as a length at the",
+    "transmission_error_arm": "transmission error as a length on the",
     "edge_margin_mm": "edge margin", "edge_margins_mm": "edge margins",
     "contact_radius_pinion_mm": "contact radius on the pinion",
     "face_position_mm": "position along the face", "separation_mm": "separation",
@@ -409,7 +409,7 @@ def _contact_figures(summary: dict, rows: list[dict], driven: str) -> list[KeyRe
             if length is not None:
                 value = f"{number(length, resolution=TE_UM_RESOLUTION)} µm ({value})"
             out.append(KeyResult(label_, value, f"the {driven}'s lag"
-                                 + (f", as a length at its {summary['transmission_error_arm']}"
+                                 + (f", as a length on the {summary['transmission_error_arm']}"
                                     if length is not None else "")))
     check = summary.get("positions_check") or {}
     if check.get("checked"):

@@ -116,7 +116,7 @@ def _loaded_transmission_error(cycle, summary: dict) -> None:
     summary["transmission_error_note"] = (
         "transmission errors are the gear's (a worm set's wheel's) rotation from where "
         "conjugate flanks would hold it, in µrad, positive where it lags behind, and that "
-        f"rotation as a length (µm) at the {summary['transmission_error_arm']} "
+        f"rotation as a length (µm) on the {summary['transmission_error_arm']} "
         f"(r = {arm:.3f} mm); the loaded one adds the turn that closes the position's common "
         "approach D (half-space contact and, where modelled, tooth bending): "
         "D/r_b2·cos(beta_b) on a parallel pair")

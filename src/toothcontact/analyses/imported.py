@@ -78,7 +78,7 @@ def imported_case(case: schema.ImportedCase) -> Result:
     # what the facets allow: their chordal errors as a turn of the gear at its base radius
     base_radius = case.center_distance * z2 / (z1 + z2) * math.cos(case.pressure_angle)
     contact.contact_sections(rows, {"tangential_load_N": wt, "normal_load_N": normal_load}, result,
-                      (base_radius, "gear's base circle: along the transverse line of action"))
+                      (base_radius, "gear's base circle (along the transverse line of action)"))
     result.sections["summary"]["transmission_error_facet_bound_urad"] = \
         1e6 * (chordal["pinion"] + chordal["gear"]) / base_radius
     return result

@@ -215,8 +215,8 @@ def _loaded_pass(case: schema.SpurCase, pair, result: Result, phase: float = 0.0
     except (ValueError, RuntimeError) as exc:
         raise CaseError(f"misalignment / load: no contact could be found: {exc}") from None
     contact.contact_sections(cycle, {"tangential_load_N": wt, "normal_load_N": normal_load}, result,
-                      (pair.gear.base_radius, "gear's base circle: along the transverse line of "
-                                              "action"))
+                      (pair.gear.base_radius, "gear's base circle (along the transverse line "
+                                              "of action)"))
     from ..contact.compliance import PairCompliance, tooth_compliance
 
     teeth = PairCompliance(tooth_compliance(pair.pinion, case.material.E, case.material.nu),
