@@ -923,6 +923,8 @@ KINDS: dict[str, type[CaseInfo]] = {
     "worm": WormCase,
     "imported": ImportedCase,
 }
+#: the case kinds whose members are generated as solids (export, STEP/STL)
+SOLID_KINDS = ("spur", "spline", "worm")
 
 
 def read_table(path: str | Path) -> dict:

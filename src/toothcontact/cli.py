@@ -331,6 +331,7 @@ def demo(out: Path = typer.Option(Path("out"), "--out", help="output folder")):
     from rich.table import Table
 
     from . import runner
+    from .case import SOLID_KINDS
     from .extras import installed
 
     table = Table("case", "kind", "checks", "files", "STEP/STL",
@@ -348,9 +349,9 @@ def demo(out: Path = typer.Option(Path("out"), "--out", help="output folder")):
                 path, out / path.stem, progress=lambda what: progress.stage(f"{path.stem}: {what}")))
             failed = sum(not c["ok"] and c["kind"] == "design" for c in document["checks"])
             solids = ""
-            if document["kind"] in runner.GEOMETRY_KINDS and not cad:
+            if document["kind"] in SOLID_KINDS and not cad:
                 solids = "needs the cad extra"
-            elif document["kind"] in runner.GEOMETRY_KINDS:
+            elif document["kind"] in SOLID_KINDS:
                 progress.stage(f"{path.stem}: solids")
                 record = _guarded(lambda: runner.export_case(path, out / path.stem))
                 solids = ", ".join(f"{n} {p['flank_deviation_um']:.2f} µm"

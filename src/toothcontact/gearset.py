@@ -13,8 +13,6 @@ from dataclasses import dataclass, field, replace
 
 import numpy as np
 
-from scipy.optimize import brentq
-
 from .analytic.spur_mesh import SpurMesh
 from .case import (CrownSpec, EndChamferSpec, Member, SplineCase, SpurCase, TipEdgeSpec,
                    WormCase)
@@ -161,6 +159,8 @@ def gear_pair(case: SpurCase, line_load=None) -> GearPair:
     """The case's pair: members, modifications, centre distance, and the pinion's deflection
     with the shafts' (their mesh force spread evenly over the face, or as `line_load`
     ((face positions mm, N/mm)) gives it: the loaded contact's, see analyses)."""
+    from scipy.optimize import brentq
+
     z1, z2 = case.teeth
     internal = z2 < 0
     common = dict(normal_module=case.module_mm, pressure_angle=case.pressure_angle,
@@ -388,6 +388,8 @@ def tip_diameter_range(gear: CylindricalGear) -> tuple[float, float, str, str]:
     diameter) lies below its form circle (where the shaper-cut involute ends toward the
     root) and at least on its base circle and where its top land (the tooth thins inward)
     is MIN_TOP_LAND·m_n."""
+    from scipy.optimize import brentq
+
     from .surfaces.generation import generate_ring_side, generate_side
 
     land = MIN_TOP_LAND * gear.normal_module

@@ -308,9 +308,6 @@ def render_case(path: str | Path, out_dir: str | Path | None = None, position: i
     return picture_files(run, target, position, exaggerate)
 
 
-from .cad.parts import SOLID_KINDS as GEOMETRY_KINDS  # noqa: E402 - OCP loads lazily
-
-
 def export_case(path: str | Path, out_dir: str | Path | None = None,
                 formats: tuple[str, ...] = ("step", "stl")) -> dict:
     """Build the parts of a case as B-spline solids and write them as STEP and/or STL into
@@ -323,9 +320,9 @@ def export_case(path: str | Path, out_dir: str | Path | None = None,
 
     path = case_path(path)
     case, _ = schema.load_case(path)
-    if case.kind not in GEOMETRY_KINDS:
+    if case.kind not in schema.SOLID_KINDS:
         raise schema.CaseError(f"{path}: kind: {case.kind!r} has no solid to export; "
-                               f"export works for {', '.join(GEOMETRY_KINDS)}")
+                               f"export works for {', '.join(schema.SOLID_KINDS)}")
     try:
         bodies = cad.build_parts(case)
     except ValueError as exc:

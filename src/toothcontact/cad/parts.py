@@ -3,12 +3,10 @@
 from __future__ import annotations
 
 from .. import gearset
+from ..case import SOLID_KINDS
 from .gear import build_gear
 from .wheel import build_wheel
 from .worm import build_worm
-
-#: case kinds that have solids
-SOLID_KINDS = ("spur", "spline", "worm")
 
 
 def build_parts(case) -> dict:
