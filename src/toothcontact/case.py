@@ -8,7 +8,6 @@ problem becomes one `CaseError` whose message names the field, the value and wha
 from __future__ import annotations
 
 import math
-import os
 import re
 import tomllib
 from pathlib import Path

@@ -721,7 +721,9 @@ SWEEP_FIGURES = {
     "max_flank_p_max_MPa": "largest active-flank pressure (MPa)",
     "max_p_max_MPa": "largest Hertz pressure (MPa)",
     "max_edge_pressure_MPa": "largest edge pressure (MPa)",
+    "loaded_transmission_error_peak_to_peak_um": "loaded TE peak to peak (µm)",
     "loaded_transmission_error_peak_to_peak_urad": "loaded TE peak to peak (µrad)",
+    "transmission_error_peak_to_peak_um": "unloaded TE peak to peak (µm)",
     "transmission_error_peak_to_peak_urad": "unloaded TE peak to peak (µrad)",
     "worst_face_edge_margin_mm": "worst face-edge margin (mm)",
 }
@@ -750,6 +752,8 @@ def sweep_figures(rows: list[dict], stats: dict, out_dir: str | Path) -> list[Pa
     title = stats.get("title", "sweep")
     ok = [r for r in rows if r.get("status") == "ok"]
     present = [k for k in SWEEP_FIGURES if np.isfinite(_column(ok, k)).any()]
+    # a transmission error once: in µm where the samples give it, else in µrad
+    present = [k for k in present if not (k.endswith("_urad") and k[:-5] + "_um" in present)]
     if not present:
         return []
     written = [_sweep_histograms(ok, stats, present, title, out / "histograms.png")]
@@ -776,8 +780,9 @@ def sweep_figures(rows: list[dict], stats: dict, out_dir: str | Path) -> list[Pa
         written.append(_sweep_map(points, axes[:2], primary, title, out / "map.png"))
     load = next((f for f in axes if f in LOAD_FIELDS), None)
     relief = next((f for f in axes if RELIEF_WORD in f), None)
-    te = "loaded_transmission_error_peak_to_peak_urad"
-    if load and relief and te in present:
+    te = next((f"loaded_transmission_error_peak_to_peak_{unit}" for unit in ("um", "urad")
+               if f"loaded_transmission_error_peak_to_peak_{unit}" in present), None)
+    if load and relief and te:
         written.append(_sweep_harris(points, load, relief, te, title, out / "harris.png"))
     if stats.get("optimise", {}).get("history"):
         written.append(_sweep_optimisation(stats["optimise"], title,
@@ -941,11 +946,11 @@ def _sweep_histograms(rows, stats, keys, title, path) -> Path:
     for i, key in enumerate(keys):
         ax = fig.add_subplot(lines, columns, i + 1)
         every = _column(rows, key)
-        bins = np.histogram_bin_edges(every[np.isfinite(every)],
-                                      bins=min(30, max(5, np.isfinite(every).sum() // 5)))
         for j, (text, share, chosen) in enumerate(levels):
             values = every[chosen & np.isfinite(every)]
             colour = SERIES[j % len(SERIES)]
+            # each level's own bins: the levels' figures may lie far apart
+            bins = min(30, max(5, values.size // 3))
             ax.hist(values, bins=bins, color=colour, alpha=0.55 if spectrum else 1.0,
                     label=f"{spectrum['field']} = {text} ({share:.0%} of the time)"
                     if spectrum else None)

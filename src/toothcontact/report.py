@@ -11,7 +11,7 @@ from pathlib import Path
 
 from . import __version__
 from .report_view import view
-from .writing import write_atomic, write_text
+from .writing import write_text
 
 
 def result_document(name: str, case, raw: dict, result, provenance: dict | None = None
