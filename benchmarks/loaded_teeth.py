@@ -21,7 +21,7 @@ from pathlib import Path
 
 HERE = Path(__file__).resolve().parent
 ROOT = HERE.parent
-CASES = ("spur_crowned_20_60", "helical_bias_crown_tip_relief")
+CASES = ("spur_crowned_20_60", "helical_offcentre_crown_tip_relief")
 
 #: runs inside the interpreter for one source tree: prints JSON {case: [stage s, total s]}
 PROBE = r"""

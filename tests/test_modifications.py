@@ -294,3 +294,30 @@ def test_a_k_chart_is_the_surface_its_traces_were_measured_on():
     with pytest.raises(CaseError, match="^case: pinion: topography / k_chart: give the measured "
                                         "flank one way"):
         parse_case(spur({"k_chart": spec, "topography": dense}))
+
+
+def test_the_bundled_measured_flank_is_its_generators_grid(tmp_path):
+    """cases/helical_measured_topography.csv is what data/measured's generator writes (crown,
+    profile slope, twist, tip relief and seeded noise), and the case reads it as the
+    pinion's topography: each grid value at its face position and roll length (µm -> mm)."""
+    import importlib.util
+    from pathlib import Path
+
+    from mutations import CASES
+
+    from toothcontact.case import load_case
+
+    root = Path(__file__).resolve().parents[1]
+    spec = importlib.util.spec_from_file_location(
+        "generator", root / "data" / "measured" / "helical_pinion_topography.py")
+    generator = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(generator)
+    generator.write(tmp_path / "grid.csv")
+    shipped = CASES / "helical_measured_topography.csv"
+    assert (tmp_path / "grid.csv").read_text() == shipped.read_text()
+    pair = gearset.gear_pair(load_case(CASES / "helical_measured_topography.toml")[0])
+    grid = pair.pinion_modifications.topography
+    rb = pair.pinion.base_radius
+    assert np.allclose(grid.face, generator.FACE)
+    assert np.allclose(grid.roll, np.sqrt((generator.DIAMETER / 2) ** 2 - rb ** 2), atol=1e-9)
+    assert np.allclose(grid.deviation, np.round(generator.deviation_um(), 2) * 1e-3, atol=1e-12)

@@ -1007,7 +1007,8 @@ def _sweep_tornado(ranks: dict, intervals: dict, draws: int | None, primary: str
     basis = (f"; {draws} draws per point" if draws else "") + (
         ", 95 % intervals" if any(bounds) else
         ": too few for an interval, read it as a hint" if draws else "")
-    ax.set_xlabel(f"Spearman rank correlation with the {SWEEP_FIGURES[primary]}{basis}")
+    ax.set_xlabel(textwrap.fill(f"Spearman rank correlation with the "
+                                f"{SWEEP_FIGURES[primary]}{basis}", 90))
     fig.suptitle(textwrap.fill(f"{title}: sensitivity to the toleranced inputs", 90))
     return _save(fig, path)
 

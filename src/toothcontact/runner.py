@@ -72,6 +72,7 @@ def load_sweep(path: str | Path):
     relative to the sweep file, or a bundled case's name."""
     from pydantic import ValidationError
 
+    from .sweep.sampling import with_class_bands
     from .sweep.spec import SweepSpec
 
     path = Path(path)
@@ -88,7 +89,7 @@ def load_sweep(path: str | Path):
                                "file (relative to the sweep file) nor a bundled case's name "
                                "(`toothcontact cases` lists them)") from None
     _, base = schema.load_case(base_path)
-    return spec, base, base_path
+    return with_class_bands(spec, base, base_path.parent, source=str(path)), base, base_path
 
 
 
@@ -234,6 +235,11 @@ def run_sweep(path: str | Path, out_dir: str | Path | None = None, *,
         planned(total[0])
     out = Path(out_dir) if out_dir is not None else Path("out") / path.stem
     inputs, grid = [t.field for t in spec.tolerance], [v.field for v in spec.axes]
+    classes = {t.field: {"iso1328_class": t.iso1328_class, "tolerance": t.class_tolerance,
+                         "distribution": t.distribution,
+                         **({"mean": t.mean, "band": t.band} if t.distribution == "normal"
+                            else {"low": t.low, "high": t.high})}
+               for t in spec.tolerance if t.iso1328_class is not None}
 
     def sweep_into(todo, folder, keep_positions):
         rows = sweep_run.run(todo, base_path.parent, folder, pool, resume=resume,
@@ -255,6 +261,7 @@ def run_sweep(path: str | Path, out_dir: str | Path | None = None, *,
         stats = {"sweep": str(path), "title": spec.title or path.stem, "base": str(base_path),
                  "seed": spec.seed, "sampling": spec.sampling if inputs else "none (a grid)",
                  "inputs": inputs, "grid": grid,
+                 **({"tolerance_classes": classes} if classes else {}),
                  **({"spectrum": spec.spectrum.model_dump()} if spec.spectrum else {}),
                  **summary}
         if spec.optimise is not None:

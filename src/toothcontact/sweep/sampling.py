@@ -68,6 +68,52 @@ def plan(spec: SweepSpec, base: dict, folder: Path | None = None, source: str = 
     return out
 
 
+def with_class_bands(spec: SweepSpec, base: dict, folder: Path | None = None,
+                     source: str = "sweep") -> SweepSpec:
+    """The spec with each `iso1328_class` tolerance's band set from its member's size in
+    the base case (with the sweep's `set`): f_HβT or f_HαT of ISO 1328-1:2013
+    (analytic.iso1328), as a normal's ±3σ band about `mean` (default 0) or a uniform's
+    range. A member outside the standard's scope is a CaseError."""
+    import math
+
+    from .. import units
+    from ..analytic import iso1328
+
+    ureg = units.registry()
+    classed = [t for t in spec.tolerance if t.iso1328_class is not None]
+    if not classed:
+        return spec
+    case = parse_case(_with(base, spec.set), source=f"{source}: base", base=folder)
+    resolved = []
+    for j, t in enumerate(spec.tolerance):
+        if t.iso1328_class is None:
+            resolved.append(t)
+            continue
+        where = f"{source}: tolerance[{j}] ({t.field})"
+        if getattr(case, "kind", None) != "spur":
+            raise CaseError(f"{where}: iso1328_class needs a spur or helical base case, "
+                            f"not {getattr(case, 'kind', '?')!r}")
+        name = t.field.partition(".")[0]
+        member = getattr(case, name)
+        teeth = abs(case.teeth[0 if name == "pinion" else 1])
+        size = dict(reference_diameter=teeth * case.module_mm / math.cos(case.helix_angle),
+                    normal_module=case.module_mm,
+                    face_width=member.face_width or case.face_width)
+        beyond = iso1328.out_of_scope(teeth=teeth, helix_angle=case.helix_angle, **size)
+        if beyond:
+            raise CaseError(f"{where}: the {name} lies outside the formulae's scope, which "
+                            "the standard forbids extrapolating: " + "; ".join(beyond))
+        tolerance = getattr(iso1328.flank_tolerances(t.iso1328_class, **size),
+                            t.class_tolerance)
+        mean = in_unit(t.mean if t.mean is not None else "0 um", "um", ureg, f"{where}.mean",
+                       "a length")
+        resolved.append(t.model_copy(update=dict(mean=f"{mean!r} um", band=f"{tolerance!r} um")
+                                     if t.distribution == "normal" else
+                                     dict(low=f"{mean - tolerance!r} um",
+                                          high=f"{mean + tolerance!r} um")))
+    return spec.model_copy(update={"tolerance": resolved})
+
+
 def _with(base: dict, inputs: dict) -> dict:
     """A copy of the case table with each dotted field set (tables made where missing)."""
     raw = copy.deepcopy(base)

@@ -38,9 +38,19 @@ class Vary(Model):
         return self
 
 
+#: the fields a flank tolerance class sets the band of: (member, modification) -> the
+#: tolerance of ISO 1328-1:2013 it takes (analytic.iso1328.FlankTolerances' field)
+CLASS_TOLERANCES = {(member, modification): tolerance
+                    for member in ("pinion", "gear")
+                    for modification, tolerance in (("helix_slope", "helix_slope"),
+                                                    ("profile_slope", "profile_slope"))}
+
+
 class Tolerance(Model):
     """A toleranced input: normal (`mean` with `std`, or a ±3σ `band`), uniform (`low`,
-    `high`) or triangular (`low`, `mode`, `high`)."""
+    `high`) or triangular (`low`, `mode`, `high`); a member's helix or profile slope may
+    instead take its band from `iso1328_class` (ISO 1328-1:2013's f_HβT or f_HαT of the
+    member: ±3σ of a normal about `mean`, default 0, or the range of a uniform)."""
 
     field: str = Field(description="a dotted field path of the base case")
     distribution: Literal["normal", "uniform", "triangular"]
@@ -50,11 +60,33 @@ class Tolerance(Model):
     low: str | float | None = None
     high: str | float | None = None
     mode: str | float | None = None
+    iso1328_class: int | None = Field(
+        None, ge=1, le=11, description="flank tolerance class (ISO 1328-1:2013, 1-11) "
+                                       "giving a helix or profile slope's band")
+
+    @property
+    def class_tolerance(self) -> str | None:
+        """The ISO 1328-1 tolerance a class gives this field (see CLASS_TOLERANCES)."""
+        member, _, rest = self.field.partition(".")
+        modification, _, key = rest.partition(".")
+        return CLASS_TOLERANCES.get((member, modification)) if key == "amount" else None
 
     @model_validator(mode="after")
     def _parameters(self):
         given = {k for k in ("mean", "std", "band", "low", "high", "mode")
                  if getattr(self, k) is not None}
+        if self.iso1328_class is not None:
+            if self.class_tolerance is None:
+                raise ValueError(f"{self.field}: iso1328_class sets the band of "
+                                 + " or ".join(sorted({f"pinion.{m}.amount" for _, m in
+                                                       CLASS_TOLERANCES}))
+                                 + " (or the gear's)")
+            if self.distribution == "triangular" or not given <= {"mean"}:
+                raise ValueError(f"{self.field}: with iso1328_class give a normal (an "
+                                 "optional mean) or a uniform distribution and no spread: "
+                                 "the class gives it; given: "
+                                 + ", ".join([self.distribution, *sorted(given)]))
+            return self
         needed = {"normal": [{"mean", "std"}, {"mean", "band"}], "uniform": [{"low", "high"}],
                   "triangular": [{"low", "mode", "high"}]}[self.distribution]
         if given not in needed:
