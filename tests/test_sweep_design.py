@@ -316,7 +316,7 @@ def test_sweep_figures_show_each_load_level_and_how_sure_a_rank_is(tmp_path, mon
     assert "load.tangential_load = 8000 N (30% of the time)" in texts
     assert "P50 over the operating time" in texts
     texts, labels, _ = seen["tornado.png"]
-    assert any("20 draws per point, 95 % intervals" in t for t in labels)
+    assert any("20 draws per point, 95 % intervals" in " ".join(t.split()) for t in labels)
     texts, labels, _ = seen["optimisation.png"]
     assert "best tried: no design met the constraints" in texts
     assert "best feasible design" not in texts

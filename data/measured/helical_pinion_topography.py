@@ -1,11 +1,12 @@
 """Writes cases/helical_measured_topography.csv: a measured-style flank topography of the
 bundled automotive helical pinion (z = 27, m_n = 2.25 mm, α_n = 18°, β = 27°, x = 0.25,
 b = 20 mm; base diameter 64.055 mm), as a gear measuring machine reports it over its
-evaluation range: 11 face positions (-10 to 10 mm from mid-face toward end B) × 9
-diameters (65.6 to 73.6 mm), normal deviations in µm, positive removing material.
+evaluation range: 11 face positions (-9 to 9 mm from mid-face toward end B: the 20 mm
+face less 1 mm at each end, as a lead evaluation range leaves out) × 9 diameters (65.6 to
+73.6 mm), normal deviations in µm, positive removing material.
 
 What the grid holds, each term by its ISO 21771 meaning:
-- a parabolic lead crown C_β = 8 µm (drop at each face end);
+- a parabolic lead crown C_β = 8 µm (its drop at the face ends; 6.5 µm at the grid's ±9 mm);
 - a profile slope f_Hα = 5 µm (material removed at the tip end of the evaluation range
   relative to its root end, linear in the roll length, none mid-profile);
 - a twist of 6 µm (the profile slope -3 µm at end A, +3 µm at end B: the "bias" of
@@ -28,7 +29,7 @@ import numpy as np
 
 BASE_DIAMETER = 64.05514857    # mm: 27 × 2.25 / cos 27° × cos α_t, tan α_t = tan 18°/cos 27°
 FACE_WIDTH = 20.0              # mm
-FACE = np.linspace(-10.0, 10.0, 11)
+FACE = np.linspace(-9.0, 9.0, 11)
 DIAMETER = np.linspace(65.6, 73.6, 9)
 CROWN, PROFILE_SLOPE, TWIST, TIP_RELIEF, NOISE = 8.0, 5.0, 6.0, 12.0, 0.3     # µm
 RELIEF_START, TIP = 71.6, 73.80631894                                        # mm
