@@ -107,6 +107,73 @@ class Material(Model):
     nu: Poisson = Field(description="Poisson's ratio, e.g. 0.3")
 
 
+STEEL = {"E": "206 GPa", "nu": 0.3}
+#: the heat treatments a gear material may name (rating.life.TREATMENTS: the groups of
+#: ISO 6336's life factors); listed here so that reading a case does not import the ratings
+TREATMENT_NAMES = ("structural", "through_hardened", "case_carburized", "induction_hardened",
+                   "flame_hardened", "nitrided", "nitrided_through_hardening_steel",
+                   "nitrocarburized", "nodular_cast_iron", "malleable_cast_iron",
+                   "grey_cast_iron")
+#: treatments whose E and ν are not steel's: given with the material, never defaulted
+CAST_IRONS = ("nodular_cast_iron", "malleable_cast_iron", "grey_cast_iron")
+
+
+class GearMaterial(Model):
+    """A gear's material: E and ν (steel's where not given, unless a cast iron), and for
+    its safety factors the heat treatment (the life factors' group) and the allowable
+    stress numbers of ISO 6336-5: σ_Hlim (contact) and σ_Flim (root, the nominal stress
+    number of the unnotched reference; ISO 6336-3 multiplies it by Y_ST = 2)."""
+
+    E: Modulus | None = Field(None, description="Young's modulus, e.g. '206 GPa' (default "
+                                                "steel's)")
+    nu: Poisson | None = Field(None, description="Poisson's ratio (default 0.3)")
+    treatment: Literal[TREATMENT_NAMES] | None = Field(
+        None, description="heat treatment: the group of ISO 6336's life factors")
+    sigma_Hlim: Modulus | None = Field(None, description="ISO 6336-5 contact stress number, "
+                                                         "e.g. '1500 MPa'")
+    sigma_Flim: Modulus | None = Field(None, description="ISO 6336-5 bending stress number, "
+                                                         "e.g. '500 MPa'")
+
+    @model_validator(mode="before")
+    @classmethod
+    def _steel(cls, raw: Any) -> Any:
+        """Steel's E and ν where not given, unless the treatment names a cast iron."""
+        if not isinstance(raw, dict) or raw.get("treatment") in CAST_IRONS:
+            return raw
+        return {"E": STEEL["E"], "nu": STEEL["nu"], **raw}
+
+    @model_validator(mode="after")
+    def _given(self):
+        if self.E is None or self.nu is None:
+            raise ValueError(f"E / nu: give both for a {self.treatment.replace('_', ' ')} "
+                             "(steel's are the default only for steels)")
+        if (self.sigma_Hlim is not None or self.sigma_Flim is not None) \
+                and self.treatment is None:
+            raise ValueError("treatment: give the heat treatment with sigma_Hlim / "
+                             f"sigma_Flim (one of {', '.join(TREATMENT_NAMES)}): it sets "
+                             "the life factors")
+        return self
+
+
+class RatingSpec(Model):
+    """What ISO 6336 adds to the loaded contact for the safety factors: the load factors
+    the analysis does not model (K_A, K_v: the stresses scale as σ_H·sqrt(K_A·K_v) and
+    σ_F·K_A·K_v), the lubrication factors' product Z_L·Z_v·Z_R, the load cycles of the
+    pinion (the gear's follow by the ratio), whether limited pitting is accepted, and the
+    least safety factors."""
+
+    application_factor: Factor = Field(1.0, description="K_A")
+    dynamic_factor: Factor = Field(1.0, description="K_v")
+    lubrication_factor: Factor = Field(1.0, description="Z_L·Z_v·Z_R (ISO 6336-2)")
+    pinion_cycles: Annotated[float, Field(ge=1.0)] | None = Field(
+        None, description="load cycles of each pinion tooth, e.g. 1e9 (default: the "
+                          "endurance limit, Z_NT = Y_NT = 1)")
+    limited_pitting: bool = Field(False, description="some pitting accepted (ISO 6336-2 "
+                                                     "Table 2's second steel line)")
+    S_Hmin: Factor = Field(1.0, description="least contact safety factor")
+    S_Fmin: Factor = Field(1.0, description="least root safety factor")
+
+
 class Body(Material):
     radii: tuple[Radius, Radius] = Field(
         description="two principal radii, e.g. ['12.7 mm', 'inf']; negative = concave")
@@ -494,9 +561,28 @@ class DeflectionSpec(Model):
         [], description="[[face position, deflection], ...], e.g. [['-15 mm', '0 um']]")
 
 
+class LoadLevel(Model):
+    """One level of a duty cycle: its load on the pinion and the load cycles of each pinion
+    tooth at it."""
+
+    tangential_load: Force | None = Field(None, description="at the pinion's operating pitch circle")
+    torque: Torque | None = Field(None, description="on the pinion, e.g. '240 N*m'")
+    cycles: Annotated[float, Field(gt=0.0)] = Field(
+        description="load cycles of each pinion tooth at this level, e.g. 2e8")
+
+    @model_validator(mode="after")
+    def _one(self):
+        if (self.tangential_load is None) == (self.torque is None):
+            raise ValueError("tangential_load / torque: give exactly one of them")
+        return self
+
+
 class LoadSpec(Model):
     tangential_load: Force | None = Field(None, description="at the pinion's operating pitch circle")
     torque: Torque | None = Field(None, description="on the pinion, e.g. '240 N*m'")
+    spectrum: list[LoadLevel] = Field(
+        [], description="a duty cycle: [[load.spectrum]] levels, each analysed; Miner's sums "
+                        "against ISO 6336-6's S-N curves")
 
     @model_validator(mode="after")
     def _one(self):
@@ -545,12 +631,17 @@ class AnalysisSpec(Model):
         True, description="solve the loaded contact again midway between the positions (twice "
                           "as many in all) and report how far the largest loaded pressure "
                           "moves (summary positions_check)")
+    subsurface: bool | None = Field(
+        None, description="the stresses below each loaded contact (largest principal shear "
+                          "and von Mises stress and their depths); default: in a run, not "
+                          "in a sweep's samples")
 
 
-STEEL = {"E": "206 GPa", "nu": 0.3}
 #: the default material, steel, in core units (MPa); built without parsing its units, so
 #: that importing the schema does not build the unit registry (a test checks it is STEEL)
 DEFAULT_STEEL = Material.model_construct(E=206000.0, nu=0.3)
+#: the same for a gear pair's members (GearMaterial), built the same way
+DEFAULT_GEAR_STEEL = GearMaterial.model_construct(E=206000.0, nu=0.3)
 
 
 class SpurCase(GearPairGeometry):
@@ -569,11 +660,12 @@ class SpurCase(GearPairGeometry):
     rack: Rack = Rack()
     pinion: Member = Member()
     gear: Member = Member()
-    material: Material = Field(DEFAULT_STEEL, description="default steel")
-    gear_material: Material | None = None
+    material: GearMaterial = Field(DEFAULT_GEAR_STEEL, description="default steel")
+    gear_material: GearMaterial | None = None
     misalignment: MisalignmentSpec = MisalignmentSpec()
     deflection: DeflectionSpec | None = None
     load: LoadSpec | None = Field(None, description="with a load, run analyses the contact")
+    rating: RatingSpec = RatingSpec()
     analysis: AnalysisSpec = AnalysisSpec()
     export: ExportSpec = ExportSpec()
 

@@ -383,6 +383,81 @@ def load_distribution(result: dict, path: str | Path) -> Path:
     return _save(fig, path)
 
 
+def mesh_loads(result: dict, path: str | Path) -> Path:
+    """What the loaded contact decides over the mesh cycle (a result whose positions carry
+    load_share): each tooth pair's share of its position's load, the mesh stiffness per
+    position (the load_distribution section's, with ISO 6336-1's c_γα beside it), the
+    transmission error's mesh harmonics (summary te_harmonics_um and
+    unloaded_te_harmonics_um, µm) and the largest principal shear below each contact (MPa;
+    the cycle's largest marked with its depth). A panel whose data the result lacks says
+    so."""
+    rows = result["positions"]
+    summary = result.get("summary") or {}
+    roll, pair = _column(rows, "roll_deg"), _column(rows, "pair")
+    share = _column(rows, "load_share")
+    shear = _column(rows, "subsurface_shear_max_MPa")
+    fig = _figure(6.4)
+    (ax_share, ax_stiff), (ax_te, ax_shear) = fig.subplots(2, 2)
+    pairs = sorted(set(pair[np.isfinite(share)]))
+    for i, g in enumerate(pairs):
+        on = (pair == g) & np.isfinite(share)
+        ax_share.plot(roll[on], share[on], "o-", ms=3, lw=1.0, color=SERIES[i % len(SERIES)],
+                      label=f"pair {int(g):+d}" if g else "pair 0")
+    ax_share.set(xlabel=f"{_driver(result)} roll angle (deg)", ylabel="share of the load",
+                 title="Load sharing", ylim=(-0.05, 1.05))
+    if pairs:
+        ax_share.legend(fontsize=7, loc="best")
+    section = result.get("load_distribution") or {}
+    stiffness = section.get("mesh_stiffness_N_per_mm_um")
+    if stiffness:
+        k = np.array([_num(v) for v in stiffness])
+        ax_stiff.plot(section["roll_deg"], k, "o-", ms=3, lw=1.0, color=SERIES[0],
+                      label="the loaded contact's secant stiffness")
+        iso = summary.get("iso_mesh_stiffness_N_per_mm_um")
+        if iso is not None:
+            ax_stiff.axhline(iso, color="0.4", ls="--", lw=1.0, label=f"ISO 6336-1 c_γα {iso:.1f}")
+        ax_stiff.legend(fontsize=7, loc="best")
+        ax_stiff.set(ylabel="N/(mm·µm)", xlabel=f"{_driver(result)} roll angle (deg)")
+    else:
+        ax_stiff.text(0.5, 0.5, "no mesh stiffness for this kind", ha="center", va="center",
+                      transform=ax_stiff.transAxes)
+    ax_stiff.set_title("Mesh stiffness per mm of face")
+    loaded, unloaded = summary.get("te_harmonics_um"), summary.get("unloaded_te_harmonics_um")
+    width = 0.38
+    for offset, values, name, colour in ((-width / 2, unloaded, "unloaded", "black"),
+                                         (width / 2, loaded, "loaded", SERIES[0])):
+        if values:
+            orders = np.arange(1, len(values) + 1)
+            ax_te.bar(orders + offset, values, width, color=colour, label=name)
+            for o, v in zip(orders, values):
+                ax_te.annotate(f"{v:.2f}", (o + offset, v), ha="center", va="bottom",
+                               fontsize=6)
+    if loaded or unloaded:
+        ax_te.legend(fontsize=7)
+        ax_te.xaxis.set_major_locator(MaxNLocator(integer=True))
+    ax_te.set(xlabel="mesh order (× tooth-mesh frequency)", ylabel="amplitude (µm)",
+              title="Transmission error harmonics")
+    on = np.isfinite(shear)
+    for i, g in enumerate(sorted(set(pair[on]))):
+        here = on & (pair == g)
+        ax_shear.plot(roll[here], shear[here], "o-", ms=3, lw=1.0,
+                      color=SERIES[i % len(SERIES)])
+    if on.any():
+        depth = summary.get("subsurface_shear_depth_mm")
+        k = int(np.nanargmax(np.where(on, shear, -np.inf)))
+        ax_shear.plot(roll[k], shear[k], "s", color="black", ms=6,
+                      label=f"largest {shear[k]:.0f} MPa, {1e3 * depth:.0f} µm deep"
+                      if depth is not None else "largest")
+        ax_shear.legend(fontsize=7, loc="lower center")
+    else:
+        ax_shear.text(0.5, 0.5, "not computed ([analysis] subsurface)", ha="center",
+                      va="center", transform=ax_shear.transAxes)
+    ax_shear.set(xlabel=f"{_driver(result)} roll angle (deg)", ylabel="(σ1 − σ3)/2 (MPa)",
+                 title="Largest shear below each contact")
+    fig.suptitle(_title(result, "Loads over the mesh cycle", 95), fontsize=10)
+    return _save(fig, path)
+
+
 # ---------------------------------------------------------------------------------------
 # 3. crown design chart (seed 003)
 
@@ -682,6 +757,7 @@ def figures_for(result: dict, out_dir: str | Path) -> list[Path]:
     mesh_cycle.png (any result with 'positions'), ease_off.png (a result with an 'ease_off'
     section: face_mm, radius_mm, separation_um, optional approach_um), crown_design.png
     (kind crown_design), load_distribution.png (a result with a 'load_distribution' section),
+    mesh_loads.png (a result whose positions carry a loaded contact's load_share),
     worm_efficiency_temperature.png and worm_efficiency_torque.png
     (kind worm_efficiency, with conditions / an anti-rattle spring). [] when none applies
     (hertz, spline_crown)."""
@@ -700,6 +776,8 @@ def figures_for(result: dict, out_dir: str | Path) -> list[Path]:
                                  "flank"), member=ease.get("member", "pinion")))
     if result.get("load_distribution"):
         written.append(load_distribution(result, out / "load_distribution.png"))
+    if any(r.get("load_share") is not None for r in result.get("positions") or []):
+        written.append(mesh_loads(result, out / "mesh_loads.png"))
     if kind == "crown_design":
         written.append(crown_design_chart(result, out / "crown_design.png"))
     if kind == "worm_efficiency":

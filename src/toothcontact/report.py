@@ -64,6 +64,8 @@ CAPTIONS = {
     "pressure.png": "Loaded contact: the largest pressure over the mesh cycle",
     "pressure_peak.png": "Loaded contact at the position of the largest pressure",
     "mesh_cycle.png": "Over the mesh cycle: transmission error, stress, semi-axes, edge margin",
+    "mesh_loads.png": "Over the mesh cycle: load sharing, mesh stiffness, transmission error "
+                      "harmonics, the largest shear below each contact",
     "ease_off.png": "Ease-off of the flank",
     "crown_design.png": "Crown design chart",
     "worm_efficiency_temperature.png": "Worm-set efficiency against the lubricant temperature",

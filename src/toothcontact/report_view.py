@@ -57,6 +57,19 @@ LABELS = {
     "transmission_error_arm_mm": "radius at which the transmission error is a length",
     "transmission_error_arm": "transmission error as a length on the",
     "edge_margin_mm": "edge margin", "edge_margins_mm": "edge margins",
+    "subsurface_shear_max_MPa": "largest shear (σ1 − σ3)/2 below the surface",
+    "root_stress_pinion_MPa": "root stress of the pinion tooth",
+    "root_stress_gear_MPa": "root stress of the gear tooth",
+    "pinion_root_stress_max_MPa": "largest root stress of the pinion",
+    "gear_root_stress_max_MPa": "largest root stress of the gear",
+    "load_share": "share of the position's load",
+    "te_harmonics_um": "loaded TE harmonics (mesh orders 1, 2, ...)",
+    "unloaded_te_harmonics_um": "unloaded TE harmonics (mesh orders 1, 2, ...)",
+    "sigma_H_MPa": "contact stress σ_H (with K_A·K_v)",
+    "subsurface_shear_depth_mm": "its depth",
+    "subsurface_von_mises_max_MPa": "largest von Mises stress below the surface",
+    "subsurface_von_mises_depth_mm": "its depth (von Mises)",
+    "subsurface_shear_at": "largest shear below the surface at",
     "contact_radius_pinion_mm": "contact radius on the pinion",
     "face_position_mm": "position along the face", "separation_mm": "separation",
     "E_star_MPa": "E*", "Y_VISC": "viscosity factor Y_VISC", "mu_zm": "mean friction mu_zm",
@@ -395,8 +408,8 @@ def _contact_figures(summary: dict, rows: list[dict], driven: str) -> list[KeyRe
                                  summary[key] < 0))
     span = summary.get("face_position_range_mm")
     if span:
-        value = (f"{number(span[0])} mm" if number(span[0]) == number(span[1]) else
-                 f"{number(span[0])} to {number(span[1])} mm")
+        ends = [number(v, resolution=MARGIN_RESOLUTION) for v in span]
+        value = f"{ends[0]} mm" if ends[0] == ends[1] else f"{ends[0]} to {ends[1]} mm"
         out.append(KeyResult("pattern centre on the face", value,
                              "from mid-face, toward end B positive"))
     for label_, key in (("transmission error, peak to peak (unloaded)",
@@ -411,6 +424,44 @@ def _contact_figures(summary: dict, rows: list[dict], driven: str) -> list[KeyRe
             out.append(KeyResult(label_, value, f"the {driven}'s lag"
                                  + (f", as a length on the {summary['transmission_error_arm']}"
                                     if length is not None else "")))
+    for name in ("pinion", "gear"):
+        if summary.get(f"{name}_root_stress_max_MPa") is not None:
+            out.append(KeyResult(
+                f"largest root stress ({name})",
+                f"{number(summary[f'{name}_root_stress_max_MPa'])} MPa",
+                f"at {summary[f'{name}_root_stress_at']} (ISO 6336-3's section and Y_S, "
+                "each contact's own line load)"))
+    if "S_H" in summary:
+        shown = {"S_H": ("contact safety S_H", "σ_Hlim given"),
+                 "S_F_pinion": ("root safety S_F (pinion)", "σ_Flim given"),
+                 "S_F_gear": ("root safety S_F (gear)", "σ_Flim given")}
+        for key, (label_, needs) in shown.items():
+            value = summary.get(key)
+            out.append(KeyResult(label_, "—" if value is None else number(value),
+                                 f"not computed: no {needs}" if value is None else
+                                 "against ISO 6336's allowable with the life factors",
+                                 value is not None and value < 1.0))
+    sums = {k: v for k, v in summary.items() if k.startswith("miner_sum_") and v is not None}
+    if sums:
+        worst = max(sums, key=sums.get)
+        kind, member = worst.removeprefix("miner_sum_").split("_")
+        out.append(KeyResult("duty cycle: largest Miner's sum", number(sums[worst]),
+                             f"the {member}'s {kind}, on ISO 6336-6's S-N curves",
+                             sums[worst] > 1.0))
+    if summary.get("te_harmonics_um"):
+        out.append(KeyResult(
+            "transmission error harmonics (loaded)",
+            ", ".join(f"{number(v, resolution=TE_UM_RESOLUTION)}" for v in
+                      summary["te_harmonics_um"][:3]) + " µm",
+            "amplitudes of mesh orders 1, 2, 3"))
+    if summary.get("subsurface_shear_max_MPa") is not None:
+        out.append(KeyResult(
+            "largest shear below the surface",
+            f"{number(summary['subsurface_shear_max_MPa'])} MPa at "
+            f"{number(summary['subsurface_shear_depth_mm'] * 1e3)} µm deep",
+            f"(σ1 − σ3)/2 at {summary['subsurface_shear_at']}; von Mises "
+            f"{number(summary['subsurface_von_mises_max_MPa'])} MPa at "
+            f"{number(summary['subsurface_von_mises_depth_mm'] * 1e3)} µm"))
     check = summary.get("positions_check") or {}
     if check.get("checked"):
         out.append(KeyResult(

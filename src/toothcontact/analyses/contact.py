@@ -87,6 +87,22 @@ def check_positions(result: Result, positions: int, midway) -> None:
             "or more for the transmission error")
 
 
+#: the mesh orders whose amplitudes a transmission error's Fourier series reports (as many
+#: as its positions resolve: orders below half their number)
+TE_ORDERS = 5
+
+
+def mesh_harmonics(values: list[float]) -> list[float]:
+    """The amplitudes of mesh orders 1, 2, ... of a transmission error sampled at n positions
+    spread evenly over one mesh cycle (contact.cycle.mesh_positions), in its unit: 2|X_k|/n
+    of its discrete Fourier transform X, for k below n/2 (the order n/2 is not resolved),
+    at most TE_ORDERS."""
+    x = np.asarray(values, float)
+    n = len(x)
+    orders = min(TE_ORDERS, (n - 1) // 2)
+    return (2.0 * np.abs(np.fft.rfft(x)[1:orders + 1]) / n).tolist()
+
+
 def _loaded_transmission_error(cycle, summary: dict) -> None:
     """loaded_transmission_error_urad on every row of a position whose loaded contact was
     solved: the unloaded one plus D/turn_slope, D (mm) the position's common approach (a
@@ -109,10 +125,14 @@ def _loaded_transmission_error(cycle, summary: dict) -> None:
         for k in ks:
             cycle.rows[k]["loaded_transmission_error_urad"] = te
             cycle.rows[k]["loaded_transmission_error_um"] = None if te is None else 1e-3 * arm * te
-    spread = max(values) - min(values) if len(values) == len(positions) else None
+    complete = len(values) == len(positions)
+    spread = max(values) - min(values) if complete else None
     summary["loaded_transmission_error_peak_to_peak_urad"] = spread
     summary["loaded_transmission_error_peak_to_peak_um"] = (
         None if spread is None else 1e-3 * arm * spread)
+    by_roll = [cycle.rows[ks[0]]["loaded_transmission_error_um"]
+               for _, ks in sorted(positions.items())]
+    summary["te_harmonics_um"] = mesh_harmonics(by_roll) if complete else None
     summary["transmission_error_note"] = (
         "transmission errors are the gear's (a worm set's wheel's) rotation from where "
         "conjugate flanks would hold it, in µrad, positive where it lags behind, and that "
@@ -149,6 +169,14 @@ def loaded_sections(cycle, C_E: float, grid: int, teeth, bending: str,
     for k, (row, contact) in enumerate(zip(rows, loaded)):
         row.update(unsolved("failed", failed[k]) if k in failed else
                    unsolved("unloaded") if contact is None else contact.summary)
+    totals: dict[float, float | None] = {}
+    for row in rows:       # a position with a pair not solved has no known total
+        known = totals.get(row["roll_deg"], 0.0)
+        totals[row["roll_deg"]] = (None if known is None or row["bem_load_N"] is None
+                                   else known + row["bem_load_N"])
+    for row in rows:       # each pair's share of its position's load (None: not known)
+        total = totals[row["roll_deg"]]
+        row["load_share"] = row["bem_load_N"] / total if total else None
     summary = result.sections["summary"]
     summary.update(
         load_sharing="one rigid rotation for all pairs of a position; each pair's approach "
@@ -209,6 +237,65 @@ def loaded_sections(cycle, C_E: float, grid: int, teeth, bending: str,
         f"{END_LOAD_RATIO:g})"))
 
 
+#: the per-contact keys of the stresses below it (subsurface_sections)
+SUBSURFACE_KEYS = ("subsurface_shear_max_MPa", "subsurface_shear_depth_mm",
+                   "subsurface_von_mises_max_MPa", "subsurface_von_mises_depth_mm")
+
+
+def subsurface_sections(result: Result, wanted: bool | None,
+                        poisson: tuple[float, float]) -> None:
+    """The stresses below every loaded contact (contact.subsurface, in the body of each
+    Poisson's ratio; the larger where they differ): per row the largest principal shear
+    (σ1 - σ3)/2 and von Mises stress and their depths (None without a loaded solution),
+    and the largest over the cycle in the summary. `wanted`: the case's
+    `[analysis] subsurface` (None: yes)."""
+    if wanted is False or not result.loaded:
+        return
+    from ..contact.subsurface import peak
+    from ..parallel import parallel_map
+
+    rows = result.sections["positions"]
+    solved = [k for k, contact in enumerate(result.loaded) if contact is not None]
+    ratios = sorted(set(poisson))
+
+    def task(i: int):
+        s = result.loaded[solved[i]].solution
+        peaks = [peak(s.pressure_MPa, s.dx_mm, s.dy_mm, nu) for nu in ratios]
+        return max((p for p in peaks if p is not None), key=lambda p: p.shear_MPa,
+                   default=None)
+
+    start = time.perf_counter()
+    found = dict(zip(solved, parallel_map(task, len(solved))))
+    log.info("stresses below %d contacts in %.2f s", len(solved), time.perf_counter() - start)
+    for k, row in enumerate(rows):
+        p = found.get(k)
+        row.update(dict(zip(SUBSURFACE_KEYS, (None,) * 4)) if p is None else {
+            "subsurface_shear_max_MPa": p.shear_MPa, "subsurface_shear_depth_mm": p.shear_depth_mm,
+            "subsurface_von_mises_max_MPa": p.von_mises_MPa,
+            "subsurface_von_mises_depth_mm": p.von_mises_depth_mm})
+    answered = [r for r in rows if r["subsurface_shear_max_MPa"] is not None]
+    if not answered:
+        return
+    worst = max(answered, key=lambda r: r["subsurface_shear_max_MPa"])
+    worst_vm = max(answered, key=lambda r: r["subsurface_von_mises_max_MPa"])
+    result.sections["summary"].update(
+        subsurface_shear_max_MPa=worst["subsurface_shear_max_MPa"],
+        subsurface_shear_depth_mm=worst["subsurface_shear_depth_mm"],
+        subsurface_shear_at=f"roll {worst['roll_deg']:.2f} deg pair {worst['pair']}",
+        subsurface_von_mises_max_MPa=worst_vm["subsurface_von_mises_max_MPa"],
+        subsurface_von_mises_depth_mm=worst_vm["subsurface_von_mises_depth_mm"],
+        subsurface_note="the stresses below each loaded contact in an elastic half-space "
+                        "under its solved pressure (frictionless; Boussinesq's point load "
+                        "summed over the pressure cells by FFT): subsurface_shear_max_MPa the "
+                        "largest principal shear (σ1 - σ3)/2 and its depth, "
+                        "subsurface_von_mises_max_MPa the largest von Mises stress and its "
+                        "depth; a smooth contact's lies near 0.3 of its peak pressure, 0.5-0.8 "
+                        "of its half-width deep (Hertz); a sharp edge's pressure puts a larger "
+                        "one near the surface"
+                        + (f"; in the body of the larger (Poisson's ratios {ratios[0]:g} and "
+                           f"{ratios[1]:g})" if len(ratios) > 1 else ""))
+
+
 def _reach_check(cycle, result: Result) -> None:
     """Where pairs were kept beyond the approach for the loaded contact (the cycle's reach),
     a check that no position's loaded approach D reaches a pair the cycle left out (its
@@ -251,6 +338,8 @@ def contact_sections(cycle, loads: dict, result: Result, arm: tuple[float, str])
             "approach_um": cycle.settings.approach * 1e3,
             "member": cycle.settings.ease_off_member}
     result.sections["positions"] = rows
+    # every row of a position has its lag: the unloaded TE per position, in roll order
+    per_position = {r["roll_deg"]: r["transmission_error_um"] for r in rows}
     # the rigid analysis's figures: pairs kept beyond the approach for the loaded contact
     # (rigid_contact false) touch nowhere
     rows = [r for r in rows if r.get("rigid_contact", True)]
@@ -258,6 +347,8 @@ def contact_sections(cycle, loads: dict, result: Result, arm: tuple[float, str])
     summary = {**loads, "max_p_max_MPa": max(r["p_max_MPa"] for r in rows),
                "transmission_error_peak_to_peak_urad": max(te) - min(te),
                "transmission_error_peak_to_peak_um": 1e-3 * arm[0] * (max(te) - min(te)),
+               "unloaded_te_harmonics_um": mesh_harmonics(
+                   [per_position[roll] for roll in sorted(per_position)]),
                "transmission_error_arm_mm": arm[0], "transmission_error_arm": arm[1],
                "face_position_range_mm": [min(r["face_position_mm"] for r in rows),
                                           max(r["face_position_mm"] for r in rows)],

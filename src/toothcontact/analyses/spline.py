@@ -44,6 +44,7 @@ def spline_geometry_case(case: schema.SplineCase) -> Result:
                                            / math.cos(case.pressure_angle))
     if case.torque is not None:
         _spline_contact(case, pair, result)
+        contact.subsurface_sections(result, case.analysis.subsurface, (case.material.nu,) * 2)
         if case.analysis.positions_check:
             contact.check_positions(result, case.analysis.positions,
                              lambda scratch: _spline_contact(case, pair, scratch, 0.5))

@@ -13,7 +13,7 @@ from .. import case as schema
 from ..analytic import hertz
 from ..analytic.stiffness import face_load_factor, mesh_stiffness, single_stiffness
 from ..case import CaseError
-from . import contact
+from . import contact, rating
 from .result import Check, Result
 
 
@@ -99,6 +99,9 @@ def spur_geometry_case(case: schema.SpurCase) -> Result:
                                ", ".join(f"{name} tip {c:.3f} mm" for name, c in clearance.items())))
     if case.load is not None:
         _spur_contact(case, pair, result)
+        rating.duty_cycle_sections(
+            case, result, lambda level, scratch: _spur_contact(level, gearset.gear_pair(level),
+                                                               scratch))
     return result
 
 
@@ -137,6 +140,11 @@ def _spur_contact(case: schema.SpurCase, pair, result: Result) -> None:
         before = np.full(face.shape, found.mean()) if applied is None else applied
         applied = before + SHAFT_RELAXATION * (found - before)
         pair = gear_pair(case, (face, applied))
+    gear_material = case.gear_material or case.material
+    contact.subsurface_sections(result, case.analysis.subsurface,
+                                (case.material.nu, gear_material.nu))
+    rating.root_sections(case, pair, result)
+    rating.safety_sections(case, pair, result)
     if case.analysis.positions_check:
         contact.check_positions(result, case.analysis.positions,
                          lambda scratch: _loaded_pass(case, pair, scratch, 0.5))
@@ -399,6 +407,7 @@ def _load_distribution(case: schema.SpurCase, pair, result: Result) -> None:
     end = 0.5 * pair.pinion.face_width - EDGE_STRIP
     edges = np.linspace(-end, end, FACE_STRIPS + 1)
     rolls, lines, loads, factors, stiffness, single = [], [], [], [], [], []
+    per_position = []
     for roll, ks in positions.items():
         solved = [k for k in ks if loaded[k] is not None]
         if not solved or any(rows[k]["bem_status"] == "failed" for k in ks):
@@ -411,8 +420,10 @@ def _load_distribution(case: schema.SpurCase, pair, result: Result) -> None:
         factors.append(float(line.max() / (load / width)))
         lead = max(solved, key=lambda k: loaded[k].solution.load_N)
         closing = loaded[lead].solution.approach_mm - min(rows[k]["separation_mm"] for k in ks)
+        per_position.append(None)
         if closing > 0:     # ISO's c: the transverse force over the transverse deflection
             stiffness.append(load / closing / width * 1e-3 * transverse)
+            per_position[-1] = stiffness[-1]
             if len(solved) == 1:
                 single.append(stiffness[-1])
     if not rolls:
@@ -424,11 +435,14 @@ def _load_distribution(case: schema.SpurCase, pair, result: Result) -> None:
         "line_load_N_per_mm": [line.round(3).tolist() for line in lines],
         "mean_line_load_N_per_mm": mean_line.round(3).tolist(),
         "K_H_beta": factors,
+        "mesh_stiffness_N_per_mm_um": per_position,
         "note": f"line loads along the pinion's face (N/mm of face, along the contact normal) "
                 f"on {FACE_STRIPS} strips between {EDGE_STRIP} mm from each face end (the edge "
                 "pressure covers those), face_mm their centres, all tooth pairs of a position "
                 f"summed; K_H_beta is the largest over the mean W/b on b = {width:g} mm, "
-                "at each position; mean_line_load_N_per_mm their mean over the cycle"}
+                "at each position; mean_line_load_N_per_mm their mean over the cycle; "
+                "mesh_stiffness_N_per_mm_um the position's secant mesh stiffness (see the "
+                "summary's stiffness_note)"}
     summary = result.sections["summary"]
     iso_single = single_stiffness(pair.pinion.teeth, -pair.gear.teeth if pair.gear.internal
                                   else pair.gear.teeth, pair.pinion.profile_shift,

@@ -62,6 +62,8 @@ def worm_geometry_case(case: schema.WormCase) -> Result:
             + f", the wheel's tip reaches diameter {2 * reach:.3f} mm"))
     if case.load is not None:
         _worm_contact(case, parts, result)
+        contact.subsurface_sections(result, case.analysis.subsurface, (
+            case.material.nu, (case.wheel_material or case.material).nu))
         if case.analysis.positions_check:
             contact.check_positions(result, case.analysis.positions,
                              lambda scratch: _worm_contact(case, parts, scratch, 0.5))

@@ -601,6 +601,15 @@ class PairCompliance:
         return StructureOperator(members, material.shape, dx * dy, material, tuple(reference))
 
 
+def field_face_load(field, z: np.ndarray) -> FaceLoad:
+    """Where a gap field's material cells sit along a member's face: z (mm) the face
+    position of each (in the grid's order), each spread over the face it spans."""
+    order = np.argsort(z, kind="stable")
+    extent = _extent(field, z)
+    dx, dy = field.spacing
+    return FaceLoad(field.material, order, z[order] - 0.5 * extent, extent, dx * dy)
+
+
 def _extent(field, z: np.ndarray) -> float:
     """The length of face (mm) a cell of the field spans, from the face position z of its
     material cells: z fitted as a plane over the cells, |∂z/∂x|·dx + |∂z/∂y|·dy."""

@@ -30,7 +30,8 @@ def sample_record(number: int, inputs: dict, raw: dict, folder: str | None,
     a Dask worker's process may not fork, see toothcontact.parallel): its
     record, `sample`, each varied input (the case's value in core units, or its text),
     `status` ("ok" or the error) and the summary's figures (the case's `summary` under its
-    own names; numbers, flags and texts; no positions check); and, if `positions`, the
+    own names; numbers, flags and texts; no positions check, and the stresses below the
+    contacts only where the case's `[analysis] subsurface` is true); and, if `positions`, the
     result's rows per mesh
     position and pair (their table cells, with `sample`), else []."""
     from ..analyses import analyse
@@ -47,9 +48,11 @@ def sample_record(number: int, inputs: dict, raw: dict, folder: str | None,
         for field in inputs:
             record[f"input:{field}"] = _value(case, field)
         if getattr(case, "analysis", None) is not None:
-            # the positions' convergence is the base design's question: a sample skips it
-            case = case.model_copy(update={
-                "analysis": case.analysis.model_copy(update={"positions_check": False})})
+            # the positions' convergence is the base design's question: a sample skips it,
+            # and the stresses below the contacts unless the case asks for them
+            subsurface = case.analysis.subsurface
+            case = case.model_copy(update={"analysis": case.analysis.model_copy(update={
+                "positions_check": False, "subsurface": bool(subsurface)})})
         with workers(cores):
             sections = analyse(case).sections
         record.update(_cells(sections.get("summary", {})))

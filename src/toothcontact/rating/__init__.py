@@ -1,0 +1,1 @@
+"""Gear ratings from the loaded contact: root stress, allowable stresses and safety factors."""

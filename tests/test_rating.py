@@ -1,0 +1,229 @@
+"""Root stress and safety factors (rating.root, rating.life, analyses.rating), each against
+what does not share its assumptions: the critical section on the generated fillet against
+ISO 6336-3's closed form for the rack-generated trochoid; the root stress formula against
+2D finite elements of the exact tooth (tests/fe_root.py); the life factors against ISO/TR
+6336-30:2017 Example 1's printed Z_NT and σ_HP; the loaded pair's largest root stress
+against ISO 6336-3 Method B's σ_F0 evaluated here from the standard's formulae."""
+
+import math
+
+import numpy as np
+import pytest
+
+from toothcontact.rating import life, root
+from toothcontact.surfaces.involute import CylindricalGear
+
+
+def iso_section(z: float, x: float = 0.0, alpha=math.radians(20.0), h_fP: float = 1.25,
+                rho_fP: float = 0.38) -> tuple[float, float, float, float]:
+    """ISO 6336-3:2006 eq. (19)-(26), per unit module: s_Fn/m_n, ρ_F/m_n, and G, θ, of an
+    external gear cut by a rack without protuberance."""
+    E = math.pi / 4 - h_fP * math.tan(alpha) - (1 - math.sin(alpha)) * rho_fP / math.cos(alpha)
+    G = rho_fP - h_fP + x
+    H = 2 / z * (math.pi / 2 - E) - math.pi / 3
+    theta = math.pi / 6
+    for _ in range(60):
+        theta = 2 * G / z * math.tan(theta) - H
+    s = z * math.sin(math.pi / 3 - theta) + math.sqrt(3) * (G / math.cos(theta) - rho_fP)
+    rho = rho_fP + 2 * G * G / (math.cos(theta) * (z * math.cos(theta) ** 2 - 2 * G))
+    return s, rho, G, theta
+
+
+@pytest.mark.parametrize("z, x", [(17, 0.145), (20, 0.0), (30, -0.3), (60, 0.0), (103, 0.0)])
+def test_the_critical_section_is_isos_closed_form(z, x):
+    """s_Fn within 0.05 % and ρ_F within 0.5 % of ISO's closed form (which holds exactly for
+    the trochoid a rack's tip rounding cuts), m_n = 3 mm."""
+    section = root.critical_section(CylindricalGear(z, 3.0, math.radians(20), 30.0,
+                                                    profile_shift=x))
+    s, rho, _, _ = iso_section(z, x)
+    assert section.s_Fn / 3.0 == pytest.approx(s, rel=5e-4)
+    assert section.rho_F / 3.0 == pytest.approx(rho, rel=5e-3)
+
+
+def test_the_root_stress_is_the_finite_element_tooths():
+    """The bundled pinion (z = 20, m = 3 mm): a unit line load at radius 30.5 mm (near the
+    lowest point of single contact) and at the tip (32.9 mm): the ISO form of rating.root
+    within 10 % of the tangential stress at the 30° tangent of 2D plane-strain finite
+    elements (quadratic triangles, 0.2 mm at the tooth; 0.12 mm moves it by < 1 %: 0.8849
+    -> 0.8857 and 1.2622 -> 1.2664 MPa per N/mm). Measured: the formula is 3-7 % above
+    (0.914 against 0.885; 1.343 against 1.262), and the fillet's largest stress lies 0.5-1.6 %
+    above the 30° tangent's."""
+    from fe_root import fillet_stress
+
+    gear = CylindricalGear(20, 3.0, math.radians(20), 30.0)
+    model = root.root_stress(gear, 28.5)
+    for radius in (30.5, 32.9):
+        fe = fillet_stress(gear, radius, h_tooth=0.2, h_patch=0.1)
+        at_30 = fe["stress"][np.argmin(np.abs(fe["inclination"] - 30.0))]
+        formula = float(model.stress(1.0, radius))
+        assert formula == pytest.approx(at_30, rel=0.10)
+        assert at_30 <= fe["stress"].max() <= 1.03 * at_30
+
+
+def test_the_life_factors_are_iso_tr_6336_30s():
+    """ISO/TR 6336-30:2017 Example 1 (case-carburized, σ_Hlim 1500 MPa, no pitting
+    permitted): Z_NT1 = 0.910 at 1.080e9 cycles, Z_NT2 = 0.962 at 1.783e8, and with its
+    Z_L·Z_v·Z_R = 1.04739 · 0.96911 · 0.96599 its σ_HP1 = 1338.48 and σ_HP2 = 1414.53 MPa;
+    the tables' points: Z_NT 1.6 static and 1.0 at 5e7 (steels), Y_NT 2.5 static, 1.0 at
+    3e6 and 0.85 at 1e10."""
+    Z1 = life.contact_life_factor("case_carburized", 1.080e9)
+    Z2 = life.contact_life_factor("case_carburized", 1.783e8)
+    assert (round(Z1, 3), round(Z2, 3)) == (0.910, 0.962)
+    lubrication = 1.04739 * 0.96911 * 0.96599
+    assert 1500 * Z1 * lubrication == pytest.approx(1338.48, rel=5e-4)
+    assert 1500 * Z2 * lubrication == pytest.approx(1414.53, rel=5e-4)
+    assert life.contact_life_factor("through_hardened", 1e4) == 1.6
+    assert life.contact_life_factor("through_hardened", 5e7) == pytest.approx(1.0)
+    assert life.contact_life_factor("nitrided", 2e6) == pytest.approx(1.0)
+    assert life.contact_life_factor("case_carburized", 1e9, limited_pitting=True) \
+        == pytest.approx(1.0)
+    for treatment in ("case_carburized", "through_hardened", "nitrided"):
+        assert life.root_life_factor(treatment, 3e6) == pytest.approx(1.0)
+        assert life.root_life_factor(treatment, 1e10) == pytest.approx(0.85)
+    assert life.root_life_factor("case_carburized", 100.0) == 2.5
+
+
+def spur(**fields) -> dict:
+    """The bundled 20/60 pair (m = 3 mm, b = 30 mm) aligned and uncrowned, 8000 N."""
+    return {"kind": "spur", "teeth": [20, 60], "module": "3 mm", "pressure_angle": "20 deg",
+            "face_width": "30 mm", "load": {"tangential_load": "8000 N"},
+            "analysis": {"positions": 15, "interference": False, "positions_check": False,
+                         "subsurface": False}, **fields}
+
+
+def iso_sigma_F0(z: int, F_t: float, b: float, m: float, mate: int) -> float:
+    """ISO 6336-3:2006 Method B's σ_F0 = F_t/(b m_n)·Y_F·Y_S of a spur gear (x = 0, rack
+    1.25/0.38, 20°) loaded at the outer point of single pair tooth contact, eq. (16)-(30)."""
+    alpha = math.radians(20.0)
+    s, rho, G, theta = iso_section(z)
+    d, db = z * m, z * m * math.cos(alpha)
+    da, da2, db2 = d + 2 * m, (mate + 2) * m, mate * m * math.cos(alpha)
+    a = 0.5 * (z + mate) * m
+    length = (math.sqrt(da ** 2 - db ** 2) + math.sqrt(da2 ** 2 - db2 ** 2)) / 2 \
+        - a * math.sin(alpha)
+    eps = length / (math.pi * m * math.cos(alpha))
+    d_en = 2 * math.sqrt((math.sqrt((da / 2) ** 2 - (db / 2) ** 2)
+                          - math.pi * d * math.cos(alpha) / z * (eps - 1)) ** 2 + (db / 2) ** 2)
+    a_en = math.acos(db / d_en)
+    involute = lambda t: math.tan(t) - t         # noqa: E731
+    gamma = math.pi / 2 / z + involute(alpha) - involute(a_en)
+    a_Fen = a_en - gamma
+    h = 0.5 * ((math.cos(gamma) - math.sin(gamma) * math.tan(a_Fen)) * d_en / m
+               - z * math.cos(math.pi / 3 - theta) - G / math.cos(theta) + 0.38)
+    Y_F = 6 * h * math.cos(a_Fen) / (s ** 2 * math.cos(alpha))
+    L, q = s / h, s / (2 * rho)
+    Y_S = (1.2 + 0.13 * L) * q ** (1 / (1.21 + 2.3 / L))
+    return F_t / (b * m) * Y_F * Y_S
+
+
+def test_the_loaded_pairs_root_stress_is_isos_at_the_outer_point_of_single_contact():
+    """The aligned, uncrowned 20/60 pair at 8000 N, 29 positions: each member's largest root
+    stress over the cycle against ISO 6336-3 Method B's σ_F0 (251.5 MPa pinion, 238.0 MPa
+    gear, from the standard's formulae here). Not equal, and why: ISO puts the whole load
+    at the outer point of single contact, spread evenly over the face; the model carries
+    each position's load where it is, shared by the pairs as their deflections share it:
+    under load the leaving pair still carries a little at the nominal outer point, so the
+    model reads lower there (the free face ends carry less than the mean, mid-face only
+    0.2 % more). Measured: -1.4 % pinion, -3.8 % gear (43 positions: -0.1 %, -4.3 %).
+    Within -6 % / +3 %."""
+    from toothcontact.analyses import analyse
+    from toothcontact.case import parse_case
+
+    raw = spur()
+    raw["analysis"]["positions"] = 29
+    summary = analyse(parse_case(raw)).sections["summary"]
+    for name, z, mate in (("pinion", 20, 60), ("gear", 60, 20)):
+        expected = iso_sigma_F0(z, 8000.0, 30.0, 3.0, mate)
+        ratio = summary[f"{name}_root_stress_max_MPa"] / expected
+        assert 0.94 <= ratio <= 1.03, (name, summary[f"{name}_root_stress_max_MPa"], expected)
+
+
+def test_the_safety_factors_follow_iso_6336_from_the_loaded_stresses():
+    """Case-carburized pinion (σ_Hlim 1500, σ_Flim 500 MPa), through-hardened gear with
+    only σ_Hlim 900 MPa, 1e9 pinion cycles: S_H = σ_Hlim·Z_NT·Z_LvR/(p·sqrt(K_A·K_v)) per
+    member (p the largest active-flank pressure of the contacts not edge-loaded), the
+    least the pair's; S_F = σ_Flim·2·Y_NT/(σ_F·K_A·K_v); the gear without
+    σ_Flim gets S_F null and the note says why; K_A = 1.5 lowers S_H by sqrt(1.5) and S_F
+    by 1.5 exactly; each safety is a design check against its least."""
+    from toothcontact.analyses import analyse
+    from toothcontact.case import parse_case
+
+    fields = dict(material={"treatment": "case_carburized", "sigma_Hlim": "1500 MPa",
+                            "sigma_Flim": "500 MPa"},
+                  gear_material={"treatment": "through_hardened", "sigma_Hlim": "900 MPa"})
+    raw = spur(**fields, rating={"pinion_cycles": 1e9, "lubrication_factor": 0.95})
+    result = analyse(parse_case(raw))
+    s = result.sections["summary"]
+    judged = [r for r in result.sections["positions"]
+              if r["bem_status"] == "solved" and not r["edge_loaded"]]
+    p = max(r["flank_p_max_MPa"] for r in judged)
+    Z1 = life.contact_life_factor("case_carburized", 1e9)
+    Z2 = life.contact_life_factor("through_hardened", 1e9 / 3)
+    assert s["S_H_pinion"] == pytest.approx(1500 * Z1 * 0.95 / p, rel=1e-12)
+    assert s["S_H_gear"] == pytest.approx(900 * Z2 * 0.95 / p, rel=1e-12)
+    assert s["S_H"] == min(s["S_H_pinion"], s["S_H_gear"])
+    Y1 = life.root_life_factor("case_carburized", 1e9)
+    assert s["S_F_pinion"] == pytest.approx(500 * 2 * Y1 / s["pinion_root_stress_max_MPa"],
+                                            rel=1e-12)
+    assert s["S_F_gear"] is None and "no sigma_Flim for the gear's material" in s["safety_note"]
+    names = {c.name: c for c in result.checks}
+    assert names["contact safety S_H at least S_Hmin"].ok == (s["S_H"] >= 1.0)
+    assert "root safety S_F of the pinion at least S_Fmin" in names
+    heavier = analyse(parse_case(spur(**fields, rating={
+        "pinion_cycles": 1e9, "lubrication_factor": 0.95, "application_factor": 1.5})))
+    h = heavier.sections["summary"]
+    assert h["S_H"] == pytest.approx(s["S_H"] / math.sqrt(1.5), rel=1e-9)
+    assert h["S_F_pinion"] == pytest.approx(s["S_F_pinion"] / 1.5, rel=1e-9)
+
+
+@pytest.mark.parametrize("material, says", [
+    ({"sigma_Hlim": "1500 MPa"}, "material: treatment: give the heat treatment"),
+    ({"treatment": "grey_cast_iron"}, "material: E / nu: give both for a grey cast iron"),
+    ({"treatment": "carburised"}, "material.treatment"),
+    ({"treatment": "nitrided", "sigma_Flim": "-5 MPa"}, "material.sigma_Flim"),
+])
+def test_a_bad_material_is_refused_naming_the_field(material, says):
+    from toothcontact.case import CaseError, parse_case
+
+    with pytest.raises(CaseError, match=says):
+        parse_case(spur(material=material))
+
+
+def test_a_duty_cycle_adds_each_levels_damage_on_the_s_n_curves():
+    """Two levels (4000 N for 1e9 pinion cycles, 8000 N for 1e7): the level at the case's
+    own load gives the case's σ_H and root stresses exactly; each level's N_i is where the
+    S-N curve meets its stress (Z_NT(N_i)·σ_Hlim = σ_H: the round trip to 1e-9; below
+    0.85 σ_Hlim, the 4000 N level's, the line from 5e7 through 1e10 continued), and D is
+    Σ n_i/N_i with the gear's cycles by the ratio. The S-N curve is the life factors' line:
+    ISO/TR 6336-30's Z_NT 0.910 is reached at 1.08e9 cycles."""
+    from toothcontact.analyses import analyse
+    from toothcontact.case import parse_case
+
+    raw = spur(material={"treatment": "case_carburized", "sigma_Hlim": "1500 MPa",
+                         "sigma_Flim": "500 MPa"})
+    raw["analysis"]["positions"] = 9
+    raw["load"]["spectrum"] = [{"tangential_load": "4000 N", "cycles": 1e9},
+                               {"tangential_load": "8000 N", "cycles": 1e7}]
+    result = analyse(parse_case(raw))
+    s, levels = result.sections["summary"], result.sections["duty_cycle"]["levels"]
+    assert levels[1]["sigma_H_MPa"] == pytest.approx(s["sigma_H_MPa"], rel=1e-12)
+    assert levels[1]["pinion_root_stress_max_MPa"] == pytest.approx(
+        s["pinion_root_stress_max_MPa"], rel=1e-12)
+    damage = 0.0
+    for level in levels:
+        factor = level["sigma_H_MPa"] / 1500.0
+        N = life.contact_cycles("case_carburized", factor)
+        if factor >= 0.85:
+            assert life.contact_life_factor("case_carburized", N) == pytest.approx(factor,
+                                                                               rel=1e-9)
+        else:   # below the line's end the line goes on with its slope (elementary Miner)
+            slope = math.log(0.85) / math.log(1e10 / 5e7)
+            assert N == pytest.approx(5e7 * factor ** (1 / slope), rel=1e-9)
+        damage += level["pinion_cycles"] / N
+    assert s["miner_sum_flank_pinion"] == pytest.approx(damage, rel=1e-12)
+    gear = sum(level["pinion_cycles"] / 3 / life.contact_cycles(
+        "case_carburized", level["sigma_H_MPa"] / 1500.0) for level in levels)
+    assert s["miner_sum_flank_gear"] == pytest.approx(gear, rel=1e-12)
+    assert life.contact_cycles("case_carburized", 0.910) == pytest.approx(1.08e9, rel=0.01)
+    assert any(c.name == "duty cycle: Miner's sum of the pinion's flank at most 1"
+               for c in result.checks)

@@ -1,0 +1,143 @@
+"""Stresses below a contact (contact.subsurface) against Johnson's closed forms (Contact
+Mechanics, 1985): the circular Hertz contact's stresses along its axis (eq. (3.46)): the
+largest principal shear 0.31 p0 at 0.48 a (ν = 0.3); the line contact's (McEwen, eq.
+(4.49)-(4.50)): 0.300 p0 at 0.786 b. Tolerance 1 % of the value and of the depth, on
+grids whose refinement (64 -> 128 cells across the contact) moves the answer less than
+0.1 %."""
+
+import math
+
+import numpy as np
+import pytest
+
+from toothcontact.contact import subsurface
+
+
+def circular(n: int, half: float = 1.2) -> tuple[np.ndarray, float]:
+    """Hertz's pressure p0·sqrt(1 - r²/a²) (p0 = 1, a = 1) on n × n cells over ±half."""
+    x = (np.arange(n) + 0.5) / n * 2 * half - half
+    X, Y = np.meshgrid(x, x, indexing="ij")
+    return np.sqrt(np.clip(1.0 - X * X - Y * Y, 0.0, None)), 2 * half / n
+
+
+def axis_closed_form(z: np.ndarray, nu: float = 0.3) -> tuple[np.ndarray, np.ndarray]:
+    """σ_r (= σ_θ) and σ_z on the axis of a circular Hertz contact (p0 = 1, a = 1),
+    Johnson eq. (3.46)."""
+    sr = -(1 + nu) * (1 - z * np.arctan(1 / z)) + 0.5 / (1 + z * z)
+    return sr, -1 / (1 + z * z)
+
+
+def test_the_point_load_carries_its_load_at_every_depth():
+    """The plane at depth z carries the unit load: ∫σzz dA = -1, and ∫τxz dA = 0 (a check of
+    the kernel independent of the source's printed form)."""
+    for z in (0.05, 0.3, 1.0):
+        x = np.linspace(-60 * z, 60 * z, 1201)
+        X, Y = np.meshgrid(x, x, indexing="ij")
+        s = subsurface.point_load_stresses(X, Y, z, 0.3)
+        area = (x[1] - x[0]) ** 2
+        assert s[2].sum() * area == pytest.approx(-1.0, abs=2e-3)
+        assert abs(s[4].sum() * area) < 1e-9
+
+
+@pytest.mark.parametrize("nu", [0.25, 0.3])
+def test_the_circular_contacts_stresses_on_its_axis_are_johnsons(nu):
+    """σ_r and σ_z on the axis at 0.1a-2a within 0.5 % of p0 (64 × 64 cells)."""
+    p, d = circular(64)
+    for z in (0.1, 0.3, 0.48, 0.8, 1.2, 2.0):
+        s = subsurface.stresses(p, d, d, z, nu)
+        centre = s[:, 31:33, 31:33].mean(axis=(1, 2))      # the four cells about the axis
+        sr, sz = axis_closed_form(np.array(z), nu)
+        assert centre[0] == pytest.approx(sr, abs=5e-3)
+        assert centre[1] == pytest.approx(sr, abs=5e-3)
+        assert centre[2] == pytest.approx(sz, abs=5e-3)
+
+
+def test_the_largest_shear_of_a_circular_contact_is_johnsons():
+    """0.310 p0 at 0.481 a (ν = 0.3, the closed form's maximum on the axis, where Johnson's
+    τ1 is largest), and von Mises 0.620 p0 at the same depth: within 1 %; 64 and 128 cells
+    across agree to 0.1 %."""
+    z = np.linspace(0.01, 2.0, 20001)
+    sr, sz = axis_closed_form(z)
+    tau = 0.5 * (sr - sz)
+    k = int(np.argmax(tau))
+    found = {n: subsurface.peak(*circular(n)[:1], circular(n)[1], circular(n)[1], 0.3)
+             for n in (64, 128)}
+    for n, peak in found.items():
+        assert peak.shear_MPa == pytest.approx(tau[k], rel=0.01)
+        assert peak.shear_depth_mm == pytest.approx(z[k], rel=0.01)
+        assert peak.von_mises_MPa == pytest.approx(2 * tau[k], rel=0.01)
+        assert peak.von_mises_depth_mm == pytest.approx(z[k], rel=0.01)
+    assert found[64].shear_MPa == pytest.approx(found[128].shear_MPa, rel=1e-3)
+    assert tau[k] == pytest.approx(0.31, abs=0.005) and z[k] == pytest.approx(0.48, abs=0.005)
+
+
+def test_the_largest_shear_of_a_line_contact_is_johnsons():
+    """A strip of Hertz line pressure p0·sqrt(1 - x²/b²) (b = 1): at mid-length (σ1 - σ3)/2
+    over depth peaks at 0.300 p0 at 0.786 b as McEwen's closed form does (its maximum
+    0.3003 at 0.7862 b), within 1 %. A strip L long is plane strain only as L grows: its
+    σx at 0.786 b is 0.0093 p0 short of the closed form at 40 b, 0.0046 at 80 b (as 1/L),
+    so the stresses are Richardson's extrapolation from those two lengths."""
+    n, half = 64, 1.3
+    x = (np.arange(n) + 0.5) / n * 2 * half - half
+    across = np.sqrt(np.clip(1.0 - x * x, 0.0, None))[:, None]
+
+    def at_mid_length(z, cells):
+        s = subsurface.stresses(np.repeat(across, cells, axis=1), 2 * half / n, 0.2, z, 0.3)
+        return s[:, :, cells // 2 - 1:cells // 2 + 1].mean(axis=2)
+
+    def closed_form(zz):
+        sx = -((1 + 2 * zz * zz) / np.sqrt(1 + zz * zz) - 2 * zz)
+        return 0.5 * (sx + 1 / np.sqrt(1 + zz * zz))
+
+    depths = np.linspace(0.70, 0.88, 7)
+    shear = [subsurface.principal_shear(2 * at_mid_length(z, 400) - at_mid_length(z, 200)).max()
+             for z in depths]
+    assert shear == pytest.approx(closed_form(depths), rel=0.005)
+    coefficients = np.polyfit(depths, shear, 2)
+    depth = -coefficients[1] / (2 * coefficients[0])
+    zz = np.linspace(0.01, 2, 20001)
+    tau = closed_form(zz)
+    assert np.polyval(coefficients, depth) == pytest.approx(tau.max(), rel=0.01)
+    assert depth == pytest.approx(zz[np.argmax(tau)], rel=0.01)
+    assert tau.max() == pytest.approx(0.300, abs=0.001)
+    assert zz[np.argmax(tau)] == pytest.approx(0.786, abs=0.001)
+
+
+def spur_case(**analysis) -> dict:
+    """The crowned 20/60 spur pair (m = 3 mm, b = 30 mm, R = 4000 mm) at 6000 N, 5 positions."""
+    return {"kind": "spur", "teeth": [20, 60], "module": "3 mm", "pressure_angle": "20 deg",
+            "face_width": "30 mm", "pinion": {"crown": {"radius": "4000 mm"},
+                                              "tip_relief": {"amount": "20 um",
+                                                             "start_diameter": "64 mm"}},
+            "gear": {"tip_relief": {"amount": "20 um", "start_diameter": "184 mm"}},
+            "load": {"tangential_load": "6000 N"},
+            "analysis": {"positions": 5, "interference": False, "positions_check": False,
+                         **analysis}}
+
+
+def test_a_gear_contacts_shear_is_hertzs_share_of_its_pressure():
+    """Every loaded contact of a crowned, tip-relieved spur pair that is not edge-loaded is a
+    slender Hertz ellipse: its largest shear below the surface is 0.30 of its peak pressure
+    (line contact 0.300, circle 0.31; within 2 %), 0.45-0.85 of its Hertz half-width deep
+where it has one, and the summary carries the largest with
+    its depth and place. With [analysis] subsurface = false nothing is computed."""
+    from toothcontact.analyses import analyse
+    from toothcontact.case import parse_case
+
+    result = analyse(parse_case(spur_case()))
+    rows = [r for r in result.sections["positions"] if r["bem_status"] == "solved"]
+    smooth = [r for r in rows if not r["edge_loaded"] and r["bem_load_N"] > 500.0]
+    assert len(smooth) >= 3
+    for r in smooth:
+        assert r["subsurface_shear_max_MPa"] / r["bem_p_max_MPa"] == pytest.approx(0.30, rel=0.02)
+        if r["b_mm"]:      # Hertz's depth: 0.786 b (line) to 0.48 a (circle)
+            assert 0.45 * r["b_mm"] < r["subsurface_shear_depth_mm"] < 0.85 * r["b_mm"]
+    summary = result.sections["summary"]
+    top = max(rows, key=lambda r: r["subsurface_shear_max_MPa"])
+    assert summary["subsurface_shear_max_MPa"] == top["subsurface_shear_max_MPa"]
+    assert summary["subsurface_shear_at"] == f"roll {top['roll_deg']:.2f} deg pair {top['pair']}"
+    off = analyse(parse_case(spur_case(subsurface=False)))
+    assert "subsurface_shear_max_MPa" not in off.sections["summary"]
+    assert all("subsurface_shear_max_MPa" not in r for r in off.sections["positions"])
+    assert sum(r["load_share"] for r in rows if r["roll_deg"] == rows[0]["roll_deg"]) \
+        == pytest.approx(1.0)
