@@ -16,8 +16,8 @@ from toothcontact.surfaces.involute import CylindricalGear
 
 def iso_section(z: float, x: float = 0.0, alpha=math.radians(20.0), h_fP: float = 1.25,
                 rho_fP: float = 0.38) -> tuple[float, float, float, float]:
-    """ISO 6336-3:2006 eq. (19)-(26), per unit module: s_Fn/m_n, ρ_F/m_n, and G, θ, of an
-    external gear cut by a rack without protuberance."""
+    """ISO 6336-3:2006 Method B's closed form of the critical section, per unit module:
+    s_Fn/m_n, ρ_F/m_n, and G, θ, of an external gear cut by a rack without protuberance."""
     E = math.pi / 4 - h_fP * math.tan(alpha) - (1 - math.sin(alpha)) * rho_fP / math.cos(alpha)
     G = rho_fP - h_fP + x
     H = 2 / z * (math.pi / 2 - E) - math.pi / 3
@@ -93,7 +93,8 @@ def spur(**fields) -> dict:
 
 def iso_sigma_F0(z: int, F_t: float, b: float, m: float, mate: int) -> float:
     """ISO 6336-3:2006 Method B's σ_F0 = F_t/(b m_n)·Y_F·Y_S of a spur gear (x = 0, rack
-    1.25/0.38, 20°) loaded at the outer point of single pair tooth contact, eq. (16)-(30)."""
+    1.25/0.38, 20°) loaded at the outer point of single pair tooth contact (its d_en, α_en,
+    γ_e, α_Fen and h_Fe)."""
     alpha = math.radians(20.0)
     s, rho, G, theta = iso_section(z)
     d, db = z * m, z * m * math.cos(alpha)

@@ -1,7 +1,7 @@
 """Stresses below a contact (contact.subsurface) against Johnson's closed forms (Contact
-Mechanics, 1985): the circular Hertz contact's stresses along its axis (eq. (3.46)): the
-largest principal shear 0.31 p0 at 0.48 a (ν = 0.3); the line contact's (McEwen, eq.
-(4.49)-(4.50)): 0.300 p0 at 0.786 b. Tolerance 1 % of the value and of the depth, on
+Mechanics, 1985, ch. 4): the circular Hertz contact's stresses along its axis: the
+largest principal shear 0.31 p0 at 0.48 a (ν = 0.3); the line contact's (McEwen's): 0.300
+p0 at 0.786 b. Tolerance 1 % of the value and of the depth, on
 grids whose refinement (64 -> 128 cells across the contact) moves the answer less than
 0.1 %."""
 
@@ -22,7 +22,7 @@ def circular(n: int, half: float = 1.2) -> tuple[np.ndarray, float]:
 
 def axis_closed_form(z: np.ndarray, nu: float = 0.3) -> tuple[np.ndarray, np.ndarray]:
     """σ_r (= σ_θ) and σ_z on the axis of a circular Hertz contact (p0 = 1, a = 1),
-    Johnson eq. (3.46)."""
+    Johnson ch. 4 (the stresses on the axis)."""
     sr = -(1 + nu) * (1 - z * np.arctan(1 / z)) + 0.5 / (1 + z * z)
     return sr, -1 / (1 + z * z)
 

@@ -3,7 +3,7 @@ at depth, and the largest principal shear (σ1 − σ3)/2 and von Mises stress w
 depths: what pitting and case crushing are judged by.
 
 The stress at depth z is the pressure convolved with Boussinesq's stresses under a normal
-point load (Johnson, *Contact Mechanics*, 1985, eq. (3.22), turned to Cartesian axes),
+point load (Johnson, *Contact Mechanics*, 1985, §3.2, turned to Cartesian axes),
 integrated over each pressure cell (the cell's midpoint beyond NEAR cells, a Gauss-Legendre
 rule of GAUSS² points on the cells nearer), and summed by FFT over grids zero-padded to
 twice their size: a linear, not a periodic, convolution (Liu, Wang & Liu, *Wear* 243
@@ -36,19 +36,18 @@ REFINE_STEP = 0.03
 @dataclass(frozen=True)
 class SubsurfacePeak:
     """The largest principal shear and von Mises stress below a contact (MPa) and their
-    depths (mm), with the depths scanned."""
+    depths (mm)."""
 
     shear_MPa: float
     shear_depth_mm: float
     von_mises_MPa: float
     von_mises_depth_mm: float
-    half_width_mm: float
 
 
 def point_load_stresses(x, y, z, nu: float) -> np.ndarray:
     """Stresses (6, ...): σxx, σyy, σzz, σxy, σxz, σyz (MPa) at (x, y, z) (mm, z > 0 into
     the body) under a unit normal point load (1 N, compressive) at the origin: Boussinesq
-    (Johnson eq. (3.22)), with (1 - z/ρ)/r² written as 1/(ρ(ρ + z)) and (σ_r - σ_θ)/r²
+    (Johnson §3.2), with (1 - z/ρ)/r² written as 1/(ρ(ρ + z)) and (σ_r - σ_θ)/r²
     in a form that holds on the axis."""
     dtype = np.result_type(x, y, z, 1.0)         # float32 in, float32 out; else float64
     x, y, z = np.broadcast_arrays(*(np.asarray(v, dtype) for v in (x, y, z)))
@@ -174,7 +173,7 @@ def peak(pressure: np.ndarray, dx: float, dy: float, nu: float) -> SubsurfacePea
         values = np.array([at(float(d))[column] for d in three])
         vertex = _parabola_peak(three, values)
         out += [float(np.polyval(np.polyfit(three, values, 2), vertex)), vertex]
-    return SubsurfacePeak(out[0], out[1], out[2], out[3], half_width)
+    return SubsurfacePeak(*out)
 
 
 def _parabola_peak(z: np.ndarray, f: np.ndarray) -> float:

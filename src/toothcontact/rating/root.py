@@ -1,23 +1,24 @@
 """Tooth root stress from a line load on the flank: ISO 6336-3 Method B's critical section
 and factors, taken from the exact generated fillet and applied to the load where it acts.
 
-The critical section (ISO 6336-3:2006, 6.2): the chord s_Fn between the points where
+The critical section (ISO 6336-3:2006, Method B's tooth form factor Y_F): the chord s_Fn
+between the points where
 tangents inclined 30° to the tooth's centre line (60° on an internal gear) touch the two
 root fillets, and the fillet's radius of curvature ρ_F there: here found on the fillet the
 basic rack generates (surfaces.generation), not on ISO's closed form of the trochoid. A
 load w (N per mm of tooth length) on the flank at radius r, along the flank's normal,
 crosses the centre line at h_F above the section at the angle α_Fen from its normal;
-the nominal bending stress is 6·w·h_F·cos α_Fen / s_Fn² (Y_F's definition, eq. (18)
-without the module), times the stress correction factor Y_S = (1.2 + 0.13 L)·
-q_s^(1/(1.21 + 2.3/L)), L = s_Fn/h_F, q_s = s_Fn/(2ρ_F) (eq. (47)-(49)), with the actual
-h_F of the load's height rather than of the outer point of single pair contact.
+the nominal bending stress is 6·w·h_F·cos α_Fen / s_Fn² (Y_F's definition without the
+module), times Method B's stress correction factor Y_S = (1.2 + 0.13 L)·
+q_s^(1/(1.21 + 2.3/L)), L = s_Fn/h_F, q_s = s_Fn/(2ρ_F), with the actual h_F of the
+load's height rather than of the outer point of single pair contact.
 
 A helical gear is taken as ISO takes it: its virtual spur gear in the normal section
 (z_n = z/(cos²β_b·cos β), m_n, α_n, the same profile shift and tip height), the load per
 unit of tooth length the line load per mm of face times cos β_b, at the radius of the
 virtual gear whose distance from its tip along the line of action is the transverse one
-over cos β_b, and ISO's helix factor Y_β = 1 - ε_β·β/120° (ε_β at most 1, β at most 30°,
-eq. (41)). Units: mm, N, MPa.
+over cos β_b, and ISO's helix angle factor Y_β = 1 - ε_β·β/120° (ε_β at most 1, β at most
+30°). Units: mm, N, MPa.
 """
 
 from __future__ import annotations
@@ -105,9 +106,6 @@ class RootStress:
     section: CriticalSection
     radii: np.ndarray           # mm, the real gear's transverse load radii
     factors: np.ndarray         # 1/mm: 6 h_F cos α_Fen Y_S / s_Fn² × cos β_b
-    h_F: np.ndarray
-    cos_alpha_Fen: np.ndarray
-    Y_S: np.ndarray
     Y_beta: float
 
     def stress(self, line_load: np.ndarray, radius: np.ndarray) -> np.ndarray:
@@ -117,14 +115,14 @@ class RootStress:
 
 
 def stress_correction(s_Fn: float, h_F, rho_F: float):
-    """ISO 6336-3 eq. (47)-(49): Y_S = (1.2 + 0.13 L) q_s^(1/(1.21 + 2.3/L))."""
+    """ISO 6336-3 Method B's Y_S = (1.2 + 0.13 L) q_s^(1/(1.21 + 2.3/L))."""
     L = s_Fn / np.asarray(h_F, float)
     q_s = s_Fn / (2.0 * rho_F)
     return (1.2 + 0.13 * L) * q_s ** (1.0 / (1.21 + 2.3 / L))
 
 
 def helix_factor(gear: CylindricalGear, overlap_ratio: float) -> float:
-    """ISO 6336-3 eq. (41): Y_β = 1 - ε_β·β/120°, ε_β taken at most 1, β at most 30°."""
+    """ISO 6336-3's Y_β = 1 - ε_β·β/120°, ε_β taken at most 1, β at most 30°."""
     beta = min(math.degrees(gear.helix_angle), 30.0)
     return 1.0 - min(overlap_ratio, 1.0) * beta / 120.0
 
@@ -149,5 +147,4 @@ def root_stress(gear: CylindricalGear, form_radius: float, overlap_ratio: float 
     cos_alpha = np.abs(direction[:, 1])
     Y_S = stress_correction(section.s_Fn, h_F, section.rho_F)
     factors = 6.0 * h_F * cos_alpha * Y_S / section.s_Fn ** 2 * cos_beta_b
-    return RootStress(section, radii, factors, h_F, cos_alpha, Y_S,
-                      helix_factor(gear, overlap_ratio))
+    return RootStress(section, radii, factors, helix_factor(gear, overlap_ratio))
