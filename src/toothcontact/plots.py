@@ -389,23 +389,32 @@ def mesh_loads(result: dict, path: str | Path) -> Path:
     position (the load_distribution section's, with ISO 6336-1's c_γα beside it), the
     transmission error's mesh harmonics (summary te_harmonics_um and
     unloaded_te_harmonics_um, µm) and the largest principal shear below each contact (MPa;
-    the cycle's largest marked with its depth). A panel whose data the result lacks says
-    so."""
+    the cycle's largest marked with its depth); a spline's over the tooth index, a series a
+    position. A panel whose data the result lacks says so."""
     rows = result["positions"]
     summary = result.get("summary") or {}
     roll, pair = _column(rows, "roll_deg"), _column(rows, "pair")
     share = _column(rows, "load_share")
     shear = _column(rows, "subsurface_shear_max_MPa")
+    # a spline's teeth all carry at every position: over the tooth index, one series a
+    # position (as mesh_cycle draws it)
+    by_tooth = result.get("kind") == "spline"
+    x, group = (pair, roll) if by_tooth else (roll, pair)
+    x_label = "tooth index" if by_tooth else f"{_driver(result)} roll angle (deg)"
+
+    def label(g: float) -> str:
+        return f"roll {g:g}°" if by_tooth else (f"pair {int(g):+d}" if g else "pair 0")
+
     fig = _figure(6.4)
     (ax_share, ax_stiff), (ax_te, ax_shear) = fig.subplots(2, 2)
-    pairs = sorted(set(pair[np.isfinite(share)]))
-    for i, g in enumerate(pairs):
-        on = (pair == g) & np.isfinite(share)
-        ax_share.plot(roll[on], share[on], "o-", ms=3, lw=1.0, color=SERIES[i % len(SERIES)],
-                      label=f"pair {int(g):+d}" if g else "pair 0")
-    ax_share.set(xlabel=f"{_driver(result)} roll angle (deg)", ylabel="share of the load",
-                 title="Load sharing", ylim=(-0.05, 1.05))
-    if pairs:
+    groups = sorted(set(group[np.isfinite(share)]))
+    for i, g in enumerate(groups):
+        on = (group == g) & np.isfinite(share)
+        ax_share.plot(x[on], share[on], "o-", ms=3, lw=1.0, color=SERIES[i % len(SERIES)],
+                      label=label(g))
+    ax_share.set(xlabel=x_label, ylabel="share of the load", title="Load sharing",
+                 ylim=(-0.05, 1.05))
+    if groups:
         ax_share.legend(fontsize=7, loc="best")
     section = result.get("load_distribution") or {}
     stiffness = section.get("mesh_stiffness_N_per_mm_um")
@@ -430,29 +439,29 @@ def mesh_loads(result: dict, path: str | Path) -> Path:
             orders = np.arange(1, len(values) + 1)
             ax_te.bar(orders + offset, values, width, color=colour, label=name)
             for o, v in zip(orders, values):
-                ax_te.annotate(f"{v:.2f}", (o + offset, v), ha="center", va="bottom",
+                ax_te.annotate(f"{v:.3g}", (o + offset, v), ha="center", va="bottom",
                                fontsize=6)
     if loaded or unloaded:
         ax_te.legend(fontsize=7)
-        ax_te.xaxis.set_major_locator(MaxNLocator(integer=True))
+        ax_te.set_xticks(np.arange(1, max(len(loaded or []), len(unloaded or [])) + 1))
     ax_te.set(xlabel="mesh order (× tooth-mesh frequency)", ylabel="amplitude (µm)",
               title="Transmission error harmonics")
     on = np.isfinite(shear)
-    for i, g in enumerate(sorted(set(pair[on]))):
-        here = on & (pair == g)
-        ax_shear.plot(roll[here], shear[here], "o-", ms=3, lw=1.0,
+    for i, g in enumerate(sorted(set(group[on]))):
+        here = on & (group == g)
+        ax_shear.plot(x[here], shear[here], "o-", ms=3, lw=1.0,
                       color=SERIES[i % len(SERIES)])
     if on.any():
         depth = summary.get("subsurface_shear_depth_mm")
         k = int(np.nanargmax(np.where(on, shear, -np.inf)))
-        ax_shear.plot(roll[k], shear[k], "s", color="black", ms=6,
+        ax_shear.plot(x[k], shear[k], "s", color="black", ms=6,
                       label=f"largest {shear[k]:.0f} MPa, {1e3 * depth:.0f} µm deep"
                       if depth is not None else "largest")
         ax_shear.legend(fontsize=7, loc="lower center")
     else:
         ax_shear.text(0.5, 0.5, "not computed ([analysis] subsurface)", ha="center",
                       va="center", transform=ax_shear.transAxes)
-    ax_shear.set(xlabel=f"{_driver(result)} roll angle (deg)", ylabel="(σ1 − σ3)/2 (MPa)",
+    ax_shear.set(xlabel=x_label, ylabel="(σ1 − σ3)/2 (MPa)",
                  title="Largest shear below each contact")
     fig.suptitle(_title(result, "Loads over the mesh cycle", 95), fontsize=10)
     return _save(fig, path)
