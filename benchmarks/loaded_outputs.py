@@ -15,8 +15,9 @@ import json
 import os
 import subprocess
 import sys
-import tempfile
 from pathlib import Path
+
+from timing import checked_out
 
 ROOT = Path(__file__).resolve().parent.parent
 CASE = ROOT / "cases" / "spur_relieved_20_60.toml"
@@ -74,23 +75,16 @@ def main() -> None:
     args = parser.parse_args()
     src = ROOT / "src"
     rows = []
-    with tempfile.TemporaryDirectory() as folder:
-        old = Path(folder) / "old"
-        subprocess.run(["git", "worktree", "add", "--detach", str(old), args.against],
-                       cwd=ROOT, check=True, capture_output=True)
-        try:
-            for name, code, where in (
-                    ("analysis, subsurface stresses", ANALYSIS.format(case=str(CASE),
-                                                                      subsurface=""), src),
-                    ("analysis, no subsurface stresses", ANALYSIS.format(
-                        case=str(CASE), subsurface=", subsurface=False"), src),
-                    (f"analysis at {args.against}", ANALYSIS.format(case=str(CASE),
-                                                                     subsurface=""),
-                     old / "src")):
-                rows.append({"step": name, "seconds": best_of(code, where, args.repeat)})
-        finally:
-            subprocess.run(["git", "worktree", "remove", "--force", str(old)], cwd=ROOT,
-                           check=True, capture_output=True)
+    with checked_out(args.against) as old:
+        for name, code, where in (
+                ("analysis, subsurface stresses", ANALYSIS.format(case=str(CASE),
+                                                                  subsurface=""), src),
+                ("analysis, no subsurface stresses", ANALYSIS.format(
+                    case=str(CASE), subsurface=", subsurface=False"), src),
+                (f"analysis at {args.against}", ANALYSIS.format(case=str(CASE),
+                                                                 subsurface=""),
+                 old / "src")):
+            rows.append({"step": name, "seconds": best_of(code, where, args.repeat)})
     for name, across, line in (("one line contact, 980 x 14 cells", 14, True),
                                ("one circular contact, 128 x 128 cells", 128, False)):
         rows.append({"step": name, "seconds": best_of(

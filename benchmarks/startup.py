@@ -15,8 +15,9 @@ import json
 import os
 import subprocess
 import sys
-import tempfile
 from pathlib import Path
+
+from timing import checked_out
 
 ROOT = Path(__file__).resolve().parent.parent
 
@@ -50,18 +51,11 @@ def main() -> None:
     parser.add_argument("--repeat", type=int, default=7)
     args = parser.parse_args()
     rows = []
-    with tempfile.TemporaryDirectory() as folder:
-        old = Path(folder) / "old"
-        subprocess.run(["git", "worktree", "add", "--detach", str(old), args.against],
-                       cwd=ROOT, check=True, capture_output=True)
-        try:
-            for name, step in STEPS.items():
-                rows.append({"step": name,
-                             "here_s": best_of(step, ROOT / "src", args.repeat),
-                             f"{args.against}_s": best_of(step, old / "src", args.repeat)})
-        finally:
-            subprocess.run(["git", "worktree", "remove", "--force", str(old)], cwd=ROOT,
-                           check=True, capture_output=True)
+    with checked_out(args.against) as old:
+        for name, step in STEPS.items():
+            rows.append({"step": name,
+                         "here_s": best_of(step, ROOT / "src", args.repeat),
+                         f"{args.against}_s": best_of(step, old / "src", args.repeat)})
     print(f"{'step':42s} {'here (s)':>9s} {args.against + ' (s)':>12s}")
     for row in rows:
         print(f"{row['step']:42s} {row['here_s']:9.3f} {row[args.against + '_s']:12.3f}")

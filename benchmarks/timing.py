@@ -1,10 +1,17 @@
-"""Wall-clock timing shared by the peer benchmarks (each runs in its own environment, so
-this is a plain module beside them, not part of the package)."""
+"""Wall-clock timing shared by the benchmarks (each runs in its own environment, so this
+is a plain module beside them, not part of the package): the best of repeated calls, and a
+commit checked out beside this one to time in the same run."""
 
 from __future__ import annotations
 
 import math
+import subprocess
+import tempfile
 import time
+from contextlib import contextmanager
+from pathlib import Path
+
+ROOT = Path(__file__).resolve().parent.parent
 
 
 def timed(fn, repeat: int = 1):
@@ -15,3 +22,18 @@ def timed(fn, repeat: int = 1):
         result = fn()
         best = min(best, time.perf_counter() - t0)
     return best, result
+
+
+@contextmanager
+def checked_out(revision: str):
+    """The repository at `revision`, checked out with `git worktree` into a temporary
+    folder for the block (its path; removed after)."""
+    with tempfile.TemporaryDirectory() as folder:
+        old = Path(folder) / "old"
+        subprocess.run(["git", "worktree", "add", "--detach", str(old), revision],
+                       cwd=ROOT, check=True, capture_output=True)
+        try:
+            yield old
+        finally:
+            subprocess.run(["git", "worktree", "remove", "--force", str(old)], cwd=ROOT,
+                           check=True, capture_output=True)
