@@ -24,7 +24,10 @@ OTHER = {"[length]": ("inch", "millimeter"), "[force]": ("lbf", "newton"),
          "[mass] / [time] ** 2": ("lbf / inch", "newton / millimeter"),
          "1 / [length]": ("1 / millimeter", "1 / inch"),
          "[length] ** 2 / [time]": ("stokes", "millimeter ** 2 / second"),
-         "[temperature]": ("degF", "kelvin")}
+         "[temperature]": ("degF", "kelvin"),
+         "1 / [time]": ("radian / second", "revolutions_per_minute"),
+         "[mass] / [length] ** 3": ("pound / foot ** 3", "kilogram / meter ** 3"),
+         "[length] * [time] ** 2 / [mass]": ("1 / psi", "1 / pascal")}
 _QUANTITY = re.compile(r"^\s*([+-]?(?:\d+\.?\d*|\.\d+)(?:[eE][+-]?\d+)?)\s*(\S.*)$")
 
 #: relative agreement asked of every number (the solvers stop at 1e-8 relative)
@@ -41,7 +44,9 @@ LOADED = ("bem_", "flank_p_max", "max_flank_p_max", "edge_pressure", "edge_load"
           "loaded_", "max_pressure", "max_edge_pressure", "max_edge_load", "max_end_load", "K_H_beta", "iso_K_H_beta",
           "mesh_stiffness", "single_stiffness", "line_load", "mean_line_load", "load_share",
           "te_harmonics", "subsurface_", "root_stress", "pinion_root_stress",
-          "gear_root_stress", "sigma_H_MPa", "S_H", "S_F", "miner_sum")
+          "gear_root_stress", "sigma_H_MPa", "S_H", "S_F", "miner_sum", "friction_coefficient",
+          "film_thickness", "lambda", "flash_temperature", "contact_temperature", "power_loss",
+          "mesh_power_loss", "mesh_efficiency", "bulk_temperature", "S_B", "S_lambda")
 #: an edge pressure averages its strip's cells, each taken all or nothing at the edge:
 #: on the measured helical pinion's gear tip 3.5e-3 apart
 EDGE_RTOL = 1e-2

@@ -174,6 +174,62 @@ class RatingSpec(Model):
     S_Fmin: Factor = Field(1.0, description="least root safety factor")
 
 
+#: the oil families a lubricant may name (analytic.lubricant.FAMILIES: their defaults);
+#: listed here so that reading a case does not import the analysis
+LUBRICANT_FAMILIES = ("mineral", "pao", "pag")
+
+
+class OperationSpec(Model):
+    """How the pair runs: the pinion's speed, the oil's temperature, and, where known, the
+    teeth's bulk temperature (default: ISO/TS 6336-20's estimate from the flash
+    temperature) and how the mesh is lubricated (its factor X_S in that estimate)."""
+
+    pinion_speed: quantity("rotational_speed", positive=True) = Field(
+        description="the pinion's speed, e.g. '3000 rpm'")
+    oil_temperature: Temperature = Field(description="oil sump or inlet temperature, e.g. "
+                                                     "'90 degC'")
+    bulk_temperature: Temperature | None = Field(
+        None, description="the teeth's bulk temperature (default: oil temperature + "
+                          "0.47·X_S·mean flash temperature, ISO/TS 6336-20)")
+    lubrication: Literal["splash", "spray"] = Field(
+        "splash", description="X_S = 1.2 (splash) or 1.0 (spray) in the bulk temperature")
+
+
+class LubricantSpec(Model):
+    """The oil: its kinematic viscosity at 40 and 100 °C (ASTM D341 between them), density
+    at 15 °C and pressure-viscosity coefficient (the family's typical values where not
+    given), and, where known, a fixed friction coefficient, the scuffing temperature and
+    the permissible specific film thickness for the safety factors."""
+
+    family: Literal[LUBRICANT_FAMILIES] = Field(
+        "mineral", description="mineral, pao (polyalphaolefin) or pag (polyglycol)")
+    viscosity_40: Viscosity = Field(description="kinematic viscosity at 40 °C, e.g. "
+                                                "'220 mm^2/s'")
+    viscosity_100: Viscosity = Field(description="kinematic viscosity at 100 °C, e.g. "
+                                                 "'19 mm^2/s'")
+    density: quantity("density", positive=True) | None = Field(
+        None, description="at 15 °C, e.g. '890 kg/m^3' (default: the family's)")
+    pressure_viscosity: quantity("pressure_viscosity", positive=True) | None = Field(
+        None, description="α, e.g. '1.8e-8 1/Pa' (default: the family's typical)")
+    friction_coefficient: Friction | None = Field(
+        None, description="a fixed mesh friction coefficient (default: ISO/TR 14179-2's, "
+                          "at each contact)")
+    scuffing_temperature: Temperature | None = Field(
+        None, description="θ_S of the oil and flanks (e.g. from an FZG test): the scuffing "
+                          "safety S_B")
+    permissible_specific_film: Factor | None = Field(
+        None, description="λ_GFP of ISO/TR 15144-1 (from a micropitting test): the "
+                          "micropitting safety S_lambda")
+
+    @model_validator(mode="after")
+    def _thinner_when_hot(self):
+        if not self.viscosity_100 < self.viscosity_40:
+            raise ValueError(f"viscosity_100: {self.viscosity_100:.4g} mm^2/s must be below "
+                             f"viscosity_40 ({self.viscosity_40:.4g} mm^2/s): an oil thins as "
+                             "it warms")
+        return self
+
+
 class Body(Material):
     radii: tuple[Radius, Radius] = Field(
         description="two principal radii, e.g. ['12.7 mm', 'inf']; negative = concave")
@@ -531,6 +587,9 @@ class Member(Model):
     end_relief: EndReliefSpec | None = None
     end_chamfer: EndChamferSpec | None = None
     shaft: ShaftSpec | None = None
+    roughness_Ra: quantity("length", positive=True, high=0.1) | None = Field(
+        None, description="the flanks' arithmetic mean roughness, e.g. '0.4 um' (with "
+                          "[operation]: the friction coefficient and the specific film)")
 
     @model_validator(mode="after")
     def _one_measurement(self):
@@ -666,8 +725,30 @@ class SpurCase(GearPairGeometry):
     deflection: DeflectionSpec | None = None
     load: LoadSpec | None = Field(None, description="with a load, run analyses the contact")
     rating: RatingSpec = RatingSpec()
+    operation: OperationSpec | None = Field(
+        None, description="speed and oil temperature: with [lubricant], the lubricated "
+                          "contact (sliding, film, flash temperature, losses)")
+    lubricant: LubricantSpec | None = None
     analysis: AnalysisSpec = AnalysisSpec()
     export: ExportSpec = ExportSpec()
+
+    @model_validator(mode="after")
+    def _lubricated(self):
+        if (self.operation is None) != (self.lubricant is None):
+            given, missing = (("operation", "lubricant") if self.lubricant is None
+                              else ("lubricant", "operation"))
+            raise ValueError(f"{missing}: [{given}] needs a [{missing}] table (the lubricated "
+                             "contact needs the speed and the oil)")
+        if self.operation is not None:
+            if self.load is None:
+                raise ValueError("load: [operation] needs a [load] (the lubricated contact "
+                                 "is the loaded one)")
+            for name in ("pinion", "gear"):
+                if getattr(self, name).roughness_Ra is None:
+                    raise ValueError(f"{name}.roughness_Ra: give the flanks' roughness Ra "
+                                     "(e.g. '0.4 um') with [operation]: the friction "
+                                     "coefficient and the specific film thickness need it")
+        return self
 
     @model_validator(mode="after")
     def _helix(self):

@@ -467,6 +467,45 @@ def mesh_loads(result: dict, path: str | Path) -> Path:
     return _save(fig, path)
 
 
+def lubrication(result: dict, path: str | Path) -> Path:
+    """The lubricated contact over the mesh cycle (analyses.lubrication's keys on the
+    positions): sliding and sum speeds, the specific film λ (1 and the case's λ_GFP marked
+    where given), the flash and contact temperatures and the power lost per contact, a
+    series a tooth pair, over the driver's roll."""
+    rows = result["positions"]
+    summary = result.get("summary") or {}
+    roll, pair = _column(rows, "roll_deg"), _column(rows, "pair")
+    x_label = f"{_driver(result)} roll angle (deg)"
+    fig = _figure(6.4)
+    (ax_speed, ax_film), (ax_heat, ax_loss) = fig.subplots(2, 2)
+    panels = ((ax_speed, ("sliding_velocity_m_per_s", "sum_velocity_m_per_s"),
+               ("sliding", "sum"), "m/s", "Sliding and sum speeds"),
+              (ax_film, ("lambda",), ("λ",), "h_min / mean Ra", "Specific film thickness λ"),
+              (ax_heat, ("flash_temperature_K",), ("flash",), "K", "Flash temperature"),
+              (ax_loss, ("power_loss_W",), ("loss",), "W", "Power lost per contact"))
+    for ax, keys, names, unit, title in panels:
+        for j, (key, name) in enumerate(zip(keys, names)):
+            values = _column(rows, key)
+            for i, g in enumerate(sorted(set(pair[np.isfinite(values)]))):
+                on = (pair == g) & np.isfinite(values)
+                order = np.argsort(roll[on])
+                ax.plot(roll[on][order], values[on][order], "o-" if j == 0 else "s--", ms=3,
+                        lw=1.0, color=SERIES[i % len(SERIES)],
+                        label=f"{name}, pair {int(g):+d}" if g else f"{name}, pair 0")
+        ax.set(xlabel=x_label, ylabel=unit, title=title)
+        ax.legend(fontsize=6, loc="best")
+    ax_film.axhline(1.0, color="0.4", ls=":", lw=1.0)
+    if summary.get("S_lambda") is not None:
+        ax_film.axhline(summary["lambda_min"] / summary["S_lambda"], color="crimson", ls="--",
+                        lw=1.0, label="λ_GFP")
+        ax_film.legend(fontsize=6, loc="best")
+    if summary.get("mesh_power_loss_W") is not None:
+        ax_loss.set_title(f"Power lost per contact (mesh {summary['mesh_power_loss_W']:.0f} W, "
+                          f"η {100 * summary['mesh_efficiency']:.2f} %)", fontsize=9)
+    fig.suptitle(_title(result, "The lubricated contact over the mesh cycle", 95), fontsize=10)
+    return _save(fig, path)
+
+
 # ---------------------------------------------------------------------------------------
 # 3. crown design chart (seed 003)
 
@@ -767,6 +806,7 @@ def figures_for(result: dict, out_dir: str | Path) -> list[Path]:
     section: face_mm, radius_mm, separation_um, optional approach_um), crown_design.png
     (kind crown_design), load_distribution.png (a result with a 'load_distribution' section),
     mesh_loads.png (a result whose positions carry a loaded contact's load_share),
+    lubrication.png (positions with the lubricated contact's lambda),
     worm_efficiency_temperature.png and worm_efficiency_torque.png
     (kind worm_efficiency, with conditions / an anti-rattle spring). [] when none applies
     (hertz, spline_crown)."""
@@ -787,6 +827,8 @@ def figures_for(result: dict, out_dir: str | Path) -> list[Path]:
         written.append(load_distribution(result, out / "load_distribution.png"))
     if any(r.get("load_share") is not None for r in result.get("positions") or []):
         written.append(mesh_loads(result, out / "mesh_loads.png"))
+    if any(r.get("lambda") is not None for r in result.get("positions") or []):
+        written.append(lubrication(result, out / "lubrication.png"))
     if kind == "crown_design":
         written.append(crown_design_chart(result, out / "crown_design.png"))
     if kind == "worm_efficiency":

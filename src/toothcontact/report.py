@@ -66,6 +66,8 @@ CAPTIONS = {
     "mesh_cycle.png": "Over the mesh cycle: transmission error, stress, semi-axes, edge margin",
     "mesh_loads.png": "Over the mesh cycle: load sharing, mesh stiffness, transmission error "
                       "harmonics, the largest shear below each contact",
+    "lubrication.png": "The lubricated contact over the mesh cycle: sliding and sum speeds, "
+                       "specific film λ, flash temperature, power lost",
     "ease_off.png": "Ease-off of the flank",
     "crown_design.png": "Crown design chart",
     "worm_efficiency_temperature.png": "Worm-set efficiency against the lubricant temperature",

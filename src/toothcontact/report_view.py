@@ -67,6 +67,17 @@ LABELS = {
     "unloaded_te_harmonics_um": "unloaded TE harmonics (mesh orders 1, 2, ...)",
     "sigma_H_MPa": "contact stress σ_H (with K_A·K_v)",
     "subsurface_shear_depth_mm": "its depth",
+    "sliding_velocity_m_per_s": "sliding speed |v1 − v2|",
+    "sum_velocity_m_per_s": "sum speed |v1 + v2|",
+    "specific_sliding_pinion": "specific sliding (pinion)",
+    "specific_sliding_gear": "specific sliding (gear)",
+    "friction_coefficient": "friction coefficient μ",
+    "film_thickness_central_um": "central film thickness",
+    "film_thickness_min_um": "minimum film thickness", "lambda": "specific film λ",
+    "flash_temperature_K": "flash temperature", "contact_temperature_degC": "contact temperature",
+    "power_loss_W": "power lost in the contact", "lambda_min": "least specific film λ",
+    "flash_temperature_max_K": "largest flash temperature",
+    "mesh_power_loss_W": "mesh power loss", "mesh_efficiency": "mesh efficiency",
     "subsurface_von_mises_max_MPa": "largest von Mises stress below the surface",
     "subsurface_von_mises_depth_mm": "its depth (von Mises)",
     "subsurface_shear_at": "largest shear below the surface at",
@@ -462,6 +473,7 @@ def _contact_figures(summary: dict, rows: list[dict], driven: str) -> list[KeyRe
             f"(σ1 − σ3)/2 at {summary['subsurface_shear_at']}; von Mises "
             f"{number(summary['subsurface_von_mises_max_MPa'])} MPa at "
             f"{number(summary['subsurface_von_mises_depth_mm'] * 1e3)} µm"))
+    out.extend(_lubrication_results(summary))
     check = summary.get("positions_check") or {}
     if check.get("checked"):
         out.append(KeyResult(
@@ -647,3 +659,31 @@ def _sweep_key_results(stats: dict) -> list[KeyResult]:
                              + ("" if best["feasible"] else " (no feasible design found)"),
                              bad=not best["feasible"]))
     return out
+
+
+def _lubrication_results(summary: dict) -> list[KeyResult]:
+    """The lubricated contact's key results (analyses.lubrication), where it was analysed."""
+    if summary.get("lambda_min") is None:
+        return []
+    out = [KeyResult("least specific film λ", number(summary["lambda_min"]),
+                     f"h_min {number(summary['film_thickness_min_um'])} µm over the mean Ra, "
+                     f"at {summary['lambda_min_at']}"),
+           KeyResult("largest flash temperature",
+                     f"{number(summary['flash_temperature_max_K'])} K",
+                     f"at {summary['flash_temperature_at']}; contact temperature "
+                     f"{number(summary['contact_temperature_max_degC'])} °C on a bulk "
+                     f"{number(summary['bulk_temperature_degC'])} °C")]
+    if summary.get("mesh_power_loss_W") is not None:
+        out.append(KeyResult("mesh power loss", f"{number(summary['mesh_power_loss_W'])} W",
+                             f"mesh efficiency {100 * summary['mesh_efficiency']:.2f} %, mean "
+                             f"μ {number(summary['friction_coefficient_mean'])}"))
+    for key, label_, needs in (("S_B", "scuffing safety S_B", "scuffing_temperature"),
+                               ("S_lambda", "micropitting safety S_λ",
+                                "permissible_specific_film")):
+        value = summary.get(key)
+        out.append(KeyResult(label_, "—" if value is None else number(value),
+                             f"not computed: no [lubricant] {needs}" if value is None else
+                             f"against the [lubricant] {needs}",
+                             value is not None and value < 1.0))
+    return out
+

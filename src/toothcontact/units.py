@@ -4,7 +4,7 @@ Case files carry quantities as text with units ("1.44 in", "3600 lbf", "-50 degC
 module is the only place that knows about units: it turns such text into a float in the
 core unit of its kind, and says clearly when the text is not a quantity of that kind.
 
-Core units: mm, N, MPa, N*mm, N/mm, rad, 1/mm, mm^2/s, degC.
+Core units: mm, N, MPa, N*mm, N/mm, rad, 1/mm, mm^2/s, degC, rpm, kg/m^3, 1/MPa.
 """
 
 from __future__ import annotations
@@ -52,6 +52,12 @@ KINDS: dict[str, Kind] = {
         Kind("viscosity", "mm**2/s", "[length]**2/[time]", "'220 mm^2/s' or '220 cSt'",
              largest=1e7, smallest=1e-3),
         Kind("temperature", "degC", "[temperature]", "'-50 degC' or '176 degF'", largest=1000.0),
+        Kind("rotational_speed", "rpm", "1/[time]", "'3000 rpm' or '314 rad/s'", largest=1e6,
+             smallest=1e-6),
+        Kind("density", "kg/m**3", "[mass]/[length]**3", "'880 kg/m^3' or '0.88 g/cm^3'",
+             largest=1e5, smallest=1e-3),
+        Kind("pressure_viscosity", "1/MPa", "1/[pressure]", "'1.8e-8 1/Pa' or '18 1/GPa'",
+             largest=1.0, smallest=1e-6),
     )
 }
 
@@ -71,6 +77,10 @@ def registry():
 
 #: torque units as KISSsoft users write them, which pint reads otherwise ("Nm": nanometres)
 TORQUE_SHORTHANDS = {"Nm": "N*m", "kNm": "kN*m", "Nmm": "N*mm", "N.m": "N*m", "N·m": "N*m"}
+
+
+#: a speed names what turns: "1/s" or "Hz" could mean turns or radians per second
+ROTATION_UNIT = re.compile(r"rpm|rad|rev|turn|r/min", re.IGNORECASE)
 
 
 def parse(text: str | float | int, kind: str) -> float:
@@ -105,7 +115,8 @@ def parse(text: str | float | int, kind: str) -> float:
         unit = ureg.Unit(unit_text.replace("^", "**"))
     except Exception:
         raise UnitError(f"{text!r}: unknown unit {unit_text!r}; expected {_expected(spec)}") from None
-    if not _has_dimension(unit, spec):
+    if not _has_dimension(unit, spec) or (kind == "rotational_speed"
+                                           and not ROTATION_UNIT.search(unit_text)):
         raise UnitError(f"{text!r} is not {_expected(spec)}")
     return float(ureg.Quantity(magnitude, unit).to(spec.core_unit).magnitude)
 

@@ -13,6 +13,9 @@ from .result import Check, Result
 
 #: face strips each member's line load is summed on for its root stress
 ROOT_STRIPS = 40
+#: what a duty cycle's level reports of its lubricated contact (None without [operation])
+LUBRICATED_LEVEL_KEYS = ("lambda_min", "flash_temperature_max_K", "contact_temperature_max_degC",
+                         "mesh_power_loss_W", "mesh_efficiency")
 #: ISO 6336-3's stress correction factor of the reference test gear (σ_FE = σ_Flim·Y_ST)
 Y_ST = 2.0
 
@@ -196,7 +199,8 @@ def duty_cycle_sections(case, result: Result, run_level) -> None:
                      "bem_max_p_max_MPa": s.get("bem_max_p_max_MPa"),
                      "loaded_transmission_error_peak_to_peak_um":
                          s.get("loaded_transmission_error_peak_to_peak_um"),
-                     "te_harmonics_um": s.get("te_harmonics_um")})
+                     "te_harmonics_um": s.get("te_harmonics_um"),
+                     **{key: s.get(key) for key in LUBRICATED_LEVEL_KEYS}})
     section = {"levels": rows}
     summary = result.sections["summary"]
     for name, material in materials.items():

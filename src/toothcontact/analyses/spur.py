@@ -13,7 +13,7 @@ from .. import case as schema
 from ..analytic import hertz
 from ..analytic.stiffness import face_load_factor, mesh_stiffness, single_stiffness
 from ..case import CaseError
-from . import contact, rating
+from . import contact, lubrication, rating
 from .result import Check, Result
 
 
@@ -126,7 +126,7 @@ def _spur_contact(case: schema.SpurCase, pair, result: Result) -> None:
     changes, applied = [], None
     for attempt in range(SHAFT_PASSES):
         result.checks, result.sections = list(checks), dict(sections)
-        _contact_pass(case, pair, result)
+        mesh = _contact_pass(case, pair, result)
         distribution = result.sections.get("load_distribution")
         if not pair.shafts or distribution is None:
             break
@@ -145,6 +145,7 @@ def _spur_contact(case: schema.SpurCase, pair, result: Result) -> None:
                                 (case.material.nu, gear_material.nu))
     rating.root_sections(case, pair, result)
     rating.safety_sections(case, pair, result)
+    lubrication.lubrication_sections(case, pair, mesh, result)
     if case.analysis.positions_check:
         contact.check_positions(result, case.analysis.positions,
                          lambda scratch: _loaded_pass(case, pair, scratch, 0.5))
@@ -186,15 +187,16 @@ def _tip_edge_note(case: schema.SpurCase, pair) -> str:
             "radius; '0 mm' for a sharp edge)")
 
 
-def _contact_pass(case: schema.SpurCase, pair, result: Result) -> None:
+def _contact_pass(case: schema.SpurCase, pair, result: Result):
     """One analysis of the contact (cycle, loaded contact, load distribution, interference)
-    with the pair's deflection as it stands."""
+    with the pair's deflection as it stands; the mesh that placed it."""
     mesh, cycle = _loaded_pass(case, pair, result)
     if pair.shafts:
         _shaft_sections(pair, result)
     _load_distribution(case, pair, result)
     if case.analysis.interference:
         _spur_interference(mesh, pair, cycle, result)
+    return mesh
 
 
 def _loaded_pass(case: schema.SpurCase, pair, result: Result, phase: float = 0.0):

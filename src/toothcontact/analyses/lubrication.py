@@ -1,0 +1,222 @@
+"""The lubricated contact of a cylindrical gear pair ([operation], [lubricant]): at every
+contact the sliding and rolling of the exact flanks as the mesh places them
+(contact.kinematics), the oil film (analytic.ehl) against the roughness, the friction, the
+flash temperature of the solved pressure (contact.flash) and the power lost; over the
+cycle the mesh loss and efficiency, the scuffing and micropitting safeties."""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+
+from .result import Check, Result
+
+#: the columns of a contact line whose line load is below this share of its largest are
+#: left out of its film (its ends, where the film grows)
+FILM_LOAD_SHARE = 0.05
+#: ISO/TS 6336-20's bulk temperature θ_M = θ_oil + BULK_FACTOR·X_S·X_mp·θ_fl,mean (one mesh:
+#: X_mp = 1), X_S by how the mesh is lubricated
+BULK_FACTOR = 0.47
+LUBRICATION_FACTOR = {"splash": 1.2, "spray": 1.0}
+#: the per-contact keys (None where the contact has no loaded solution)
+LOADED_KEYS = ("friction_coefficient", "film_thickness_central_um", "film_thickness_min_um",
+               "lambda", "flash_temperature_K", "contact_temperature_degC", "power_loss_W")
+
+
+def lubrication_sections(case, pair, mesh, result: Result) -> None:
+    """The lubricated contact's keys on every row, the `lubrication` section (the oil at
+    temperature) and the summary's lambda_min, flash_temperature_max_K, mesh_power_loss_W,
+    mesh_efficiency and the safeties S_B, S_lambda where their limits are given."""
+    if case.operation is None or result.cycle is None:
+        return
+    from ..analytic import ehl, lubricant
+    from ..contact.kinematics import contact_motion
+
+    op, oil = case.operation, case.lubricant
+    family = lubricant.FAMILIES[oil.family]
+    density_15 = oil.density or family.density_15
+    nu = lubricant.kinematic_viscosity(oil.viscosity_40, oil.viscosity_100, op.oil_temperature)
+    eta = nu * 1e-6 * lubricant.density(density_15, op.oil_temperature)
+    gear_material = case.gear_material or case.material
+    fluid = _Fluid(eta=eta, alpha=oil.pressure_viscosity or family.pressure_viscosity,
+                   E_reduced=ehl.reduced_modulus(case.material.E, case.material.nu,
+                                                 gear_material.E, gear_material.nu),
+                   roughness_um=0.5e3 * (case.pinion.roughness_Ra + case.gear.roughness_Ra),
+                   X_L=family.X_L, friction=oil.friction_coefficient)
+    cycle = result.cycle
+    motion = contact_motion(mesh, cycle, op.pinion_speed)
+    across = cycle.planes.direction(np.asarray(cycle.axis_angle, float) + 0.5 * math.pi)
+    rows = result.sections["positions"]
+    loaded = result.loaded or [None] * len(rows)
+    for k, row in enumerate(rows):
+        row.update(_kinematics(motion, k))
+        if loaded[k] is None:
+            known = row.get("bem_status") == "unloaded"
+            row.update({key: None for key in LOADED_KEYS}, power_loss_W=0.0 if known else None)
+            continue
+        row.update(_lubricated(cycle, k, row, loaded[k], motion, across[k], fluid))
+    _summary(case, pair, result, fluid, nu, density_15)
+
+
+@dataclass(frozen=True)
+class _Fluid:
+    """The oil at its temperature and what the friction and film need of the pair: η
+    (Pa·s), α (1/MPa), E' (MPa), the flanks' mean roughness (µm), X_L and a fixed μ."""
+
+    eta: float
+    alpha: float
+    E_reduced: float
+    roughness_um: float
+    X_L: float
+    friction: float | None
+
+
+def _kinematics(motion, k: int) -> dict:
+    """Sliding (|v1 - v2|), sum (|v1 + v2|) speeds (m/s) and each member's specific sliding
+    (its slip over its own speed, along its own motion) at contact k's point."""
+    v1, v2 = motion.at(k, motion.point[k])
+    slide = v1 - v2
+    speeds = float(np.linalg.norm(v1)), float(np.linalg.norm(v2))
+    return {"sliding_velocity_m_per_s": float(np.linalg.norm(slide)),
+            "sum_velocity_m_per_s": float(np.linalg.norm(v1 + v2)),
+            "specific_sliding_pinion": float(slide @ v1) / speeds[0] ** 2 if speeds[0] > 0 else None,
+            "specific_sliding_gear": float(-slide @ v2) / speeds[1] ** 2 if speeds[1] > 0 else None}
+
+
+def _lubricated(cycle, k: int, row: dict, contact, motion, across: np.ndarray, fluid) -> dict:
+    """Friction, film, flash temperature and power lost of one loaded contact, over its
+    solved pressure cells (each cell's own sliding speed)."""
+    from ..analytic import ehl
+    from ..analytic.mesh_losses import friction_coefficient
+    from ..contact.flash import STEEL_CONTACT_COEFFICIENT, flash_temperature
+
+    s, field = contact.solution, contact.field
+    planes = cycle.planes
+    turn = field.turn
+    axis = (math.cos(turn) * planes.e1[k] + math.sin(turn) * planes.e2[k],
+            -math.sin(turn) * planes.e1[k] + math.cos(turn) * planes.e2[k])
+    X, Y = np.meshgrid(field.x, field.y, indexing="ij")
+    points = motion.point[k] + X[..., None] * axis[0] + Y[..., None] * axis[1]
+    V1, V2 = motion.at(k, points)
+    pressure = s.pressure_MPa
+    sliding = np.linalg.norm(V1 - V2, axis=-1)
+    column_load = pressure.sum(axis=1) * s.dy_mm                  # N/mm along the contact
+    radius = 0.5 / row["B_analytic_per_mm"]
+    v1, v2 = motion.at(k, motion.point[k])
+    if fluid.friction is not None:
+        mu = fluid.friction
+    else:
+        mu = friction_coefficient(float(column_load.max()), float(np.linalg.norm(v1 + v2)),
+                                  radius, fluid.eta * 1e3, fluid.roughness_um, fluid.X_L)
+    power = mu * float(np.sum(pressure * sliding)) * s.dx_mm * s.dy_mm
+    flux = mu * pressure * sliding * 1e6
+    flash = flash_temperature(flux, s.dy_mm, (V1 @ axis[1], V2 @ axis[1]),
+                              (STEEL_CONTACT_COEFFICIENT, STEEL_CONTACT_COEFFICIENT))
+    entraining = 0.5 * (V1 + V2) @ across
+    if row["contact_model"] == "ellipse" and row["A_analytic_per_mm"] > 0:
+        u = abs(float(0.5 * (v1 + v2) @ across))
+        film = ehl.point_film(fluid.eta, u, radius, 0.5 / row["A_analytic_per_mm"],
+                              s.load_N, fluid.E_reduced, fluid.alpha) if u > 0 else None
+    else:
+        film = _line_film(pressure, column_load, entraining, radius, fluid)
+    minimum = 0.0 if film is None else film.minimum_um
+    return {"friction_coefficient": mu,
+            "film_thickness_central_um": 0.0 if film is None else film.central_um,
+            "film_thickness_min_um": minimum, "lambda": minimum / fluid.roughness_um,
+            "flash_temperature_K": flash, "power_loss_W": power}
+
+
+def _line_film(pressure, column_load, entraining, radius: float, fluid):
+    """The thinnest film along a contact line: each column of the field across the line is
+    a line contact of its own load per mm and its load-weighted entraining speed; None
+    where the oil is not drawn in (no entraining speed)."""
+    from ..analytic import ehl
+
+    carrying = column_load >= FILM_LOAD_SHARE * column_load.max()
+    weights = pressure[carrying]
+    u = np.abs(np.sum(weights * entraining[carrying], axis=1) / weights.sum(axis=1))
+    films = [ehl.line_film(fluid.eta, float(speed), radius, float(w), fluid.E_reduced,
+                           fluid.alpha)
+             for speed, w in zip(u, column_load[carrying]) if speed > 0]
+    return min(films, key=lambda f: f.minimum_um) if films else None
+
+
+def _summary(case, pair, result: Result, fluid, nu: float, density_15: float) -> None:
+    """Bulk and contact temperatures, the mesh loss and efficiency, the extremes and the
+    safeties (with their design checks) into the summary and the lubrication section."""
+    op, oil = case.operation, case.lubricant
+    rows = result.sections["positions"]
+    summary = result.sections["summary"]
+    solved = [r for r in rows if r["flash_temperature_K"] is not None]
+    positions = sorted({r["roll_deg"] for r in rows})
+    hottest = [max((r["flash_temperature_K"] for r in solved if r["roll_deg"] == roll),
+                   default=0.0) for roll in positions]
+    mean_flash = float(np.mean(hottest))
+    bulk = (op.bulk_temperature if op.bulk_temperature is not None else
+            op.oil_temperature + BULK_FACTOR * LUBRICATION_FACTOR[op.lubrication] * mean_flash)
+    for row in rows:
+        flash = row["flash_temperature_K"]
+        row["contact_temperature_degC"] = None if flash is None else bulk + flash
+    losses = [sum(r["power_loss_W"] for r in rows if r["roll_deg"] == roll)
+              if all(r["power_loss_W"] is not None for r in rows if r["roll_deg"] == roll)
+              else None for roll in positions]
+    torque = (case.load.torque if case.load.torque is not None
+              else case.load.tangential_load * pair.operating_pitch_radius)
+    power_in = torque * 1e-3 * op.pinion_speed * 2.0 * math.pi / 60.0
+    loss = float(np.mean(losses)) if None not in losses else None
+    result.sections["lubrication"] = {
+        "oil_temperature_degC": op.oil_temperature, "kinematic_viscosity_mm2_per_s": nu,
+        "dynamic_viscosity_mPa_s": fluid.eta * 1e3, "density_15_kg_per_m3": density_15,
+        "pressure_viscosity_per_GPa": fluid.alpha * 1e3, "family": oil.family,
+        "reduced_modulus_MPa": fluid.E_reduced, "mean_roughness_Ra_um": fluid.roughness_um,
+        "input_power_W": power_in}
+    if not solved:
+        return
+    coldest = min(solved, key=lambda r: r["lambda"])
+    hot = max(solved, key=lambda r: r["flash_temperature_K"])
+    contact_max = bulk + hot["flash_temperature_K"]
+    summary.update(
+        lambda_min=coldest["lambda"], lambda_min_at=_at(coldest),
+        film_thickness_min_um=coldest["film_thickness_min_um"],
+        flash_temperature_max_K=hot["flash_temperature_K"], flash_temperature_at=_at(hot),
+        flash_temperature_mean_K=mean_flash, bulk_temperature_degC=bulk,
+        contact_temperature_max_degC=contact_max,
+        sliding_velocity_max_m_per_s=max(r["sliding_velocity_m_per_s"] for r in rows),
+        mesh_power_loss_W=loss,
+        mesh_efficiency=None if loss is None else 1.0 - loss / power_in,
+        friction_coefficient_mean=float(np.mean([r["friction_coefficient"] for r in solved])))
+    theta_S = oil.scuffing_temperature
+    summary["S_B"] = (None if theta_S is None else
+                      (theta_S - op.oil_temperature) / (contact_max - op.oil_temperature))
+    summary["S_lambda"] = (None if oil.permissible_specific_film is None
+                           else coldest["lambda"] / oil.permissible_specific_film)
+    for key, name, limit in (("S_B", "scuffing", "scuffing_temperature"),
+                             ("S_lambda", "micropitting", "permissible_specific_film")):
+        if summary[key] is not None:
+            result.checks.append(Check(
+                f"{name} safety {key} at least 1", summary[key] >= 1.0,
+                f"{key} {summary[key]:.2f} ([lubricant] {limit})"))
+    summary["lubrication_note"] = (
+        "the lubricated contact at the pinion's "
+        f"{op.pinion_speed:g} rpm and {op.oil_temperature:g} °C oil: speeds from the mesh's "
+        "own placement of the exact flanks (sliding |v1 - v2| and sum |v1 + v2| of the "
+        "tangential speeds at the contact point); friction "
+        + ("fixed as given" if fluid.friction is not None else
+           "ISO/TR 14179-2's μ at each contact (its largest normal line load, its sum speed "
+           "and relative radius, the oil's viscosity, the mean Ra, X_L)")
+        + "; film: Dowson-Higginson's minimum and Pan-Hamrock's central film of each column "
+        "of a contact line (its own load per mm and entraining speed), Hamrock-Dowson's for "
+        "an ellipse, isothermal, the oil at the oil temperature; lambda = h_min / mean Ra; "
+        "flash temperature: Blok's, the solved pressure's heat μ·p·v_s crossing into both "
+        "flanks (high Peclet number, steel's sqrt(λρc)); bulk temperature "
+        + ("as given" if op.bulk_temperature is not None else
+           f"θ_oil + {BULK_FACTOR}·X_S·θ_fl,mean (ISO/TS 6336-20, X_S "
+           f"{LUBRICATION_FACTOR[op.lubrication]:g})")
+        + "; S_B = (θ_S - θ_oil)/(θ_B,max - θ_oil); S_lambda = lambda_min/λ_GFP; the mesh "
+        "loss is the cycle's mean of Σ μ·p·v_s over the contacts' cells")
+
+
+def _at(row: dict) -> str:
+    return f"roll {row['roll_deg']:.2f} deg pair {row['pair']}"
