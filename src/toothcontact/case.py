@@ -102,9 +102,17 @@ class CaseInfo(Model):
         return data
 
 
+#: a flank's thermal contact coefficient sqrt(λρc), W·s^0.5/(m²·K) (the flash temperature)
+ThermalCoefficient = quantity("thermal_contact_coefficient", positive=True)
+THERMAL_DESCRIPTION = ("sqrt(λρc) for the flash temperature, e.g. '12.7 kW*s^0.5/(m^2*K)' "
+                       "(default: steel's)")
+
+
 class Material(Model):
     E: Modulus = Field(description="Young's modulus, e.g. '206 GPa'")
     nu: Poisson = Field(description="Poisson's ratio, e.g. 0.3")
+    thermal_contact_coefficient: ThermalCoefficient | None = Field(
+        None, description=THERMAL_DESCRIPTION)
 
 
 STEEL = {"E": "206 GPa", "nu": 0.3}
@@ -133,6 +141,8 @@ class GearMaterial(Model):
                                                          "e.g. '1500 MPa'")
     sigma_Flim: Modulus | None = Field(None, description="ISO 6336-5 bending stress number, "
                                                          "e.g. '500 MPa'")
+    thermal_contact_coefficient: ThermalCoefficient | None = Field(
+        None, description=THERMAL_DESCRIPTION)
 
     @model_validator(mode="before")
     @classmethod
@@ -179,13 +189,10 @@ class RatingSpec(Model):
 LUBRICANT_FAMILIES = ("mineral", "pao", "pag")
 
 
-class OperationSpec(Model):
-    """How the pair runs: the pinion's speed, the oil's temperature, and, where known, the
-    teeth's bulk temperature (default: ISO/TS 6336-20's estimate from the flash
-    temperature) and how the mesh is lubricated (its factor X_S in that estimate)."""
+class Running(Model):
+    """How a mesh runs, beside its driver's speed: the oil's temperature, and, where known,
+    the teeth's bulk temperature and how the mesh is lubricated."""
 
-    pinion_speed: quantity("rotational_speed", positive=True) = Field(
-        description="the pinion's speed, e.g. '3000 rpm'")
     oil_temperature: Temperature = Field(description="oil sump or inlet temperature, e.g. "
                                                      "'90 degC'")
     bulk_temperature: Temperature | None = Field(
@@ -193,6 +200,58 @@ class OperationSpec(Model):
                           "0.47·X_S·mean flash temperature, ISO/TS 6336-20)")
     lubrication: Literal["splash", "spray"] = Field(
         "splash", description="X_S = 1.2 (splash) or 1.0 (spray) in the bulk temperature")
+
+
+class OperationSpec(Running):
+    """How a gear pair runs: the pinion's speed, the oil's temperature, the teeth's bulk
+    temperature where known (default: ISO/TS 6336-20's estimate from the flash temperature)
+    and how the mesh is lubricated (its factor X_S in that estimate)."""
+
+    pinion_speed: quantity("rotational_speed", positive=True) = Field(
+        description="the pinion's speed, e.g. '3000 rpm'")
+
+
+class WormOperationSpec(Running):
+    """How a worm set runs: the worm's speed, the oil's temperature and the teeth's bulk
+    temperature where known (default: the oil's)."""
+
+    worm_speed: quantity("rotational_speed", positive=True) = Field(
+        description="the worm's speed, e.g. '1450 rpm'")
+
+
+#: E (MPa) within which a flank is taken as steel for its thermal contact coefficient
+STEEL_LIKE = (170e3, 240e3)
+
+
+def lubricated_pair(case, members: dict, friction_needed: bool) -> None:
+    """What a case's [operation] needs (raising ValueError naming the field): its
+    [lubricant], a load, each member's roughness_Ra, a friction coefficient where the
+    mesh has no friction law of its own, and a non-steel member's thermal contact
+    coefficient. `members`: name -> (its spec, its material)."""
+    if (case.operation is None) != (case.lubricant is None):
+        given, missing = (("operation", "lubricant") if case.lubricant is None
+                          else ("lubricant", "operation"))
+        raise ValueError(f"{missing}: [{given}] needs a [{missing}] table (the lubricated "
+                         "contact needs the speed and the oil)")
+    if case.operation is None:
+        return
+    if case.load is None:
+        raise ValueError("load: [operation] needs a [load] (the lubricated contact is the "
+                         "loaded one)")
+    for name, (spec, material) in members.items():
+        if spec.roughness_Ra is None:
+            raise ValueError(f"{name}.roughness_Ra: give the flanks' roughness Ra (e.g. "
+                             "'0.4 um') with [operation]: the friction coefficient and the "
+                             "specific film thickness need it")
+        if (material.thermal_contact_coefficient is None
+                and not STEEL_LIKE[0] <= material.E <= STEEL_LIKE[1]):
+            raise ValueError(f"{name} material: thermal_contact_coefficient: give sqrt(λρc) of "
+                             f"this E = {material.E / 1e3:.4g} GPa material with [operation] "
+                             "(steel's is the default only for steels)")
+    if friction_needed and case.lubricant.friction_coefficient is None:
+        raise ValueError("lubricant.friction_coefficient: give a worm set's mean friction "
+                         "(e.g. DIN 3996's mu_zm from the worm_efficiency kind): ISO/TR "
+                         "14179-2's is for cylindrical gears")
 
 
 class LubricantSpec(Model):
@@ -734,20 +793,9 @@ class SpurCase(GearPairGeometry):
 
     @model_validator(mode="after")
     def _lubricated(self):
-        if (self.operation is None) != (self.lubricant is None):
-            given, missing = (("operation", "lubricant") if self.lubricant is None
-                              else ("lubricant", "operation"))
-            raise ValueError(f"{missing}: [{given}] needs a [{missing}] table (the lubricated "
-                             "contact needs the speed and the oil)")
-        if self.operation is not None:
-            if self.load is None:
-                raise ValueError("load: [operation] needs a [load] (the lubricated contact "
-                                 "is the loaded one)")
-            for name in ("pinion", "gear"):
-                if getattr(self, name).roughness_Ra is None:
-                    raise ValueError(f"{name}.roughness_Ra: give the flanks' roughness Ra "
-                                     "(e.g. '0.4 um') with [operation]: the friction "
-                                     "coefficient and the specific film thickness need it")
+        lubricated_pair(self, {"pinion": (self.pinion, self.material),
+                               "gear": (self.gear, self.gear_material or self.material)},
+                        friction_needed=False)
         return self
 
     @model_validator(mode="after")
@@ -811,6 +859,9 @@ class WormSpec(Model):
                                               "wheel angle for ZK, e.g. '20 deg'")
     length: Length = Field(description="threaded length, e.g. '30 mm'")
     grinding_wheel_diameter: Length = Field(250.0, description="ZK only")
+    roughness_Ra: quantity("length", positive=True, high=0.1) | None = Field(
+        None, description="the flanks' arithmetic mean roughness, e.g. '0.4 um' (with "
+                          "[operation]: the friction coefficient and the specific film)")
 
     @model_validator(mode="after")
     def _choices(self):
@@ -848,6 +899,9 @@ class WheelSpec(Model):
         None, description="pitch diameter of an oversized hob with the worm's lead; "
                           "default: the worm's (line contact)")
     align_hob_thread: bool = Field(False, description="tilt an oversized hob to the worm's thread")
+    roughness_Ra: quantity("length", positive=True, high=0.1) | None = Field(
+        None, description="the flanks' arithmetic mean roughness, e.g. '0.4 um' (with "
+                          "[operation]: the friction coefficient and the specific film)")
 
 
 class WormMisalignmentSpec(Model):
@@ -886,9 +940,20 @@ class WormCase(CaseInfo):
     misalignment: WormMisalignmentSpec = WormMisalignmentSpec()
     anti_rattle_spring: SpringSpec | None = None
     load: WormLoadSpec | None = None
+    operation: WormOperationSpec | None = Field(
+        None, description="worm speed and oil temperature: with [lubricant], the lubricated "
+                          "contact (sliding, film, flash temperature, losses)")
+    lubricant: LubricantSpec | None = None
     analysis: AnalysisSpec = Field(AnalysisSpec(positions=7, grid=(11, 121)),
                                    description="positions per worm turn/start, grid")
     export: ExportSpec = ExportSpec()
+
+    @model_validator(mode="after")
+    def _lubricated(self):
+        lubricated_pair(self, {"worm": (self.worm, self.material),
+                               "wheel": (self.wheel, self.wheel_material or self.material)},
+                        friction_needed=True)
+        return self
 
     @model_validator(mode="after")
     def _proportions(self):

@@ -4,7 +4,8 @@ Case files carry quantities as text with units ("1.44 in", "3600 lbf", "-50 degC
 module is the only place that knows about units: it turns such text into a float in the
 core unit of its kind, and says clearly when the text is not a quantity of that kind.
 
-Core units: mm, N, MPa, N*mm, N/mm, rad, 1/mm, mm^2/s, degC, rpm, kg/m^3, 1/MPa.
+Core units: mm, N, MPa, N*mm, N/mm, rad, 1/mm, mm^2/s, degC, rpm, kg/m^3, 1/MPa,
+W·s^0.5/(m²·K).
 """
 
 from __future__ import annotations
@@ -58,6 +59,9 @@ KINDS: dict[str, Kind] = {
              largest=1e5, smallest=1e-3),
         Kind("pressure_viscosity", "1/MPa", "1/[pressure]", "'1.8e-8 1/Pa' or '18 1/GPa'",
              largest=1.0, smallest=1e-6),
+        Kind("thermal_contact_coefficient", "W*s**0.5/(m**2*K)",
+             "[mass]/[time]**2.5/[temperature]", "'12.7 kW*s^0.5/(m^2*K)'", largest=1e6,
+             smallest=1.0),
     )
 }
 

@@ -1,4 +1,4 @@
-"""The lubricated contact of a cylindrical gear pair ([operation], [lubricant]): at every
+"""The lubricated contact of a gear pair or worm set ([operation], [lubricant]): at every
 contact the sliding and rolling of the exact flanks as the mesh places them
 (contact.kinematics), the oil film (analytic.ehl) against the roughness, the friction, the
 flash temperature of the solved pressure (contact.flash) and the power lost; over the
@@ -25,13 +25,31 @@ LOADED_KEYS = ("friction_coefficient", "film_thickness_central_um", "film_thickn
                "lambda", "flash_temperature_K", "contact_temperature_degC", "power_loss_W")
 
 
-def lubrication_sections(case, pair, mesh, result: Result) -> None:
+@dataclass(frozen=True)
+class LubricatedPair:
+    """What the lubricated contact needs of a pair beside its contact: the members' names in
+    the results (driver, driven), the driver's speed (rpm), each member's roughness Ra (mm)
+    and material (E, ν, thermal_contact_coefficient), the power the mesh passes (W) and
+    whether it is the mesh's input (a gear pair's pinion torque) or its output (a worm
+    set's wheel torque) and whether ISO/TS 6336-20's bulk temperature estimate applies."""
+
+    names: tuple[str, str]
+    speed: float
+    roughness: tuple[float, float]
+    materials: tuple
+    power: float
+    input_power: bool
+    iso_bulk: bool
+
+
+def lubrication_sections(case, running: LubricatedPair, mesh, result: Result) -> None:
     """The lubricated contact's keys on every row, the `lubrication` section (the oil at
     temperature) and the summary's lambda_min, flash_temperature_max_K, mesh_power_loss_W,
     mesh_efficiency and the safeties S_B, S_lambda where their limits are given."""
     if case.operation is None or result.cycle is None:
         return
     from ..analytic import ehl, lubricant
+    from ..contact.flash import STEEL_CONTACT_COEFFICIENT
     from ..contact.kinematics import contact_motion
 
     op, oil = case.operation, case.lubricant
@@ -39,31 +57,45 @@ def lubrication_sections(case, pair, mesh, result: Result) -> None:
     density_15 = oil.density or family.density_15
     nu = lubricant.kinematic_viscosity(oil.viscosity_40, oil.viscosity_100, op.oil_temperature)
     eta = nu * 1e-6 * lubricant.density(density_15, op.oil_temperature)
-    gear_material = case.gear_material or case.material
+    first, second = running.materials
     fluid = _Fluid(eta=eta, alpha=oil.pressure_viscosity or family.pressure_viscosity,
-                   E_reduced=ehl.reduced_modulus(case.material.E, case.material.nu,
-                                                 gear_material.E, gear_material.nu),
-                   roughness_um=0.5e3 * (case.pinion.roughness_Ra + case.gear.roughness_Ra),
-                   X_L=family.X_L, friction=oil.friction_coefficient)
+                   E_reduced=ehl.reduced_modulus(first.E, first.nu, second.E, second.nu),
+                   roughness_um=0.5e3 * sum(running.roughness), X_L=family.X_L,
+                   friction=oil.friction_coefficient,
+                   thermal=tuple(m.thermal_contact_coefficient or STEEL_CONTACT_COEFFICIENT
+                                 for m in running.materials))
     cycle = result.cycle
-    motion = contact_motion(mesh, cycle, op.pinion_speed)
+    motion = contact_motion(mesh, cycle, running.speed)
     across = cycle.planes.direction(np.asarray(cycle.axis_angle, float) + 0.5 * math.pi)
     rows = result.sections["positions"]
     loaded = result.loaded or [None] * len(rows)
     for k, row in enumerate(rows):
-        row.update(_kinematics(motion, k))
+        row.update(_kinematics(motion, k, running.names))
         if loaded[k] is None:
             known = row.get("bem_status") == "unloaded"
             row.update({key: None for key in LOADED_KEYS}, power_loss_W=0.0 if known else None)
             continue
         row.update(_lubricated(cycle, k, row, loaded[k], motion, across[k], fluid))
-    _summary(case, pair, result, fluid, nu, density_15)
+    _summary(case, running, result, fluid, nu, density_15)
+
+
+def spur_running(case, pair) -> LubricatedPair:
+    """A spur or helical pair's: the pinion drives at [operation] pinion_speed with the
+    load's torque."""
+    torque = (case.load.torque if case.load.torque is not None
+              else case.load.tangential_load * pair.operating_pitch_radius)
+    speed = case.operation.pinion_speed
+    return LubricatedPair(("pinion", "gear"), speed,
+                          (case.pinion.roughness_Ra, case.gear.roughness_Ra),
+                          (case.material, case.gear_material or case.material),
+                          torque * 1e-3 * speed * 2.0 * math.pi / 60.0, True, True)
 
 
 @dataclass(frozen=True)
 class _Fluid:
     """The oil at its temperature and what the friction and film need of the pair: η
-    (Pa·s), α (1/MPa), E' (MPa), the flanks' mean roughness (µm), X_L and a fixed μ."""
+    (Pa·s), α (1/MPa), E' (MPa), the flanks' mean roughness (µm), X_L, a fixed μ and the
+    flanks' thermal contact coefficients."""
 
     eta: float
     alpha: float
@@ -71,18 +103,21 @@ class _Fluid:
     roughness_um: float
     X_L: float
     friction: float | None
+    #: each member's sqrt(λρc), W·s^0.5/(m²·K)
+    thermal: tuple[float, float]
 
 
-def _kinematics(motion, k: int) -> dict:
+def _kinematics(motion, k: int, names: tuple[str, str]) -> dict:
     """Sliding (|v1 - v2|), sum (|v1 + v2|) speeds (m/s) and each member's specific sliding
     (its slip over its own speed, along its own motion) at contact k's point."""
     v1, v2 = motion.at(k, motion.point[k])
     slide = v1 - v2
-    speeds = float(np.linalg.norm(v1)), float(np.linalg.norm(v2))
-    return {"sliding_velocity_m_per_s": float(np.linalg.norm(slide)),
-            "sum_velocity_m_per_s": float(np.linalg.norm(v1 + v2)),
-            "specific_sliding_pinion": float(slide @ v1) / speeds[0] ** 2 if speeds[0] > 0 else None,
-            "specific_sliding_gear": float(-slide @ v2) / speeds[1] ** 2 if speeds[1] > 0 else None}
+    out = {"sliding_velocity_m_per_s": float(np.linalg.norm(slide)),
+           "sum_velocity_m_per_s": float(np.linalg.norm(v1 + v2))}
+    for name, v, slip in zip(names, (v1, v2), (slide, -slide)):
+        speed = float(v @ v)
+        out[f"specific_sliding_{name}"] = float(slip @ v) / speed if speed > 0 else None
+    return out
 
 
 def _lubricated(cycle, k: int, row: dict, contact, motion, across: np.ndarray, fluid) -> dict:
@@ -90,7 +125,7 @@ def _lubricated(cycle, k: int, row: dict, contact, motion, across: np.ndarray, f
     solved pressure cells (each cell's own sliding speed)."""
     from ..analytic import ehl
     from ..analytic.mesh_losses import friction_coefficient
-    from ..contact.flash import STEEL_CONTACT_COEFFICIENT, flash_temperature
+    from ..contact.flash import flash_temperature
 
     s, field = contact.solution, contact.field
     planes = cycle.planes
@@ -98,10 +133,16 @@ def _lubricated(cycle, k: int, row: dict, contact, motion, across: np.ndarray, f
     axis = (math.cos(turn) * planes.e1[k] + math.sin(turn) * planes.e2[k],
             -math.sin(turn) * planes.e1[k] + math.cos(turn) * planes.e2[k])
     X, Y = np.meshgrid(field.x, field.y, indexing="ij")
-    points = motion.point[k] + X[..., None] * axis[0] + Y[..., None] * axis[1]
-    V1, V2 = motion.at(k, points)
+    plane = motion.in_plane(k, axis)
+
+    def surface(member: int):
+        c = plane[member]
+        return lambda xf, yf: (c[0, 0] + xf * c[1, 0] + yf * c[2, 0],
+                               c[0, 1] + xf * c[1, 1] + yf * c[2, 1])
+
+    (v1x, v1y), (v2x, v2y) = surface(0)(X, Y), surface(1)(X, Y)
     pressure = s.pressure_MPa
-    sliding = np.linalg.norm(V1 - V2, axis=-1)
+    sliding = np.hypot(v1x - v2x, v1y - v2y)
     column_load = pressure.sum(axis=1) * s.dy_mm                  # N/mm along the contact
     radius = 0.5 / row["B_analytic_per_mm"]
     v1, v2 = motion.at(k, motion.point[k])
@@ -112,9 +153,9 @@ def _lubricated(cycle, k: int, row: dict, contact, motion, across: np.ndarray, f
                                   radius, fluid.eta * 1e3, fluid.roughness_um, fluid.X_L)
     power = mu * float(np.sum(pressure * sliding)) * s.dx_mm * s.dy_mm
     flux = mu * pressure * sliding * 1e6
-    flash = flash_temperature(flux, s.dy_mm, (V1 @ axis[1], V2 @ axis[1]),
-                              (STEEL_CONTACT_COEFFICIENT, STEEL_CONTACT_COEFFICIENT))
-    entraining = 0.5 * (V1 + V2) @ across
+    flash = flash_temperature(flux, field.x, field.y, ((surface(0), fluid.thermal[0]),
+                                                      (surface(1), fluid.thermal[1])))
+    entraining = 0.5 * ((v1x + v2x) * (across @ axis[0]) + (v1y + v2y) * (across @ axis[1]))
     if row["contact_model"] == "ellipse" and row["A_analytic_per_mm"] > 0:
         u = abs(float(0.5 * (v1 + v2) @ across))
         film = ehl.point_film(fluid.eta, u, radius, 0.5 / row["A_analytic_per_mm"],
@@ -143,7 +184,8 @@ def _line_film(pressure, column_load, entraining, radius: float, fluid):
     return min(films, key=lambda f: f.minimum_um) if films else None
 
 
-def _summary(case, pair, result: Result, fluid, nu: float, density_15: float) -> None:
+def _summary(case, running: LubricatedPair, result: Result, fluid, nu: float,
+             density_15: float) -> None:
     """Bulk and contact temperatures, the mesh loss and efficiency, the extremes and the
     safeties (with their design checks) into the summary and the lubrication section."""
     op, oil = case.operation, case.lubricant
@@ -154,24 +196,24 @@ def _summary(case, pair, result: Result, fluid, nu: float, density_15: float) ->
     hottest = [max((r["flash_temperature_K"] for r in solved if r["roll_deg"] == roll),
                    default=0.0) for roll in positions]
     mean_flash = float(np.mean(hottest))
-    bulk = (op.bulk_temperature if op.bulk_temperature is not None else
-            op.oil_temperature + BULK_FACTOR * LUBRICATION_FACTOR[op.lubrication] * mean_flash)
+    estimate = (BULK_FACTOR * LUBRICATION_FACTOR[op.lubrication] * mean_flash
+                if running.iso_bulk else 0.0)
+    bulk = (op.bulk_temperature if op.bulk_temperature is not None
+            else op.oil_temperature + estimate)
     for row in rows:
         flash = row["flash_temperature_K"]
         row["contact_temperature_degC"] = None if flash is None else bulk + flash
     losses = [sum(r["power_loss_W"] for r in rows if r["roll_deg"] == roll)
               if all(r["power_loss_W"] is not None for r in rows if r["roll_deg"] == roll)
               else None for roll in positions]
-    torque = (case.load.torque if case.load.torque is not None
-              else case.load.tangential_load * pair.operating_pitch_radius)
-    power_in = torque * 1e-3 * op.pinion_speed * 2.0 * math.pi / 60.0
     loss = float(np.mean(losses)) if None not in losses else None
+    power = running.power
     result.sections["lubrication"] = {
         "oil_temperature_degC": op.oil_temperature, "kinematic_viscosity_mm2_per_s": nu,
         "dynamic_viscosity_mPa_s": fluid.eta * 1e3, "density_15_kg_per_m3": density_15,
         "pressure_viscosity_per_GPa": fluid.alpha * 1e3, "family": oil.family,
         "reduced_modulus_MPa": fluid.E_reduced, "mean_roughness_Ra_um": fluid.roughness_um,
-        "input_power_W": power_in}
+        "input_power_W" if running.input_power else "output_power_W": power}
     if not solved:
         return
     coldest = min(solved, key=lambda r: r["lambda"])
@@ -185,7 +227,8 @@ def _summary(case, pair, result: Result, fluid, nu: float, density_15: float) ->
         contact_temperature_max_degC=contact_max,
         sliding_velocity_max_m_per_s=max(r["sliding_velocity_m_per_s"] for r in rows),
         mesh_power_loss_W=loss,
-        mesh_efficiency=None if loss is None else 1.0 - loss / power_in,
+        mesh_efficiency=None if loss is None else (1.0 - loss / power if running.input_power
+                                                   else power / (power + loss)),
         friction_coefficient_mean=float(np.mean([r["friction_coefficient"] for r in solved])))
     theta_S = oil.scuffing_temperature
     summary["S_B"] = (None if theta_S is None else
@@ -199,8 +242,8 @@ def _summary(case, pair, result: Result, fluid, nu: float, density_15: float) ->
                 f"{name} safety {key} at least 1", summary[key] >= 1.0,
                 f"{key} {summary[key]:.2f} ([lubricant] {limit})"))
     summary["lubrication_note"] = (
-        "the lubricated contact at the pinion's "
-        f"{op.pinion_speed:g} rpm and {op.oil_temperature:g} °C oil: speeds from the mesh's "
+        f"the lubricated contact at the {running.names[0]}'s "
+        f"{running.speed:g} rpm and {op.oil_temperature:g} °C oil: speeds from the mesh's "
         "own placement of the exact flanks (sliding |v1 - v2| and sum |v1 + v2| of the "
         "tangential speeds at the contact point); friction "
         + ("fixed as given" if fluid.friction is not None else
@@ -210,12 +253,17 @@ def _summary(case, pair, result: Result, fluid, nu: float, density_15: float) ->
         "of a contact line (its own load per mm and entraining speed), Hamrock-Dowson's for "
         "an ellipse, isothermal, the oil at the oil temperature; lambda = h_min / mean Ra; "
         "flash temperature: Blok's, the solved pressure's heat μ·p·v_s crossing into both "
-        "flanks (high Peclet number, steel's sqrt(λρc)); bulk temperature "
+        "flanks (high Peclet number; sqrt(λρc) "
+        + ", ".join(f"{t / 1e3:.3g}" for t in fluid.thermal) + " kW·s^0.5/(m²·K)); bulk "
+        "temperature "
         + ("as given" if op.bulk_temperature is not None else
            f"θ_oil + {BULK_FACTOR}·X_S·θ_fl,mean (ISO/TS 6336-20, X_S "
-           f"{LUBRICATION_FACTOR[op.lubrication]:g})")
+           f"{LUBRICATION_FACTOR[op.lubrication]:g})" if running.iso_bulk else
+           "the oil's (none given)")
         + "; S_B = (θ_S - θ_oil)/(θ_B,max - θ_oil); S_lambda = lambda_min/λ_GFP; the mesh "
-        "loss is the cycle's mean of Σ μ·p·v_s over the contacts' cells")
+        "loss is the cycle's mean of Σ μ·p·v_s over the contacts' cells, the efficiency "
+        + ("1 - loss/input power" if running.input_power else
+           "output power/(output power + loss)"))
 
 
 def _at(row: dict) -> str:

@@ -145,7 +145,9 @@ def _spur_contact(case: schema.SpurCase, pair, result: Result) -> None:
                                 (case.material.nu, gear_material.nu))
     rating.root_sections(case, pair, result)
     rating.safety_sections(case, pair, result)
-    lubrication.lubrication_sections(case, pair, mesh, result)
+    if case.operation is not None:
+        lubrication.lubrication_sections(case, lubrication.spur_running(case, pair), mesh,
+                                         result)
     if case.analysis.positions_check:
         contact.check_positions(result, case.analysis.positions,
                          lambda scratch: _loaded_pass(case, pair, scratch, 0.5))

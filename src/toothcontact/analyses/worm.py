@@ -10,7 +10,7 @@ from dataclasses import replace
 from .. import case as schema
 from ..analytic import hertz, worm_efficiency
 from ..case import CaseError
-from . import contact
+from . import contact, lubrication
 from .result import Check, Result
 
 
@@ -61,9 +61,11 @@ def worm_geometry_case(case: schema.WormCase) -> Result:
                                              "form circle)")
             + f", the wheel's tip reaches diameter {2 * reach:.3f} mm"))
     if case.load is not None:
-        _worm_contact(case, parts, result)
+        mesh = _worm_contact(case, parts, result)
         contact.subsurface_sections(result, case.analysis.subsurface, (
             case.material.nu, (case.wheel_material or case.material).nu))
+        if case.operation is not None:
+            lubrication.lubrication_sections(case, _worm_running(case, parts), mesh, result)
         if case.analysis.positions_check:
             contact.check_positions(result, case.analysis.positions,
                              lambda scratch: _worm_contact(case, parts, scratch, 0.5))
@@ -84,9 +86,21 @@ def _flankless_worm(case: schema.WormCase, worm, wheel) -> str:
             "diameter (a smaller lead angle) or fewer starts")
 
 
-def _worm_contact(case: schema.WormCase, parts, result: Result, phase: float = 0.0) -> None:
+def _worm_running(case: schema.WormCase, parts) -> lubrication.LubricatedPair:
+    """A worm set's: the worm drives at [operation] worm_speed; the mesh passes the wheel's
+    output torque at the wheel's speed; no ISO bulk temperature estimate."""
+    speed, wheel = case.operation.worm_speed, parts.wheel[case.load.flank]
+    output = (case.load.output_torque * 1e-3 * speed * case.worm.starts / wheel.teeth
+              * 2.0 * math.pi / 60.0)
+    return lubrication.LubricatedPair(
+        ("worm", "wheel"), speed, (case.worm.roughness_Ra, case.wheel.roughness_Ra),
+        (case.material, case.wheel_material or case.material), output, False, False)
+
+
+def _worm_contact(case: schema.WormCase, parts, result: Result, phase: float = 0.0):
     """Contact of the loaded flank pair (`[load] flank`) over one mesh cycle, with seed 001's
-    anti-rattle-spring tilt of the worm shaft when a spring is given."""
+    anti-rattle-spring tilt of the worm shaft when a spring is given; the mesh that placed
+    it."""
     from ..assembly import WormMesh, WormMisalignment
     from ..contact.cycle import parallel_cycle
 
@@ -138,6 +152,7 @@ def _worm_contact(case: schema.WormCase, parts, result: Result, phase: float = 0
                      "thread, no end in reach); bending, shear, axial and body compliance "
                      "(contact.compliance), solved with the contact in one system", result)
     _publish_names(result, PUBLISHED_NAMES["worm"])
+    return mesh
 
 
 #: the names a kind's results give the contact engine's driver ("pinion") and driven member

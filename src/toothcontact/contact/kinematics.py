@@ -40,6 +40,20 @@ class ContactMotion:
         return out[0], out[1]
 
 
+    def in_plane(self, k: int, axes: tuple[np.ndarray, np.ndarray]) -> np.ndarray:
+        """Both members' surface velocities in contact k's tangent plane as affine maps of
+        the plane coordinates: (2, 3, 2) coefficients [member, (constant, per mm along
+        axes[0], per mm along axes[1]), component along axes[0] / axes[1]] (m/s), for unit
+        in-plane `axes` ((3,) each): v = c[0] + x·c[1] + y·c[2]."""
+        out = np.empty((2, 3, 2))
+        for m, (v, omega) in enumerate(((self.velocity_pinion[k], self.omega_pinion[k]),
+                                        (self.velocity_gear[k], self.omega_gear[k]))):
+            for j, term in enumerate((v, 1e-3 * np.cross(omega, axes[0]),
+                                      1e-3 * np.cross(omega, axes[1]))):
+                out[m, j] = term @ axes[0], term @ axes[1]
+        return out
+
+
 def contact_motion(mesh, cycle, driver_speed: float) -> ContactMotion:
     """The motion at every row of `cycle` (contact.cycle.ContactCycle) placed by `mesh`
     (assembly.ParallelMesh or WormMesh), the driver turning at `driver_speed` (rpm) the way
