@@ -21,8 +21,8 @@ OMEGA = 3000 * 2 * math.pi / 60          # the pinion's rad/s
 def lubricated(positions: int = 9, oil=None, **fields) -> dict:
     """The aligned, uncrowned 20/60 pair (test_rating.spur) running at 3000 rpm in a
     220/19 mm²/s mineral oil at 80 °C, Ra 0.4 µm."""
-    raw = spur(operation=OPERATION, lubricant={**OIL, **(oil or {})}, pinion=dict(ROUGH),
-               gear=dict(ROUGH), **fields)
+    raw = spur(**{"operation": OPERATION, "lubricant": {**OIL, **(oil or {})},
+                  "pinion": dict(ROUGH), "gear": dict(ROUGH), **fields})
     raw["analysis"]["positions"] = positions
     return raw
 
@@ -125,6 +125,34 @@ def test_the_film_is_dowson_higginsons_by_hand(spur_result):
     assert row["film_thickness_min_um"] == pytest.approx(h_min, rel=0.01)
     assert row["lambda"] == pytest.approx(row["film_thickness_min_um"] / 0.4, rel=1e-12)
     assert 1.0 < row["film_thickness_central_um"] / row["film_thickness_min_um"] < 1.4
+    # ISO/TR 14179-2's μ with the same inputs (η in mPa·s, Ra in µm, ρ in mm)
+    mu = 0.048 * (w * 1e-3 / ((v1 + v2) * R * 1e3)) ** 0.2 * (eta * 1e3) ** -0.05 * 0.4 ** 0.25
+    assert row["friction_coefficient"] == pytest.approx(mu, rel=1e-6)
+
+
+def test_a_crowned_contacts_film_is_hamrock_dowsons_by_hand():
+    """The 20/60 pair with a 150 mm crown (an ellipse within Hamrock & Dowson's k <= 8;
+    a longer one's film is a line contact's), aligned: its contact nearest the pitch point
+    carrying most of its position's load has their (1977) H_min = 3.63·U^0.68·G^0.49·W^-0.073·(1 - exp(-0.68·k)),
+    k = 1.0339·(R_y/R_x)^0.636, W = F/(E'·R_x²), with R_x the involute's relative radius,
+    R_y the crown's (the contact's A), F its loaded share, u the involute's; within 1 %."""
+    raw = lubricated(pinion={**ROUGH, "crown": {"radius": "150 mm"}})
+    result = analysed(raw)
+    rows = result.sections["positions"]
+    carrying = [k for k, r in enumerate(rows) if r["load_share"] and r["load_share"] > 0.5
+                and r["contact_model"] == "ellipse"]
+    k = min(carrying, key=lambda k: abs(involute_speeds(rows[k])[0] - 10.26))
+    row = rows[k]
+    rho1, rho2, v1, v2 = involute_speeds(row)
+    eta = result.sections["lubrication"]["dynamic_viscosity_mPa_s"] * 1e-3
+    E = 2 / (2 * (1 - 0.3 ** 2) / 206e9)
+    Rx = rho1 * rho2 / (rho1 + rho2) * 1e-3
+    Ry = 0.5 / row["A_analytic_per_mm"] * 1e-3
+    U, G, W = eta * 0.5 * (v1 + v2) / (E * Rx), 2e-8 * E, row["bem_load_N"] / (E * Rx ** 2)
+    kappa = 1.0339 * (Ry / Rx) ** 0.636
+    h_min = 3.63 * U ** 0.68 * G ** 0.49 * W ** -0.073 * (1 - math.exp(-0.68 * kappa)) * Rx * 1e6
+    assert kappa < 8.0
+    assert row["film_thickness_min_um"] == pytest.approx(h_min, rel=0.01)
 
 
 @pytest.mark.parametrize("speeds, slant", [((5.0, 5.0), 0.0), ((8.0, 2.0), 0.0),

@@ -184,6 +184,11 @@ class RatingSpec(Model):
     S_Fmin: Factor = Field(1.0, description="least root safety factor")
 
 
+#: a flank's arithmetic mean roughness Ra (mm), given with [operation]
+Roughness = quantity("length", positive=True, high=0.1)
+ROUGHNESS_FIELD = Field(None, description="the flanks' arithmetic mean roughness, e.g. "
+                                          "'0.4 um' (with [operation]: the friction "
+                                          "coefficient and the specific film)")
 #: the oil families a lubricant may name (analytic.lubricant.FAMILIES: their defaults);
 #: listed here so that reading a case does not import the analysis
 LUBRICANT_FAMILIES = ("mineral", "pao", "pag")
@@ -646,9 +651,7 @@ class Member(Model):
     end_relief: EndReliefSpec | None = None
     end_chamfer: EndChamferSpec | None = None
     shaft: ShaftSpec | None = None
-    roughness_Ra: quantity("length", positive=True, high=0.1) | None = Field(
-        None, description="the flanks' arithmetic mean roughness, e.g. '0.4 um' (with "
-                          "[operation]: the friction coefficient and the specific film)")
+    roughness_Ra: Roughness | None = ROUGHNESS_FIELD
 
     @model_validator(mode="after")
     def _one_measurement(self):
@@ -859,9 +862,7 @@ class WormSpec(Model):
                                               "wheel angle for ZK, e.g. '20 deg'")
     length: Length = Field(description="threaded length, e.g. '30 mm'")
     grinding_wheel_diameter: Length = Field(250.0, description="ZK only")
-    roughness_Ra: quantity("length", positive=True, high=0.1) | None = Field(
-        None, description="the flanks' arithmetic mean roughness, e.g. '0.4 um' (with "
-                          "[operation]: the friction coefficient and the specific film)")
+    roughness_Ra: Roughness | None = ROUGHNESS_FIELD
 
     @model_validator(mode="after")
     def _choices(self):
@@ -899,9 +900,7 @@ class WheelSpec(Model):
         None, description="pitch diameter of an oversized hob with the worm's lead; "
                           "default: the worm's (line contact)")
     align_hob_thread: bool = Field(False, description="tilt an oversized hob to the worm's thread")
-    roughness_Ra: quantity("length", positive=True, high=0.1) | None = Field(
-        None, description="the flanks' arithmetic mean roughness, e.g. '0.4 um' (with "
-                          "[operation]: the friction coefficient and the specific film)")
+    roughness_Ra: Roughness | None = ROUGHNESS_FIELD
 
 
 class WormMisalignmentSpec(Model):

@@ -20,6 +20,9 @@ FILM_LOAD_SHARE = 0.05
 #: X_mp = 1), X_S by how the mesh is lubricated
 BULK_FACTOR = 0.47
 LUBRICATION_FACTOR = {"splash": 1.2, "spray": 1.0}
+#: the ellipticity k = a/b up to which Hamrock & Dowson solved the point contact's film
+#: (their formulae's range); a longer ellipse's film is a line contact's, column by column
+POINT_FILM_ELLIPTICITY = 8.0
 #: the per-contact keys (None where the contact has no loaded solution)
 LOADED_KEYS = ("friction_coefficient", "film_thickness_central_um", "film_thickness_min_um",
                "lambda", "flash_temperature_K", "contact_temperature_degC", "power_loss_W")
@@ -156,7 +159,8 @@ def _lubricated(cycle, k: int, row: dict, contact, motion, across: np.ndarray, f
     flash = flash_temperature(flux, field.x, field.y, ((surface(0), fluid.thermal[0]),
                                                       (surface(1), fluid.thermal[1])))
     entraining = 0.5 * ((v1x + v2x) * (across @ axis[0]) + (v1y + v2y) * (across @ axis[1]))
-    if row["contact_model"] == "ellipse" and row["A_analytic_per_mm"] > 0:
+    if (row["contact_model"] == "ellipse" and row["A_analytic_per_mm"] > 0
+            and row["a_mm"] <= POINT_FILM_ELLIPTICITY * row["b_mm"]):
         u = abs(float(0.5 * (v1 + v2) @ across))
         film = ehl.point_film(fluid.eta, u, radius, 0.5 / row["A_analytic_per_mm"],
                               s.load_N, fluid.E_reduced, fluid.alpha) if u > 0 else None
@@ -250,8 +254,10 @@ def _summary(case, running: LubricatedPair, result: Result, fluid, nu: float,
            "ISO/TR 14179-2's μ at each contact (its largest normal line load, its sum speed "
            "and relative radius, the oil's viscosity, the mean Ra, X_L)")
         + "; film: Dowson-Higginson's minimum and Pan-Hamrock's central film of each column "
-        "of a contact line (its own load per mm and entraining speed), Hamrock-Dowson's for "
-        "an ellipse, isothermal, the oil at the oil temperature; lambda = h_min / mean Ra; "
+        "of a contact line or of an ellipse longer than "
+        f"{POINT_FILM_ELLIPTICITY:g} times its width (its own load per mm and entraining "
+        "speed), Hamrock-Dowson's for a shorter ellipse, isothermal, the oil at the oil "
+        "temperature; lambda = h_min / mean Ra; "
         "flash temperature: Blok's, the solved pressure's heat μ·p·v_s crossing into both "
         "flanks (high Peclet number; sqrt(λρc) "
         + ", ".join(f"{t / 1e3:.3g}" for t in fluid.thermal) + " kW·s^0.5/(m²·K)); bulk "
