@@ -35,7 +35,7 @@ STAGES = [
     ("load distribution", "analyses/spur.py", "_load_distribution"),
     ("interference (collision meshes)", "analyses/spur.py", "_spur_interference"),
     ("root stresses", "analyses/rating.py", "root_sections"),
-    ("analysis, all stages", "analyses/__init__.py", "analyse"),
+    ("analysis, all stages", "toothcontact/analyses", "analyse"),
 ]
 
 #: one sample's analysis in a fresh interpreter: prints JSON {wall_s (best of REPEAT),
@@ -50,10 +50,13 @@ from toothcontact.parallel import workers
 import_s = time.perf_counter() - start
 raw = tomllib.load(open({case!r}, "rb"))
 raw.setdefault("analysis", {{}}).update(positions_check=False, subsurface=False)
-try:
-    parse_case(raw)
-except Exception:          # a tree before [analysis] subsurface
-    raw["analysis"].pop("subsurface")
+for key in ("positions_check", "subsurface"):     # a tree before these settings
+    try:
+        parse_case(raw)
+    except Exception as exc:
+        if key not in str(exc):
+            raise
+        raw["analysis"].pop(key)
 walls = []
 with workers(1):
     for _ in range({repeat}):
@@ -66,7 +69,8 @@ stats = pstats.Stats(profile).stats
 stages = {{}}
 for name, suffix, function in {stages!r}:
     found = [ct for (path, _, fn), (_, _, _, ct, _) in stats.items()
-             if path.endswith(suffix) and fn == function]
+             if (path.endswith(suffix) or path.endswith(suffix + ".py")
+                 or path.endswith(suffix + "/__init__.py")) and fn == function]
     stages[name] = max(found) if found else None
 print(json.dumps({{"wall_s": min(walls), "stages": stages, "import_s": import_s}}))
 """
@@ -76,7 +80,9 @@ def probe(source: Path, repeat: int) -> dict:
     code = PROBE.format(case=str(CASE), repeat=repeat, stages=STAGES)
     env = {**os.environ, "PYTHONPATH": str(source / "src")}
     done = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True,
-                          env=env, check=True, cwd=source)
+                          env=env, cwd=source)
+    if done.returncode:
+        raise SystemExit(f"{source}: {done.stderr.strip().splitlines()[-1]}")
     return json.loads(done.stdout.strip().splitlines()[-1])
 
 
