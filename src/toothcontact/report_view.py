@@ -21,7 +21,9 @@ CHARTS = {"crown_chart", "anti_rattle_curve"}
 UNITS = [("_N_per_mm_um", "N/(mm·µm)"), ("_N_per_mm", "N/mm"), ("_sqrt_MPa", "√MPa"),
          ("_mm2_s", "mm²/s"), ("_per_mm", "1/mm"), ("_mm2", "mm²"), ("_urad", "µrad"),
          ("_MPa", "MPa"), ("_Nm", "N·m"), ("_deg", "deg"), ("_rad", "rad"), ("_mm", "mm"),
-         ("_um", "µm"), ("_N", "N"), ("_C", "°C")]
+         ("_um", "µm"), ("_N", "N"), ("_C", "°C"), ("_m_per_s", "m/s"), ("_degC", "°C"),
+         ("_K", "K"), ("_W", "W"), ("_mm2_per_s", "mm²/s"), ("_mPa_s", "mPa·s"),
+         ("_kg_per_m3", "kg/m³"), ("_per_GPa", "1/GPa")]
 
 #: labels of keys whose words alone do not say what they are
 LABELS = {
