@@ -59,7 +59,8 @@ def lubrication_sections(case, running: LubricatedPair, mesh, result: Result) ->
     family = lubricant.FAMILIES[oil.family]
     density_15 = oil.density or family.density_15
     nu = lubricant.kinematic_viscosity(oil.viscosity_40, oil.viscosity_100, op.oil_temperature)
-    eta = nu * 1e-6 * lubricant.density(density_15, op.oil_temperature)
+    eta = lubricant.dynamic_viscosity(oil.viscosity_40, oil.viscosity_100, density_15,
+                                      op.oil_temperature)
     first, second = running.materials
     fluid = _Fluid(eta=eta, alpha=oil.pressure_viscosity or family.pressure_viscosity,
                    E_reduced=ehl.reduced_modulus(first.E, first.nu, second.E, second.nu),
