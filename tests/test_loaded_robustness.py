@@ -234,35 +234,3 @@ def test_a_stalled_coarse_solve_leaves_the_fine_grids_to_start_cold(monkeypatch)
     assert all(r["bem_status"] in ("solved", "unloaded") for r in cold)
     for a, b in zip(normal, cold):
         assert b["bem_p_max_MPa"] == pytest.approx(a["bem_p_max_MPa"], rel=2e-3)
-
-
-def test_a_narrowing_that_finds_no_field_keeps_the_wider_fields_answer(monkeypatch):
-    """A contact spanning few cells is solved again on a field narrowed about it; where no
-    line of that field meets both flanks (measured on a 2-start ZA worm set, z2 = 54,
-    34 N·m, at roll 77.1 deg: the whole position then failed), the solution on the wider
-    field stands. Here every contact of the crowned spur pair is made to ask for a
-    narrowing (RESOLVE_CELLS, NARROW_GAIN raised) and every narrowing to find no field:
-    every contact is still solved."""
-    from toothcontact.analyses import analyse
-    from toothcontact.case import load_case
-    from toothcontact.parallel import workers
-    from toothcontact.runner import bundled_cases_dir
-
-    attempts = []
-
-    def no_field(self, box):
-        attempts.append(box)
-        self.box = box
-        raise ValueError("no line of the gap field meets both flanks")
-
-    monkeypatch.setattr(loaded._Pair, "_narrowed", no_field)
-    monkeypatch.setattr(loaded, "RESOLVE_CELLS", 10 ** 9)
-    monkeypatch.setattr(loaded, "NARROW_GAIN", 10.0 ** 9)
-    case, _ = load_case(bundled_cases_dir() / "spur_crowned_20_60.toml")
-    case = case.model_copy(update={"analysis": case.analysis.model_copy(update={
-        "positions": 3, "positions_check": False, "subsurface": False,
-        "interference": False})})
-    with workers(1):                    # the attempts counted in this process
-        rows = analyse(case).sections["positions"]
-    assert attempts
-    assert all(r["bem_status"] in ("solved", "unloaded") for r in rows)

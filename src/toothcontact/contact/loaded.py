@@ -446,8 +446,7 @@ class _Pair:
         line along an axis (a pair kept beyond the approach, sized on its far field, that
         closes at one spot; a contact at a tip rounding's start): along that axis the box
         becomes NARROW_SPAN times the contact's extent about it; whether it was narrowed
-        (once per pair: the position is then solved again; not where no field can be
-        laid about the contact alone)."""
+        (once per pair: the position is then solved again)."""
         if solution is None or self.box is not None:
             return False
         touched = solution.pressure_MPa > 0.0
@@ -468,13 +467,9 @@ class _Pair:
                 continue            # a contact lying across the field: narrowing gains little
             box[axis] = 0.5 * (low + high) + np.array([-half, half])
             changed = True
-        if not changed:
-            return False
-        try:
+        if changed:
             self._narrowed(box)
-        except ValueError:          # no field about the contact alone (its lines meet
-            return False            # only one flank there): the wider field's answer stands
-        return True
+        return changed
 
     def _narrowed(self, box: np.ndarray) -> None:
         """Solve on the field over `box` ((2, 2) mm in the plane) from now on."""
