@@ -679,8 +679,7 @@ def _share(pairs: list[_Pair], load: float, E_star: float) -> list[ContactSoluti
     take load once the approach reaches them), first on the coarse grids where the teeth
     bend; a pair whose contact reaches its field's edge gets a wider field, one that spans
     too few cells a narrower one about it (_Pair.narrow), and the position is solved again
-    (where the narrowed fields cannot be solved, the solutions before stand; a stalled coarse
-    solve leaves the fine grids to start from the split). None for a
+    (where the narrowed fields cannot be solved, the solutions before stand). None for a
     pair that carries no load."""
     touching = [p.rigid_contact for p in pairs]
     if not any(touching):
@@ -693,13 +692,10 @@ def _share(pairs: list[_Pair], load: float, E_star: float) -> list[ContactSoluti
         try:
             starts = None
             if pairs[0].structure is not None:
-                try:
-                    coarse = _precise_enough([p.grid(coarse=True) for p in pairs], loads,
-                                             E_star, tol=COARSE_TOLERANCE)
-                    starts = [p.refined(s) for p, s in zip(pairs, coarse)]
-                    loads = np.array([0.0 if s is None else s.load_N for s in coarse])
-                except RuntimeError:
-                    pass        # the coarse grids' solve stalled: the fine grids start cold
+                coarse = _precise_enough([p.grid(coarse=True) for p in pairs], loads, E_star,
+                                         tol=COARSE_TOLERANCE)
+                starts = [p.refined(s) for p, s in zip(pairs, coarse)]
+                loads = np.array([0.0 if s is None else s.load_N for s in coarse])
             solutions = _precise_enough([p.grid() for p in pairs], loads, E_star,
                                         starts=starts, tol=GAP_TOLERANCE)
         except GridEdgeError as exc:
