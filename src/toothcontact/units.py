@@ -119,9 +119,11 @@ def parse(text: str | float | int, kind: str) -> float:
         unit = ureg.Unit(unit_text.replace("^", "**"))
     except Exception:
         raise UnitError(f"{text!r}: unknown unit {unit_text!r}; expected {_expected(spec)}") from None
-    if not _has_dimension(unit, spec) or (kind == "rotational_speed"
-                                           and not ROTATION_UNIT.search(unit_text)):
+    if not _has_dimension(unit, spec):
         raise UnitError(f"{text!r} is not {_expected(spec)}")
+    if kind == "rotational_speed" and not ROTATION_UNIT.search(unit_text):
+        raise UnitError(f"{text!r} does not say what turns: give rpm, revolution/second or "
+                        "rad/s (Hz and 1/s could mean either turns or radians)")
     return float(ureg.Quantity(magnitude, unit).to(spec.core_unit).magnitude)
 
 
