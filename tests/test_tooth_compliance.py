@@ -175,21 +175,25 @@ def test_the_line_load_spreads_each_cells_load_over_the_face_it_spans(extent):
     """FaceLoad.line_load (cumulative sums over the cells sorted by their start) against
     the direct sum of each cell's load times its covered share of every strip, on random
     face positions under a random pressure: cells much shorter than a strip and cells
-    spanning several; to 1e-12 of the largest line load. Strips covering every cell hold
-    the whole load."""
+    spanning several; to 1e-12 of the largest line load, and the line moment (each load
+    times its cell's load radius) to 1e-10 of the largest (its cumulative sums are 30
+    times larger: more round-off in t·S0 - S1). Strips covering every cell hold the whole
+    load."""
     rng = np.random.default_rng(3)
     shape, cell = (30, 20), 0.01
     material = rng.random(shape) > 0.2
     z = rng.uniform(-6.0, 6.0, int(material.sum()))
     p = rng.random(shape) * 100.0
     order = np.argsort(z, kind="stable")
-    face = FaceLoad(material, order, z[order] - 0.5 * extent, extent, cell)
     edges = np.sort(rng.uniform(-8.0, 8.0, 15))
+    radius = rng.uniform(30.0, 33.0, z.size)
+    face = FaceLoad(material, order, z[order] - 0.5 * extent, extent, cell, radius[order])
     loads = p[material] * cell
-    below = np.clip((edges[:, None] - z[None, :]) / extent + 0.5, 0.0, 1.0) @ loads
-    expected = np.diff(below) / np.diff(edges)
-    found = face.line_load(p, edges)
-    assert np.max(np.abs(found - expected)) < 1e-12 * np.max(np.abs(expected))
+    share = np.clip((edges[:, None] - z[None, :]) / extent + 0.5, 0.0, 1.0)
+    for moment, weights, tolerance in ((False, loads, 1e-12), (True, loads * radius, 1e-10)):
+        expected = np.diff(share @ weights) / np.diff(edges)
+        found = face.line_load(p, edges, moment=moment)
+        assert np.max(np.abs(found - expected)) < tolerance * np.max(np.abs(expected))
     whole = np.array([-8.0, -1.0, 0.5, 8.0])
     assert np.sum(face.line_load(p, whole) * np.diff(whole)) == pytest.approx(loads.sum(),
                                                                               rel=1e-12)

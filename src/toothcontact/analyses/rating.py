@@ -39,12 +39,12 @@ def root_sections(case, pair, result: Result) -> None:
     rows = result.sections["positions"]
     for k, row in enumerate(rows):
         contact = loaded[k]
-        for name, (gear, flank) in members.items():
+        for member, (name, (gear, _)) in enumerate(members.items()):
             key = f"root_stress_{name}_MPa"
             if contact is None or models[name] is None:
                 row[key] = 0.0 if row["bem_status"] == "unloaded" and models[name] else None
                 continue
-            row[key] = _largest_root_stress(contact, name, gear, flank, models[name])
+            row[key] = _largest_root_stress(contact, member, gear, models[name])
     summary = result.sections["summary"]
     for name in members:
         key = f"root_stress_{name}_MPa"
@@ -63,24 +63,16 @@ def root_sections(case, pair, result: Result) -> None:
            "against 2D finite elements of the exact tooth within 10 % (tests)"))
 
 
-def _largest_root_stress(contact, name: str, gear, flank, model) -> float:
-    """The largest root stress (MPa) along `name`'s face under one contact: its line load on
-    ROOT_STRIPS face strips (each cell's load spread over the face it spans), each strip's
-    at the load-weighted radius of its cells."""
-    from ..contact.compliance import field_face_load
-
-    field, pressure = contact.field, contact.solution.pressure_MPa
-    material = field.material
-    u, v = field.parameters[f"{name}_u"][material], field.parameters[f"{name}_v"][material]
-    x, y, z = flank.point(u, v)
-    radius = np.broadcast_to(np.hypot(x, y), np.shape(u))
-    face = field_face_load(field, np.asarray(z, float) + 0.0 * u)
+def _largest_root_stress(contact, member: int, gear, model) -> float:
+    """The largest root stress (MPa) along a member's face (0: the pinion, 1: the gear)
+    under one contact: its line load on ROOT_STRIPS face strips (each cell's load spread
+    over the face it spans), each strip's at the load-weighted radius of its cells (where
+    the tooth model placed them)."""
+    face, pressure = contact.faces[member], contact.solution.pressure_MPa
     half = 0.5 * gear.face_width
     edges = np.linspace(-half, half, ROOT_STRIPS + 1)
     line_load = face.line_load(pressure, edges)
-    weighted = np.zeros_like(pressure)
-    weighted[material] = pressure[material] * radius
-    moment = face.line_load(weighted, edges)
+    moment = face.line_load(pressure, edges, moment=True)
     on = line_load > 1e-12 * max(float(line_load.max()), 1e-300)
     if not on.any():
         return 0.0

@@ -513,15 +513,19 @@ class StructureOperator:
                                       zip(self.members, np.split(loads, self._split))])
         return (self._gather @ deflections).reshape(self.shape)
 
-    def face_load(self, member: int = 0) -> "FaceLoad":
-        """Where the grid's cells sit along the face of the member (0: the first); of a
-        whole grid's operator (a window or a coarsened grid keeps the whole grid's members)."""
-        m = self.members[member]
+    def face_loads(self) -> tuple["FaceLoad", ...]:
+        """Where the grid's cells sit along each member's face and at what load radius (the
+        members in order); of a whole grid's operator (a window or a coarsened grid keeps
+        the whole grid's members)."""
         material = np.zeros(self.shape[0] * self.shape[1], bool)
         material[self.active] = True
-        order = np.argsort(m.z, kind="stable")
-        return FaceLoad(material.reshape(self.shape), order, m.z[order] - 0.5 * m.extent,
-                        m.extent, self.cell)
+        material = material.reshape(self.shape)
+        loads = []
+        for m in self.members:
+            order = np.argsort(m.z, kind="stable")
+            loads.append(FaceLoad(material, order, m.z[order] - 0.5 * m.extent, m.extent,
+                                  self.cell, m.radius[order]))
+        return tuple(loads)
 
 
 @dataclass(frozen=True)
@@ -534,7 +538,8 @@ class FaceLoad:
     material: the grid's cells on material (the grid's shape);
     order: the material cells (in the grid's order) by increasing start;
     starts: their starts in that order (mm);
-    extent: the length of face a cell spans (mm); cell: the cells' area (mm²).
+    extent: the length of face a cell spans (mm); cell: the cells' area (mm²);
+    radius: their load radii on the member's tooth in that order (mm).
     A few arrays: a worker process hands it back with the contact's solution."""
 
     material: np.ndarray
@@ -542,16 +547,20 @@ class FaceLoad:
     starts: np.ndarray
     extent: float
     cell: float
+    radius: np.ndarray
 
-    def line_load(self, p: np.ndarray, edges: np.ndarray) -> np.ndarray:
+    def line_load(self, p: np.ndarray, edges: np.ndarray, moment: bool = False) -> np.ndarray:
         """The mean load per unit face width (N/mm) on the strips between `edges` (mm,
-        increasing, along the member's axis) under the pressure p (MPa) on the grid.
+        increasing, along the member's axis) under the pressure p (MPa) on the grid; with
+        `moment`, each cell's load times its load radius (N·mm/mm).
 
         The load below a point t is the sum of L_i·clip((t - a_i)/w, 0, 1) over the cells
         (L their loads, a their starts, w the extent): t·S0 - S1 over the cells starting
         below t, less the same below t - w, over w (S0, S1 the cumulative sums of L and
         L·a in the order of the starts)."""
         loads = np.asarray(p, float)[self.material][self.order] * self.cell
+        if moment:
+            loads = loads * self.radius
         S0 = np.concatenate([[0.0], np.cumsum(loads)])
         S1 = np.concatenate([[0.0], np.cumsum(loads * self.starts)])
 
@@ -599,15 +608,6 @@ class PairCompliance:
             reference.append((round(depth, 3), teeth.E, teeth.nu))
         dx, dy = field.spacing
         return StructureOperator(members, material.shape, dx * dy, material, tuple(reference))
-
-
-def field_face_load(field, z: np.ndarray) -> FaceLoad:
-    """Where a gap field's material cells sit along a member's face: z (mm) the face
-    position of each (in the grid's order), each spread over the face it spans."""
-    order = np.argsort(z, kind="stable")
-    extent = _extent(field, z)
-    dx, dy = field.spacing
-    return FaceLoad(field.material, order, z[order] - 0.5 * extent, extent, dx * dy)
 
 
 def _extent(field, z: np.ndarray) -> float:

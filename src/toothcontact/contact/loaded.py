@@ -110,19 +110,20 @@ def unsolved(status: str, reason: str | None = None) -> dict:
 class LoadedContact:
     """One contact's loaded solution: its gap field, the pressure on it, its result keys
     (`summary`: see :func:`summarise`, computed where the contact was solved) and where its
-    cells sit along the pinion's face (None without a tooth model)."""
+    cells sit along each member's face and at what load radius (the driver's, then the
+    driven member's; empty without a tooth model)."""
 
     field: GapField
     solution: ContactSolution
     summary: dict
-    face: FaceLoad | None = None
+    faces: tuple[FaceLoad, ...] = ()
 
     def line_load(self, edges: np.ndarray) -> np.ndarray | None:
         """The contact's mean load per unit face width (N/mm) on the strips of the pinion's
         face between `edges` (mm from mid-face); None without a tooth model."""
-        if self.face is None:
+        if not self.faces:
             return None
-        return self.face.line_load(self.solution.pressure_MPa, edges)
+        return self.faces[0].line_load(self.solution.pressure_MPa, edges)
 
 
 def summarise(field: GapField, s: ContactSolution, position_load: float | None = None,
@@ -351,7 +352,7 @@ def loaded_cycle(cycle, C_E: float, points: int = 128, teeth: PairCompliance | N
     breaks = edge_breaks(cycle)
 
     def position(index: int):
-        """A position's (field, face, solution, summary) per pair (the field where it was
+        """A position's (field, faces, solution, summary) per pair (the field where it was
         widened, else None; the solution and summary None for a pair that carries no
         load), or the reason it could not be solved."""
         ks = groups[index]
@@ -366,7 +367,8 @@ def loaded_cycle(cycle, C_E: float, points: int = 128, teeth: PairCompliance | N
         except (ValueError, RuntimeError) as exc:
             return str(exc)
         return [(None if pair.field is fields[k] else pair.field,
-                 None if pair.structure is None else pair.structure.face_load(), solution,
+                 () if pair.structure is None or solution is None
+                 else pair.structure.face_loads(), solution,
                  None if solution is None else summarise(pair.field, solution, load, breaks))
                 if k in solutions else (None, None, None, None)
                 for k, (pair, solution) in ((k, solutions.get(k, (None, None))) for k in ks)]
@@ -375,10 +377,10 @@ def loaded_cycle(cycle, C_E: float, points: int = 128, teeth: PairCompliance | N
         if isinstance(answer, str):
             failed.update({k: answer for k in ks})
             continue
-        for k, (field, face, solution, summary) in zip(ks, answer):
+        for k, (field, faces, solution, summary) in zip(ks, answer):
             if solution is not None:
                 out[k] = LoadedContact(fields[k] if field is None else field, solution,
-                                       summary, face)
+                                       summary, faces)
     return out, failed
 
 
