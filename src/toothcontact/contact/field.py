@@ -212,13 +212,15 @@ def gap_fields(pinion: Flank, gear: Flank, pinion_frames: Frame, gear_frames: Fr
         samples_ = [(hg.s - hp.s)[k] - modification_gap(pinion, gear, *parameters)] + parameters
         filled = smooth_fill(np.stack([q.reshape(grid) for q in samples_]), met)
         points = (np.linspace(-1.0, 1.0, nx), np.linspace(-1.0, 1.0, ny))
-        field = _spline_field(filled, met, points, centre[k], half[k], pinion, gear, names)
+        # snapping places the edges from the flanks' parameters alone: the field it moves
+        # takes the modifications' gap (a drop at every cell) only once moved
+        field = _spline_field(filled, met, points, centre[k], half[k], pinion, gear, names,
+                              modified=not snap)
         if snap:
             moved = [snapped_points(field, centre[k, i], half[k, i], i) for i in (0, 1)]
-            if any(m is not None for m in moved):
-                field = _spline_field(filled, met, tuple(p if m is None else m
-                                                         for p, m in zip(points, moved)),
-                                      centre[k], half[k], pinion, gear, names)
+            field = _spline_field(filled, met, tuple(p if m is None else m
+                                                     for p, m in zip(points, moved)),
+                                  centre[k], half[k], pinion, gear, names)
         out.append(replace(field, turn=float(turn[k])) if turn[k] else field)
     return out
 
@@ -240,10 +242,11 @@ def modification_gap(pinion: Flank, gear: Flank, pinion_u, pinion_v, gear_u, gea
 
 
 def _spline_field(filled: np.ndarray, met: np.ndarray, points, centre, half, pinion: Flank,
-                  gear: Flank, names: list[str]) -> GapField:
+                  gear: Flank, names: list[str], modified: bool = True) -> GapField:
     """One contact's field at `points` (x, y in units of the half-sides about the centre)
     from its samples (`filled`: the gap and the flanks' parameters on the samples, `met`:
-    where both surfaces exist), by the tensor-product cubic splines."""
+    where both surfaces exist), by the tensor-product cubic splines; modified=False leaves
+    the modifications' gap out (a field that only places the flanks' edges)."""
     samples = met.shape[0]
     to_fine = [_cardinal_splines(samples, p) for p in points]
     # each point's nearest sample: where it did not meet both surfaces, none exists
@@ -252,7 +255,8 @@ def _spline_field(filled: np.ndarray, met: np.ndarray, points, centre, half, pin
     carried = to_fine[0] @ filled @ to_fine[1].T
     exists = met[np.ix_(ix, iy)]
     parameters = dict(zip(names, carried[1:]))
-    carried[0] += modification_gap(pinion, gear, *carried[1:])
+    if modified:
+        carried[0] += modification_gap(pinion, gear, *carried[1:])
     beyond, inside = {"beyond_surface": ~exists}, {}
     for member, flank in (("pinion", pinion), ("gear", gear)):
         for name, (low, high) in zip(("u", "v"), flank.domain):
