@@ -15,7 +15,7 @@ from dataclasses import dataclass, fields
 
 import numpy as np
 
-from .surfaces.jet import value, where
+from .surfaces.jet import Jet, value, where
 
 SHAPES = ("circular", "parabolic")
 
@@ -309,7 +309,20 @@ class TipEdge:
         the continued surface stays smooth and finite; a chamfer runs on straight."""
         toward = 1.0 if s_tip >= self.start else -1.0
         beyond = (value(s) - self.start) * toward > 0.0
-        arc = where(beyond, toward * (s * s - self.start**2) / (2.0 * self.base_radius), 0.0 * s)
+        if isinstance(s, Jet):      # held at the start short of it (no drop, no NaN there)
+            held = where(beyond, s, 0.0 * s + self.start)
+            return where(beyond, self._drop_beyond(held, s_tip, toward), 0.0 * s)
+        # plain numbers: the drop only where the rounding is (most of a flank has none)
+        s = np.asarray(s, float)
+        drop = np.zeros(np.broadcast(s, beyond).shape)
+        if beyond.any():
+            drop[beyond] = self._drop_beyond(np.broadcast_to(s, drop.shape)[beyond], s_tip,
+                                             toward)
+        return drop
+
+    def _drop_beyond(self, s, s_tip: float, toward: float):
+        """The drop (mm) at roll lengths s (mm) past the rounding's start (see drop)."""
+        arc = toward * (s * s - self.start**2) / (2.0 * self.base_radius)
         radius = 1.0 / (1.0 / self.radius + (1.0 if self.internal else -1.0) / self.start)
         if self.angle is not None:
             # a line's drop off a circle of radius s along its normal, at the angle γ to
@@ -317,7 +330,7 @@ class TipEdge:
             # twice in the arc σ), away from the circle's centre on an external gear
             sin2 = math.sin(self.angle) ** 2
             bend = (1.0 if self.internal else -1.0) * (1.0 + sin2) / ((1.0 - sin2) * self.start)
-            return where(beyond, _broken_edge_drop(arc, radius, self.angle, bend), 0.0 * s)
+            return _broken_edge_drop(arc, radius, self.angle, bend)
         arc_tip = toward * (s_tip**2 - self.start**2) / (2.0 * self.base_radius)
         past = value(arc) > arc_tip
         circle = _arc_drop(where(past, 0.0 * s + arc_tip, arc), radius, "circular")
@@ -325,7 +338,7 @@ class TipEdge:
         run = arc - arc_tip
         continued = (radius - root + arc_tip / root * run
                      + 0.5 * radius**2 / root**3 * run * run)
-        return where(beyond, where(past, continued, circle), 0.0 * s)
+        return where(past, continued, circle)
 
 
 @dataclass(frozen=True)
