@@ -200,7 +200,7 @@ def _rounding_load(field: GapField, name: str, on: np.ndarray, s: ContactSolutio
     end's strip measures the corner: a sharp edge's pressure there does not converge); with
     `patch`, the largest mean over EDGE_STRIP × EDGE_STRIP of material (an end chamfer's
     rounded edge runs along a line field's long cells, which do not resolve its peak)."""
-    from scipy.ndimage import distance_transform_edt, uniform_filter
+    from scipy.ndimage import uniform_filter
 
     p = np.where(on, s.pressure_MPa, 0.0)
     load = float(p.sum()) * s.dx_mm * s.dy_mm
@@ -211,8 +211,7 @@ def _rounding_load(field: GapField, name: str, on: np.ndarray, s: ContactSolutio
                               mode="constant")
         p = np.where(on, np.divide(mean, held, out=np.zeros_like(mean), where=held > 0), 0.0)
     beyond_tip = field.beyond.get(name, np.zeros_like(on))
-    away = distance_transform_edt(field.material | beyond_tip, sampling=field.spacing) > EDGE_STRIP
-    inner = np.where(away, p, 0.0)
+    inner = np.where(_inside_strip(field.material | beyond_tip, p > 0.0, field.spacing), p, 0.0)
     peak = float(inner.max()) if inner.size else 0.0
     return EdgeLoad(1, "high", 0.0, peak, float(s.pressure_MPa[on].max()) if on.any() else 0.0,
                     load, load / s.load_N if s.load_N else 0.0,
@@ -316,15 +315,34 @@ def _interior_peak(field: GapField, s: ContactSolution, roundings=()) -> float:
     those of the material and the tip roundings' starts (`roundings`: bool masks of the
     cells on them). With the edge pressures, the peak that converges as the grid is refined
     (the pressure in a cell at a sharp edge does not)."""
-    from scipy.ndimage import distance_transform_edt
-
     active = field.material.copy()
     for on in roundings:
         active &= ~on
-    inside = (active if active.all() else
-              distance_transform_edt(active, sampling=field.spacing) > EDGE_STRIP)
     p = s.pressure_MPa
+    inside = _inside_strip(active, active & (p > 0.0), field.spacing)
     return float(p[inside].max()) if inside.any() else 0.0
+
+
+def _inside_strip(keep: np.ndarray, cells: np.ndarray, spacing) -> np.ndarray:
+    """The `cells` (bool grid) more than EDGE_STRIP from every cell outside `keep` (bool
+    grid, cells dx × dy mm): the distance transform on the box about them only, widened by
+    more than the strip (no cell farther out can be within it)."""
+    from scipy.ndimage import distance_transform_edt
+
+    out = np.zeros_like(cells)
+    if not cells.any():
+        return out
+    box = []
+    for axis, step in enumerate(spacing):
+        index = np.flatnonzero(cells.any(axis=1 - axis))
+        margin = int(math.ceil(EDGE_STRIP / step)) + 1
+        box.append(slice(max(int(index[0]) - margin, 0), int(index[-1]) + 1 + margin))
+    box = tuple(box)
+    near = keep[box]
+    far = (np.ones_like(near) if near.all() else
+           distance_transform_edt(near, sampling=spacing) > EDGE_STRIP)
+    out[box] = far & cells[box]
+    return out
 
 
 def loaded_cycle(cycle, C_E: float, points: int = 128, teeth: PairCompliance | None = None
