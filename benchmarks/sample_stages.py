@@ -1,8 +1,8 @@
 """Where one sweep sample's time goes (issue 32): the bundled spur pair analysed as a sweep
-sample runs it (`spur_crowned_20_60`, no positions check, no subsurface stresses, one
-worker), its stages timed by cProfile's cumulative time, here and at a named commit
-(25866f5, the issue's reference) in the same run, each in a fresh interpreter; the best of
-N wall times beside them, and the import of the analysis path.
+sample runs it (`spur_crowned_20_60`, no positions check, no subsurface stresses, no rigid
+patterns, one worker), its stages timed by cProfile's cumulative time, here and at a named
+commit (25866f5, the issue's reference) in the same run, each in a fresh interpreter; the
+best of N wall times beside them, and the import of the analysis path.
 
     .venv/bin/python benchmarks/sample_stages.py [--against 25866f5] [--repeat 3]
 
@@ -49,8 +49,9 @@ from toothcontact.case import parse_case
 from toothcontact.parallel import workers
 import_s = time.perf_counter() - start
 raw = tomllib.load(open({case!r}, "rb"))
-raw.setdefault("analysis", {{}}).update(positions_check=False, subsurface=False)
-for key in ("positions_check", "subsurface"):     # a tree before these settings
+raw.setdefault("analysis", {{}}).update(positions_check=False, subsurface=False,
+                                        rigid_patterns=False)
+for key in ("positions_check", "subsurface", "rigid_patterns"):  # a tree before these
     try:
         parse_case(raw)
     except Exception as exc:

@@ -1,16 +1,20 @@
-"""Sweeps (issue 15): the time of one sample and how a sweep scales, in one run.
+"""Sweeps (issues 15 and 32): the time of one sample, how a sweep scales, what it costs
+besides its samples, and what a 1,000-sample study would take, in one run.
 
-1. Per sample: the full loaded spur case (bundled `spur_crowned_20_60`: 21 positions, 128²
-   pressure grid, interference on) with this tree's code beside the first release's
-   (commit 8744259, taken from git and run in a subprocess of this run), best of
-   `--repeat`, each as it runs by default on this machine (the first release's transforms
-   on every core, this tree's positions in forked processes), and this tree's on one core
-   (what a sweep worker gets on a machine it fills); and the physical limit of the solves,
-   the time spent inside the FFT library (pocketfft's transforms, by cProfile, on one
-   core).
-2. Scale: a `--samples` Monte Carlo of the same case (slope normal 0.8 ± 0.3 mrad, crown
-   radius uniform 3000-5000 mm, Latin hypercube) on a local Dask cluster of 1 and of 2
-   workers: wall time, samples per second, speed-up; the two tables must be identical.
+1. Per sample: the bundled crowned spur pair (`spur_crowned_20_60`: 21 positions,
+   interference on) analysed as a sweep sample runs it (no positions check, no stresses
+   below the contacts) on one worker, best of `--repeat` in a fresh interpreter
+   (sample_stages.probe), with this tree's code beside `--against` (25866f5, issue 32's
+   reference) checked out in the same run; and one design's latency: the case as bundled
+   (positions check and subsurface stresses on) on all of the machine's cores, both trees.
+2. Scale: a Monte Carlo of the same case (slope normal 0.8 ± 0.3 mrad, crown radius
+   uniform 3000-5000 mm, Latin hypercube) on a local Dask cluster of each `--workers`
+   count: `--samples` samples and one round (as many samples as workers), both timed
+   whole, so that the rate is the slope between them and the sweep's fixed cost (cluster
+   start and close, imports, planning, the last statistics, figures and report) their
+   intercept; samples/s, the efficiency against W times one worker's rate, the tables
+   identical across the counts, and the projection of a 1,000-sample study
+   (fixed + 1000 / rate).
 3. Faults: a `--killed-samples` sweep on a Dask scheduler and two workers started as
    separate processes (`dask scheduler`, `dask worker`), one worker SIGKILLed once the
    first sample is in: the sweep completes and its table equals a local run's.
@@ -18,8 +22,8 @@
 Prints a table and writes benchmarks/sweep.json; `--parts` runs some of the three and keeps
 the others' last record (each part records the commit it measured).
 
-    .venv/bin/python benchmarks/sweep.py [--samples 200] [--killed-samples 40] [--repeat 3]
-                                         [--parts per_sample scaling killed_worker]
+    .venv/bin/python benchmarks/sweep.py [--samples 40] [--workers 1 2] [--repeat 3]
+        [--against 25866f5] [--killed-samples 40] [--parts per_sample scaling killed_worker]
 """
 
 from __future__ import annotations
@@ -35,45 +39,29 @@ import tempfile
 import time
 from pathlib import Path
 
+from sample_stages import probe as sample_probe
+from timing import checked_out
+
 HERE = Path(__file__).resolve().parent
 ROOT = HERE.parent
 CASE = "spur_crowned_20_60"
-FIRST_RELEASE = "8744259"
+#: the study the projection is for (samples)
+STUDY = 1000
 
-#: runs inside the interpreter for one source tree: prints JSON {best_s, one_worker_s,
-#: fft_s}: the best time as the tree runs by default (the first release: its transforms on
-#: every core; now: the positions on every core, in forked processes), on one worker where
-#: the tree can be told (None for the first release), and the time inside the FFT library
-#: on one worker (cProfile sees only the thread it runs in)
-PROBE = r"""
-import cProfile, contextlib, json, pstats, sys, time
-from pathlib import Path
-from toothcontact import analyses
-from toothcontact.case import load_case
-try:
-    from toothcontact.parallel import workers
-except ImportError:
-    workers = None
-case = load_case(Path(sys.argv[1]) / "CASE.toml")[0]
-
-def best(context):
-    found = None
-    for _ in range(REPEAT):
-        with context():
-            start = time.perf_counter()
-            analyses.analyse(case)
-            found = min(found or 1e9, time.perf_counter() - start)
-    return found
-
-one = (lambda: workers(1)) if workers else contextlib.nullcontext
-profile = cProfile.Profile()
-with one():
-    profile.runcall(analyses.analyse, case)
-stats = pstats.Stats(profile).stats
-fft = sum(tt for (path, _, name), (_, _, tt, _, _) in stats.items()
-          if "pocketfft" in path or name.startswith("<built-in method scipy.fft._pocketfft"))
-print(json.dumps({"best_s": best(contextlib.nullcontext),
-                  "one_worker_s": best(one) if workers else None, "fft_s": fft}))
+#: one design's latency in a fresh interpreter: the bundled case as it is (positions check
+#: and subsurface stresses on) on every core of this machine, best of REPEAT: prints JSON
+#: {"wall_s"}
+LATENCY = """
+import json, time, tomllib
+from toothcontact.analyses import analyse
+from toothcontact.case import parse_case
+raw = tomllib.load(open({case!r}, "rb"))
+walls = []
+for _ in range({repeat}):
+    start = time.perf_counter()
+    analyse(parse_case(raw))
+    walls.append(time.perf_counter() - start)
+print(json.dumps({{"wall_s": min(walls)}}))
 """
 
 SWEEP = """kind = "sweep"
@@ -95,27 +83,28 @@ high = "5000 mm"
 """
 
 
-def probe(source: Path, cases: Path, repeat: int) -> dict:
-    """{best_s, fft_s} of the bundled case with the package at `source` (a src folder)."""
-    code = PROBE.replace("REPEAT", str(repeat)).replace("CASE", CASE)
-    env = {"PYTHONPATH": str(source), "PATH": "/usr/bin:/bin"}
-    done = subprocess.run([sys.executable, "-c", code, str(cases)], capture_output=True,
-                          text=True, env=env, check=True)
-    return json.loads(done.stdout.strip().splitlines()[-1])
+def latency(source: Path, repeat: int) -> float:
+    """One design's best wall time (s) with the tree at `source` (a repository root)."""
+    code = LATENCY.format(case=str(source / "cases" / f"{CASE}.toml"), repeat=repeat)
+    done = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True,
+                          env={**os.environ, "PYTHONPATH": str(source / "src")}, cwd=source)
+    if done.returncode:
+        raise SystemExit(f"{source}: {done.stderr.strip().splitlines()[-1]}")
+    return json.loads(done.stdout.strip().splitlines()[-1])["wall_s"]
 
 
-def per_sample(repeat: int) -> dict:
-    with tempfile.TemporaryDirectory() as tmp:
-        archive = subprocess.run(["git", "-C", str(ROOT), "archive", FIRST_RELEASE, "src",
-                                  "cases"], capture_output=True, check=True).stdout
-        subprocess.run(["tar", "-x", "-C", tmp], input=archive, check=True)
-        before = probe(Path(tmp) / "src", Path(tmp) / "cases", repeat)
-    now = probe(ROOT / "src", ROOT / "cases", repeat)
-    return {"case": CASE, "first_release": FIRST_RELEASE, "before_s": before["best_s"],
-            "now_s": now["best_s"], "speed_up": before["best_s"] / now["best_s"],
-            "now_one_worker_s": now["one_worker_s"],
-            "one_worker_speed_up": before["best_s"] / now["one_worker_s"],
-            "now_fft_s": now["fft_s"], "now_fft_share": now["fft_s"] / now["one_worker_s"]}
+def per_sample(repeat: int, against: str) -> dict:
+    with checked_out(against) as old:
+        before = sample_probe(old, repeat)
+        before_latency = latency(old, repeat)
+    now = sample_probe(ROOT, repeat)
+    now_latency = latency(ROOT, repeat)
+    return {"case": CASE, "against": against,
+            "before_s": before["wall_s"], "now_s": now["wall_s"],
+            "speed_up": before["wall_s"] / now["wall_s"],
+            "before_import_s": before["import_s"], "now_import_s": now["import_s"],
+            "before_latency_s": before_latency, "now_latency_s": now_latency,
+            "cores": os.cpu_count()}
 
 
 def sweep_file(folder: Path, samples: int) -> Path:
@@ -131,21 +120,36 @@ def table(written) -> list[dict]:
     return pq.read_table(written[0]).to_pylist()
 
 
-def scaling(samples: int, folder: Path) -> dict:
+def timed_sweep(path: Path, out: Path, workers: int) -> tuple[float, list[dict]]:
+    """A sweep file run on `workers` local workers: its wall time (s) and its table."""
     from toothcontact import runner
 
-    path = sweep_file(folder, samples)
+    start = time.perf_counter()
+    _, written = runner.run_sweep(path, out, workers=workers)
+    return time.perf_counter() - start, table(written)
+
+
+def scaling(samples: int, counts: list[int], folder: Path) -> dict:
     out, tables = {}, {}
-    for workers in (1, 2):
-        start = time.perf_counter()
-        _, written = runner.run_sweep(path, folder / f"workers_{workers}", workers=workers)
-        wall = time.perf_counter() - start
-        tables[workers] = table(written)
-        out[workers] = {"wall_s": wall, "samples_per_s": samples / wall,
-                        "ok": sum(r["status"] == "ok" for r in tables[workers])}
-    return {"samples": samples, "one_worker": out[1], "two_workers": out[2],
-            "speed_up": out[1]["wall_s"] / out[2]["wall_s"],
-            "same_table": tables[1] == tables[2]}
+    for workers in counts:
+        one_round, _ = timed_sweep(sweep_file(folder, workers), folder / f"round_{workers}",
+                                   workers)
+        wall, tables[workers] = timed_sweep(sweep_file(folder, samples),
+                                            folder / f"workers_{workers}", workers)
+        rate = (samples - workers) / (wall - one_round)
+        fixed = max(one_round - workers / rate, 0.0)
+        out[str(workers)] = {"wall_s": wall, "samples_per_s": samples / wall,
+                             "rate_samples_per_s": rate, "one_round_wall_s": one_round,
+                             "fixed_s": fixed, "study_s": fixed + STUDY / rate,
+                             "ok": sum(r["status"] == "ok" for r in tables[workers])}
+    single = out.get("1")
+    for workers, entry in out.items():
+        entry["efficiency"] = (None if single is None else
+                               entry["rate_samples_per_s"]
+                               / (int(workers) * single["rate_samples_per_s"]))
+    first = tables[counts[0]]
+    return {"samples": samples, "study": STUDY, "workers": out,
+            "same_table": all(t == first for t in tables.values())}
 
 
 def killed_worker(samples: int, folder: Path) -> dict:
@@ -178,11 +182,16 @@ PARTS = ("per_sample", "scaling", "killed_worker")
 
 def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    parser.add_argument("--samples", type=int, default=200)
+    parser.add_argument("--samples", type=int, default=40)
+    parser.add_argument("--workers", type=int, nargs="+", default=[1, os.cpu_count() or 1])
     parser.add_argument("--killed-samples", type=int, default=40)
     parser.add_argument("--repeat", type=int, default=3)
+    parser.add_argument("--against", default="25866f5")
     parser.add_argument("--parts", nargs="+", choices=PARTS, default=list(PARTS))
     args = parser.parse_args()
+    counts = sorted(set(args.workers))
+    if counts[0] < 1 or args.samples <= counts[-1]:
+        raise SystemExit("--workers: counts >= 1, and --samples more than the largest")
     path = HERE / "sweep.json"
     record = json.loads(path.read_text()) if path.exists() else {}
     record["machine"] = (f"{platform.machine()}, {os.cpu_count()} cores, Python "
@@ -190,28 +199,32 @@ def main() -> None:
     commit = subprocess.run(["git", "-C", str(ROOT), "rev-parse", "--short", "HEAD"],
                             capture_output=True, text=True).stdout.strip()
     with tempfile.TemporaryDirectory() as tmp:
-        runs = {"per_sample": lambda: per_sample(args.repeat),
-                "scaling": lambda: scaling(args.samples, Path(tmp)),
+        runs = {"per_sample": lambda: per_sample(args.repeat, args.against),
+                "scaling": lambda: scaling(args.samples, counts, Path(tmp)),
                 "killed_worker": lambda: killed_worker(args.killed_samples, Path(tmp))}
         for part in args.parts:
             record[part] = {**runs[part](), "commit": commit}
     s, sc, k = (record.get(part) for part in PARTS)
     if s:
-        print(f"{'per sample (' + CASE + ')':44} {'first release':>14} {'now':>8} {'speed-up':>9}")
-        print(f"{'full loaded analysis, interference on':44} {s['before_s']:13.2f}s "
-              f"{s['now_s']:7.2f}s {s['speed_up']:8.2f}x   ({s.get('commit', '?')})")
-        if s.get("now_one_worker_s"):
-            print(f"{'  on one core (a sweep worker)':44} {'':14} "
-                  f"{s['now_one_worker_s']:7.2f}s {s['one_worker_speed_up']:8.2f}x")
-        print(f"{'  of which inside the FFT library (limit)':44} {'':14} {s['now_fft_s']:7.2f}s "
-              f"({s['now_fft_share']:.0%} of one core's)")
+        print(f"{CASE} ({s.get('commit', '?')} against {s['against']}) "
+              f"{s['against']:>10} {'now':>8} {'speed-up':>9}")
+        print(f"{'one sweep sample, one worker':44} {s['before_s']:9.2f}s {s['now_s']:7.2f}s "
+              f"{s['speed_up']:8.2f}x")
+        print(f"{'import of the analysis path':44} {s['before_import_s']:9.2f}s "
+              f"{s['now_import_s']:7.2f}s")
+        print(f"{'one design as bundled, ' + str(s['cores']) + ' cores':44} "
+              f"{s['before_latency_s']:9.2f}s {s['now_latency_s']:7.2f}s "
+              f"{s['before_latency_s'] / s['now_latency_s']:8.2f}x")
     if sc:
-        print(f"\n{sc['samples']}-sample Monte Carlo {'wall':>10} {'samples/s':>10}"
-              f"   ({sc.get('commit', '?')})")
-        for name in ("one_worker", "two_workers"):
-            print(f"{name.replace('_', ' '):24} {sc[name]['wall_s']:9.1f}s "
-                  f"{sc[name]['samples_per_s']:10.3f}")
-        print(f"speed-up {sc['speed_up']:.2f}x, same table: {sc['same_table']}")
+        print(f"\n{sc['samples']}-sample Monte Carlo ({sc.get('commit', '?')}): "
+              f"{'wall':>8} {'rate/s':>8} {'eff.':>6} {'fixed':>7} "
+              f"{str(sc['study']) + ' samples':>14}")
+        for workers, e in sc["workers"].items():
+            eff = "-" if e["efficiency"] is None else f"{e['efficiency']:.0%}"
+            print(f"{workers + ' worker(s)':>40} {e['wall_s']:7.1f}s "
+                  f"{e['rate_samples_per_s']:8.3f} {eff:>6} {e['fixed_s']:6.1f}s "
+                  f"{e['study_s'] / 60:11.1f} min")
+        print(f"same table on every count: {sc['same_table']}")
     if k:
         print(f"\nseparate scheduler, one of two workers killed after sample "
               f"{k['killed_after_sample']}: {k['answered']}/{k['samples']} answered in "

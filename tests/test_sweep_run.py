@@ -173,7 +173,9 @@ def test_the_sweep_draws_its_figures(two_workers):
 def test_positions_on_request_hold_every_samples_rows(two_workers, tmp_path):
     """--positions, resumed on a sweep run without it: every sample runs again (its rows
     per position were not kept), and positions.parquet holds each sample's rows, as many
-    as its own analysis has, tagged with its number."""
+    as its own analysis has, tagged with its number, their rigid patterns measured (a
+    sample whose rows are not kept skips them), and the samples' figures are the same as
+    without them."""
     import shutil
 
     from toothcontact.analyses import analyse
@@ -193,6 +195,9 @@ def test_positions_on_request_hold_every_samples_rows(two_workers, tmp_path):
     own = analyse(parse_case(first.raw)).sections["positions"]
     assert [r["sample"] for r in rows].count(0) == len(own)
     assert sorted({r["sample"] for r in rows}) == [0, 1, 2, 3]
+    assert all(r["rigid_pattern_area_mm2"] > 0 for r in rows if r["rigid_contact"])
+    assert (pq.read_table(out / "samples.parquet").to_pylist()
+            == pq.read_table(folder / "out" / "samples.parquet").to_pylist())
 
 
 def test_an_optimisation_over_a_spectrum_runs_and_resumes_without_rerunning(tmp_path):

@@ -756,6 +756,10 @@ class AnalysisSpec(Model):
         None, description="the stresses below each loaded contact (largest principal shear "
                           "and von Mises stress and their depths); default: in a run, not "
                           "in a sweep's samples")
+    rigid_patterns: bool | None = Field(
+        None, description="measure each contact's rigid pattern on its separation field "
+                          "(the rows' rigid_pattern_* keys); default: in a run, and in a "
+                          "sweep's samples only where their rows are kept")
 
 
 #: the default material, steel, in core units (MPa); built without parsing its units, so

@@ -23,7 +23,7 @@ def cycle_settings(a: schema.AnalysisSpec, phase: float = 0.0, **kind_settings):
     from ..contact.cycle import CycleSettings
 
     return CycleSettings(a.positions, phase, a.grid, a.approach, field_grid=a.field_grid,
-                         **kind_settings)
+                         patterns=a.rigid_patterns is not False, **kind_settings)
 
 
 #: the largest loaded pressure may move by this much (fraction) with twice the positions

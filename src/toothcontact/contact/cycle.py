@@ -76,6 +76,9 @@ class CycleSettings:
     #: member: a worm wheel's, where a worm gear's pattern is judged)
     ease_off_member: str = "pinion"
     field_grid: int = 201     # points per side of each contact's separation field; 0 = none
+    #: whether the rows' rigid patterns are measured on those fields (field_grid also sets
+    #: how finely a contact line is sampled, which they leave as it is)
+    patterns: bool = True
     #: separation (mm) up to which a pair is kept, unloaded, beyond the approach: the
     #: loaded contact's candidates (0: the pairs in contact only)
     reach: float = 0.0
@@ -213,7 +216,7 @@ def parallel_cycle(mesh, pinion: Flank, gear: Flank, normal_load: float,
                          settings, delta[P], np.abs(slope[P]), semi_axes, unkept)
     if ease is None:       # the driven member's, from the cycle's own placements
         cycle = replace(cycle, ease_off=_driven_ease_off(cycle, settings.ease_off_grid))
-    if settings.field_grid:
+    if settings.field_grid and settings.patterns:
         for row, pattern in zip(rows, rigid_patterns(cycle, settings.field_grid)):
             row.update({"rigid_pattern_area_mm2": pattern.area,
                         "rigid_pattern_along_face_mm": pattern.along_face,

@@ -30,10 +30,10 @@ def sample_record(number: int, inputs: dict, raw: dict, folder: str | None,
     a Dask worker's process may not fork, see toothcontact.parallel): its
     record, `sample`, each varied input (the case's value in core units, or its text),
     `status` ("ok" or the error) and the summary's figures (the case's `summary` under its
-    own names; numbers, flags and texts; no positions check, and the stresses below the
-    contacts only where the case's `[analysis] subsurface` is true); and, if `positions`, the
-    result's rows per mesh
-    position and pair (their table cells, with `sample`), else []."""
+    own names; numbers, flags and texts; no positions check, the stresses below the contacts
+    only where the case's `[analysis] subsurface` is true, the rigid patterns only where its
+    `rigid_patterns` is or the rows are kept); and, if `positions`, the result's rows per
+    mesh position and pair (their table cells, with `sample`), else []."""
     from ..analyses import analyse
     from ..case import parse_case
     from ..memory import keep_freed_memory
@@ -49,10 +49,13 @@ def sample_record(number: int, inputs: dict, raw: dict, folder: str | None,
             record[f"input:{field}"] = _value(case, field)
         if getattr(case, "analysis", None) is not None:
             # the positions' convergence is the base design's question: a sample skips it,
-            # and the stresses below the contacts unless the case asks for them
-            subsurface = case.analysis.subsurface
-            case = case.model_copy(update={"analysis": case.analysis.model_copy(update={
-                "positions_check": False, "subsurface": bool(subsurface)})})
+            # the stresses below the contacts unless the case asks for them, and the rigid
+            # patterns (row keys only) unless its rows are kept
+            analysis = case.analysis
+            patterns = positions if analysis.rigid_patterns is None else analysis.rigid_patterns
+            case = case.model_copy(update={"analysis": analysis.model_copy(update={
+                "positions_check": False, "subsurface": bool(analysis.subsurface),
+                "rigid_patterns": patterns})})
         with workers(cores):
             sections = analyse(case).sections
         record.update(_cells(sections.get("summary", {})))
