@@ -361,9 +361,9 @@ def loaded_cycle(cycle, C_E: float, points: int = 128, teeth: PairCompliance | N
     for k, row in enumerate(rows):
         positions.setdefault(row["roll_deg"], []).append(k)
     every = np.arange(len(rows))
+    reaches, patterns = field_reach(cycle, every), pattern_semi_axes(cycle, every)
     fields = contact_fields(cycle, every, points, _Pair.MARGIN,   # one batch
-                            np.minimum(pattern_semi_axes(cycle, every),
-                                       field_reach(cycle, every)[:, None]),
+                            np.minimum(patterns, reaches[:, None]),
                             largest_cell=CELL, snap=True, far=LOADED_FAR,
                             along_pattern=True)
     groups = list(positions.values())
@@ -380,7 +380,8 @@ def loaded_cycle(cycle, C_E: float, points: int = 128, teeth: PairCompliance | N
         solvable = [k for k in ks if rows[k].get("rigid_contact", True)
                     or fields[k].material.any()]
         try:
-            pairs = [_Pair(cycle, k, points, fields[k], teeth) for k in solvable]
+            pairs = [_Pair(cycle, k, points, fields[k], teeth, reaches[k], patterns[k])
+                     for k in solvable]
             solutions = dict(zip(solvable, zip(pairs, _share(pairs, load, 1.0 / C_E))))
         except (ValueError, RuntimeError) as exc:
             return str(exc)
@@ -412,14 +413,15 @@ class _Pair:
     REACH = 1.05
 
     def __init__(self, cycle, k: int, points: int, field: GapField,
-                 teeth: PairCompliance | None):
+                 teeth: PairCompliance | None, reach: float, pattern: np.ndarray):
+        """Row k of the cycle on its first `field`; `reach` (mm) its field_reach, `pattern`
+        (mm, (2,)) its pattern_semi_axes."""
         self.cycle, self.k, self.points, self.teeth = cycle, k, points, teeth
         #: whether the pair touches without load (else it is kept beyond the approach)
         self.rigid_contact = cycle.rows[k].get("rigid_contact", True)
         #: the largest semi-axis a field needs (see field_reach)
-        self.largest = float(field_reach(cycle, [k])[0])
-        self.semi_axes = self.MARGIN * np.minimum(pattern_semi_axes(cycle, [k])[0],
-                                                  self.largest)
+        self.largest = float(reach)
+        self.semi_axes = self.MARGIN * np.minimum(pattern, self.largest)
         # a contact line grows fastest along the face; on a field laid along it (turned)
         # 2.5 overshot (73 mm about a 35 mm helical line: cells of 0.07 mm along it)
         self.growth = (np.array([1.6, 1.6]) if cycle.rows[k]["contact_model"] == "ellipse"
