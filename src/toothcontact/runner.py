@@ -269,15 +269,16 @@ def run_sweep(path: str | Path, out_dir: str | Path | None = None, *,
                 shutil.rmtree(out / "optimise", ignore_errors=True)
             stats["optimise"] = optimise(spec.optimise, evaluate, out / "optimise",
                                          where=f"{path}: optimise")
-    written = [store.write_table(out / "samples.parquet", rows)]
-    if positions:
-        written.append(store.write_table(out / "positions.parquet", store.position_rows(
-            out, [s.sample for s in samples])))
-    written.append(writing.write_text(out / "sweep.json", report.json_text(stats)))
-    from . import plots
+        pool.release()
+        written = [store.write_table(out / "samples.parquet", rows)]
+        if positions:
+            written.append(store.write_table(out / "positions.parquet", store.position_rows(
+                out, [s.sample for s in samples])))
+        written.append(writing.write_text(out / "sweep.json", report.json_text(stats)))
+        from . import plots
 
-    figures = plots.sweep_figures(rows, stats, out)
-    written += figures + [report.write_sweep_report(out, stats, figures)]
+        figures = plots.sweep_figures(rows, stats, out)
+        written += figures + [report.write_sweep_report(out, stats, figures)]
     return stats, written
 
 

@@ -12,6 +12,7 @@ import math
 import os
 import subprocess
 import sys
+import threading
 import time
 from collections.abc import Callable
 from pathlib import Path
@@ -101,6 +102,7 @@ class Workers:
     def __init__(self, scheduler: str | None = None, workers: int | None = None):
         self.scheduler, self.workers = scheduler, workers
         self._cluster = self._client = None
+        self._closing: threading.Thread | None = None
 
     @property
     def client(self):
@@ -135,11 +137,26 @@ class Workers:
     def __enter__(self) -> "Workers":
         return self
 
-    def __exit__(self, *exc) -> None:
+    def release(self) -> None:
+        """Close the client and the local cluster in the background (the sweep's tables
+        and figures are written meanwhile: half a second less); leaving the context waits
+        for it."""
+        if self._closing is None and (self._client or self._cluster) is not None:
+            self._closing = threading.Thread(target=self._close, name="closing Dask")
+            self._closing.start()
+
+    def _close(self) -> None:
         if self._client is not None:
             self._client.close()
         if self._cluster is not None:
             self._cluster.close()
+        self._client = self._cluster = None
+
+    def __exit__(self, *exc) -> None:
+        if self._closing is not None:
+            self._closing.join()
+            self._closing = None
+        self._close()
 
 
 def run(samples: list[Sample], folder: Path | None, out: Path, workers: Workers, *,
