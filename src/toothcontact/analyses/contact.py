@@ -34,6 +34,13 @@ POSITIONS_TOLERANCE = 0.05
 TE_POSITIONS_TOLERANCE, TE_POSITIONS_FLOOR = 0.10, 0.1
 
 
+def midway_case(case: schema.CaseInfo) -> schema.CaseInfo:
+    """The case as check_positions' second pass runs it: without the rigid patterns (row
+    keys the check does not read, which leave the loaded contact as it is)."""
+    return case.model_copy(update={"analysis": case.analysis.model_copy(update={
+        "rigid_patterns": False})})
+
+
 def check_positions(result: Result, positions: int, midway) -> None:
     """summary["positions_check"]: the largest loaded pressure and the loaded transmission
     error's peak to peak at the case's positions and with the same again midway between

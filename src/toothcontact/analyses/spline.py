@@ -47,7 +47,8 @@ def spline_geometry_case(case: schema.SplineCase) -> Result:
         contact.subsurface_sections(result, case.analysis.subsurface, (case.material.nu,) * 2)
         if case.analysis.positions_check:
             contact.check_positions(result, case.analysis.positions,
-                             lambda scratch: _spline_contact(case, pair, scratch, 0.5))
+                             lambda scratch: _spline_contact(contact.midway_case(case), pair,
+                                                             scratch, 0.5))
     return result
 
 

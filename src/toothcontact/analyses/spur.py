@@ -150,7 +150,8 @@ def _spur_contact(case: schema.SpurCase, pair, result: Result) -> None:
                                          result)
     if case.analysis.positions_check:
         contact.check_positions(result, case.analysis.positions,
-                         lambda scratch: _loaded_pass(case, pair, scratch, 0.5))
+                         lambda scratch: _loaded_pass(contact.midway_case(case), pair,
+                                                       scratch, 0.5))
     if not pair.shafts or not changes:
         return
     result.sections["shaft"]["passes"] = len(changes)

@@ -68,7 +68,8 @@ def worm_geometry_case(case: schema.WormCase) -> Result:
             lubrication.lubrication_sections(case, _worm_running(case, parts), mesh, result)
         if case.analysis.positions_check:
             contact.check_positions(result, case.analysis.positions,
-                             lambda scratch: _worm_contact(case, parts, scratch, 0.5))
+                             lambda scratch: _worm_contact(contact.midway_case(case), parts,
+                                                           scratch, 0.5))
     return result
 
 
