@@ -219,44 +219,45 @@ def run_sweep(path: str | Path, out_dir: str | Path | None = None, *,
 
     path = sweep_path(path)
     spec, base, base_path = load_sweep(path)
-    samples = plan(spec, base, base_path.parent, source=str(path))
-    if spec.optimise is not None:          # the bounds' corners are cases too, checked now
-        design_of = designs(spec.optimise, f"{path}: optimise")
-        for corner in (0.0, 1.0):
-            plan(spec, base, base_path.parent, source=f"{path}: optimise",
-                 design=design_of(np.full(len(spec.optimise.variables), corner)))
-        # what the objective and constraints name, against the figures the base design
-        # reports (one analysis, here, before any output is written)
-        record, _ = sweep_run.sample_record(0, {}, base, str(base_path.parent))
-        if record["status"] == "ok":
-            check_statistics(spec.optimise, record, f"{path}: optimise")
-    total = [len(samples)]
-    if planned is not None:
-        planned(total[0])
-    out = Path(out_dir) if out_dir is not None else Path("out") / path.stem
-    inputs, grid = [t.field for t in spec.tolerance], [v.field for v in spec.axes]
-    classes = {t.field: {"iso1328_class": t.iso1328_class, "tolerance": t.class_tolerance,
-                         "distribution": t.distribution,
-                         **({"mean": t.mean, "band": t.band} if t.distribution == "normal"
-                            else {"low": t.low, "high": t.high})}
-               for t in spec.tolerance if t.iso1328_class is not None}
-
-    def sweep_into(todo, folder, keep_positions):
-        rows = sweep_run.run(todo, base_path.parent, folder, pool, resume=resume,
-                             positions=keep_positions, on_done=on_done)
-        return rows, statistics.summarise(rows, inputs, grid, spec.sampling == "saltelli")
-
-    def evaluate(design, folder):
-        designed = plan(spec, base, base_path.parent, source=f"{path}: optimise",
-                        design=design)
-        total[0] += len(designed)
+    with sweep_run.Workers(scheduler, workers) as pool:
+        pool.start()          # its workers spawn while the samples are planned and checked
+        samples = plan(spec, base, base_path.parent, source=str(path))
+        if spec.optimise is not None:          # the bounds' corners are cases too, checked now
+            design_of = designs(spec.optimise, f"{path}: optimise")
+            for corner in (0.0, 1.0):
+                plan(spec, base, base_path.parent, source=f"{path}: optimise",
+                     design=design_of(np.full(len(spec.optimise.variables), corner)))
+            # what the objective and constraints name, against the figures the base design
+            # reports (one analysis, here, before any output is written)
+            record, _ = sweep_run.sample_record(0, {}, base, str(base_path.parent))
+            if record["status"] == "ok":
+                check_statistics(spec.optimise, record, f"{path}: optimise")
+        total = [len(samples)]
         if planned is not None:
             planned(total[0])
-        rows, summary = sweep_into(designed, folder, False)
-        store.write_table(folder / "samples.parquet", rows)
-        return summary, rows
+        out = Path(out_dir) if out_dir is not None else Path("out") / path.stem
+        inputs, grid = [t.field for t in spec.tolerance], [v.field for v in spec.axes]
+        classes = {t.field: {"iso1328_class": t.iso1328_class, "tolerance": t.class_tolerance,
+                             "distribution": t.distribution,
+                             **({"mean": t.mean, "band": t.band} if t.distribution == "normal"
+                                else {"low": t.low, "high": t.high})}
+                   for t in spec.tolerance if t.iso1328_class is not None}
 
-    with sweep_run.Workers(scheduler, workers) as pool:
+        def sweep_into(todo, folder, keep_positions):
+            rows = sweep_run.run(todo, base_path.parent, folder, pool, resume=resume,
+                                 positions=keep_positions, on_done=on_done)
+            return rows, statistics.summarise(rows, inputs, grid, spec.sampling == "saltelli")
+
+        def evaluate(design, folder):
+            designed = plan(spec, base, base_path.parent, source=f"{path}: optimise",
+                            design=design)
+            total[0] += len(designed)
+            if planned is not None:
+                planned(total[0])
+            rows, summary = sweep_into(designed, folder, False)
+            store.write_table(folder / "samples.parquet", rows)
+            return summary, rows
+
         rows, summary = sweep_into(samples, out, positions)
         stats = {"sweep": str(path), "title": spec.title or path.stem, "base": str(base_path),
                  "seed": spec.seed, "sampling": spec.sampling if inputs else "none (a grid)",
