@@ -13,8 +13,8 @@ besides its samples, and what a 1,000-sample study would take, in one run.
    count: `--samples` samples and one round (as many samples as workers), both timed
    whole, so that the rate is the slope between them and the sweep's fixed cost (cluster
    start and close, imports, planning, the last statistics, figures and report) their
-   intercept; samples/s, the efficiency against W times one worker's rate, the tables
-   identical across the counts, and the projection of a 1,000-sample study
+   intercept; samples/s, the efficiency against W times one worker's rate and against W
+   cores each at part 1's one-core sample time, the tables identical across the counts, and the projection of a 1,000-sample study
    (fixed + 1000 / rate).
 3. Faults: a `--killed-samples` sweep on a Dask scheduler and two workers started as
    separate processes (`dask scheduler`, `dask worker`), one worker SIGKILLed once the
@@ -138,7 +138,10 @@ def timed_sweep(path: Path, out: Path, workers: int) -> tuple[float, list[dict]]
     return time.perf_counter() - start, table(written)
 
 
-def scaling(samples: int, counts: list[int], folder: Path) -> dict:
+def scaling(samples: int, counts: list[int], folder: Path, one_core_s: float | None) -> dict:
+    """Each worker count's sweep (see the module); `one_core_s`: one sample's time on one
+    core (part 1), against which each count's rate is also judged (a single local worker
+    takes every core, its positions on threads)."""
     out, tables = {}, {}
     for workers in counts:
         one_round, _ = timed_sweep(sweep_file(folder, workers), folder / f"round_{workers}",
@@ -156,6 +159,9 @@ def scaling(samples: int, counts: list[int], folder: Path) -> dict:
         entry["efficiency"] = (None if single is None else
                                entry["rate_samples_per_s"]
                                / (int(workers) * single["rate_samples_per_s"]))
+        entry["one_core_efficiency"] = (None if one_core_s is None else
+                                        entry["rate_samples_per_s"] * one_core_s
+                                        / int(workers))
     first = tables[counts[0]]
     return {"samples": samples, "study": STUDY, "workers": out,
             "same_table": all(t == first for t in tables.values())}
@@ -209,7 +215,8 @@ def main() -> None:
                             capture_output=True, text=True).stdout.strip()
     with tempfile.TemporaryDirectory() as tmp:
         runs = {"per_sample": lambda: per_sample(args.repeat, args.against),
-                "scaling": lambda: scaling(args.samples, counts, Path(tmp)),
+                "scaling": lambda: scaling(args.samples, counts, Path(tmp),
+                                           (record.get("per_sample") or {}).get("now_s")),
                 "killed_worker": lambda: killed_worker(args.killed_samples, Path(tmp))}
         for part in args.parts:
             record[part] = {**runs[part](), "commit": commit}
@@ -226,13 +233,16 @@ def main() -> None:
               f"{s['before_latency_s'] / s['now_latency_s']:8.2f}x")
     if sc:
         print(f"\n{sc['samples']}-sample Monte Carlo ({sc.get('commit', '?')}): "
-              f"{'wall':>8} {'rate/s':>8} {'eff.':>6} {'fixed':>7} "
+              f"{'wall':>8} {'rate/s':>8} {'eff.':>6} {'/core':>6} {'fixed':>7} "
               f"{str(sc['study']) + ' samples':>14}")
         for workers, e in sc["workers"].items():
-            eff = "-" if e["efficiency"] is None else f"{e['efficiency']:.0%}"
+            eff, core = ("-" if e.get(key) is None else f"{e[key]:.0%}"
+                         for key in ("efficiency", "one_core_efficiency"))
             print(f"{workers + ' worker(s)':>40} {e['wall_s']:7.1f}s "
-                  f"{e['rate_samples_per_s']:8.3f} {eff:>6} {e['fixed_s']:6.1f}s "
+                  f"{e['rate_samples_per_s']:8.3f} {eff:>6} {core:>6} {e['fixed_s']:6.1f}s "
                   f"{e['study_s'] / 60:11.1f} min")
+        print("eff.: the rate over W times one worker's (which takes every core); /core: "
+              "over W cores each as fast as the per-sample probe's one core")
         print(f"same table on every count: {sc['same_table']}")
     if k:
         print(f"\nseparate scheduler, one of two workers killed after sample "
