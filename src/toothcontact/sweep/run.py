@@ -95,9 +95,9 @@ def _cell(value):
 class Workers:
     """Where samples run: an existing Dask scheduler at `scheduler`, else a LocalCluster of
     `workers` processes (the machine's cores) started at `start` or its first use and
-    closed with this (a context manager); one cluster serves every sweep an optimisation runs. A
-    sample solves its positions on its worker's share of the local cores (`cores`), on
-    one core on a deployment's workers (sized there, one per core)."""
+    closed with this (a context manager); one cluster serves every sweep an optimisation
+    runs. A sample solves its positions on its worker's share of the local cores
+    (`cores`), on one core on a deployment's workers (sized there, one per core)."""
 
     def __init__(self, scheduler: str | None = None, workers: int | None = None):
         self.scheduler, self.workers = scheduler, workers
