@@ -135,3 +135,29 @@ def test_contact_lines_of_one_position_share_its_load_by_their_lengths():
                                0.5 / r["B_analytic_per_mm"], STEEL)
             assert r["p_max_MPa"] == pytest.approx(exact.p0, rel=1e-12)
     assert shared >= 3
+
+
+def test_a_line_resolved_to_one_column_on_an_edge_is_one_cell_long():
+    """A line whose only column in contact lies on a flank edge, where the cells' share of
+    material raises its least gap past the approach, carried both ends to nothing: a
+    length of 0, and its Hertz line an infinite pressure (a before-stop worm set's pair at
+    a wheel tip). It is given the field's resolution along the line, one cell."""
+    from types import SimpleNamespace
+
+    from toothcontact.contact.line import _length
+
+    approach, dx = 1e-3, 0.25
+    rel = np.full((9, 5), 2e-2)
+    rel[4, 2] = 0.0                                  # the contact, on one column
+    inside = rel <= approach
+    share = np.ones_like(rel)
+    share[4] = 0.1                                   # that column on the edge
+    field = SimpleNamespace(x=dx * np.arange(9), y=0.1 * np.arange(5), spacing=(dx, 0.1),
+                            material=np.ones_like(rel, bool), parameters={},
+                            material_share=lambda: share)
+    length, (x, _) = _length(field, rel, inside, approach, {})
+    assert length == dx and x == pytest.approx(4 * dx)
+    share[4] = 1.0                                   # off the edge: ends carried as before
+    rel[rel > 0] = 1.5e-3
+    length, _ = _length(field, rel, inside, approach, {})
+    assert length == pytest.approx(2 * dx * approach / 1.5e-3)

@@ -148,7 +148,8 @@ def _length(field: GapField, rel: np.ndarray, inside: np.ndarray, approach: floa
     from the first to the last column of the line's cells on material, each end carried to
     where the line's least gap reaches the approach (linear between the columns), or where
     the material ends: where a flank parameter on the line's row (`domains`: each
-    parameter's range, by the field's parameter names) reaches its edge."""
+    parameter's range, by the field's parameter names) reaches its edge; one cell (dx) at
+    least."""
     columns = np.flatnonzero(inside.any(axis=1))
     dx, _ = field.spacing
     if columns.size == 0:   # the contact on an edge, no cell of the line on material
@@ -181,7 +182,10 @@ def _length(field: GapField, rel: np.ndarray, inside: np.ndarray, approach: floa
             ends.append(dx * float(min(fractions)))
     low, high = field.x[columns[0]] - ends[0], field.x[columns[-1]] + ends[1]
     y = float(np.mean(field.y[np.nonzero(inside)[1]]))
-    return float(high - low), (0.5 * float(low + high), y)
+    # a line in contact on one column whose least gap there already passes the approach
+    # (both ends carried to 0) is as long as the field resolves: a cell, as on an edge
+    # (a length of 0 gave its Hertz line an infinite pressure)
+    return max(float(high - low), float(dx)), (0.5 * float(low + high), y)
 
 
 def _edge_margins(field: GapField, member: str, flank: Flank, cells, inside, rel,

@@ -514,11 +514,19 @@ class WormWheelFlank(Flank):
 
     def hob_radius(self, u, v):
         """Radius (mm) of the generating hob point at wheel parameters (u, v): linear in u
-        from the fitted tip edge rho_tip(v) (u = 0) to the hob tip radius (u = 1)."""
+        from the fitted tip edge rho_tip(v) (u = 0) to the hob tip radius (u = 1). Beyond
+        the faces (|v| > b2/2, where a gap field's lines still sample the flank continued)
+        rho_tip runs on along its tangent at the face: the degree-12 fit, extrapolated,
+        swung the parameter map by whole hob depths 0.3 mm past a face, and the fields'
+        samples there fell on another branch of the envelope (a false gap of -1 mm next
+        to the face end, ringing into its material as a dip of 2 µm: 45 GPa at the end)."""
         x = v / (self.face_width / 2)
-        rho0 = self._tip_poly[-1]
+        face = where(value(x) > 1.0, 1.0, where(value(x) < -1.0, -1.0, x))
+        rho0, slope = self._tip_poly[-1], 0.0
         for c in self._tip_poly[-2::-1]:
-            rho0 = rho0 * x + c
+            slope = slope * face + rho0
+            rho0 = rho0 * face + c
+        rho0 = rho0 + slope * (x - face)
         floor = self._floor_at(v)  # not below the hob, nor where it generates nothing
         rho0 = where(value(rho0) < value(floor), floor, rho0)
         return rho0 + u * (self._rho_tip - rho0)
