@@ -181,16 +181,11 @@ output_torque = "51 N*m"
 """
 
 
-def test_a_line_contact_running_off_the_wheel_face_has_no_false_dip_at_the_face_end():
-    """An identical hob's wheel touches its worm along lines that run off the wheel's faces
-    (a random before-stop design: 2-start ZK, m = 1 mm, 25 teeth). The loaded contact's
-    field samples the wheel flank continued past the face; with the flank's tip trim
-    extrapolated there the samples fell on another branch of the envelope (a gap of
-    -1 mm), and the splines rang into the material beside the face end: dips of -1.2 to
-    -13 µm below the line's zero, which the solver loaded as the peak (45 GPa at the face
-    end, 10 GPa inside it). On the material of every loaded field the gap now stays above
-    -0.05 µm: a conjugate line's zero to the samples' and splines' accuracy (at most
-    -0.017 µm here)."""
+@pytest.fixture(scope="module")
+def small_identical_hob_set():
+    """The rigid cycle of SMALL_IDENTICAL_HOB_SET (7 positions) and its loaded-contact
+    fields as the loaded contact lays them: (cycle, rows, field reaches, semi-axes,
+    fields)."""
     from toothcontact.case import parse_case
     from toothcontact.contact.field import LOADED_FAR, contact_fields, pattern_semi_axes
     from toothcontact.contact.loaded import CELL, _Pair, field_reach
@@ -202,8 +197,48 @@ def test_a_line_contact_running_off_the_wheel_face_has_no_false_dip_at_the_face_
                                          field_grid=0, patterns=False))
     rows = np.arange(len(cycle.rows))
     reach = field_reach(cycle, rows)
-    semi_axes = np.minimum(pattern_semi_axes(cycle, rows), reach[:, None])
-    fields = contact_fields(cycle, rows, 128, _Pair.MARGIN, semi_axes, largest_cell=CELL,
+    patterns = pattern_semi_axes(cycle, rows)
+    fields = contact_fields(cycle, rows, 128, _Pair.MARGIN,
+                            np.minimum(patterns, reach[:, None]), largest_cell=CELL,
                             snap=True, far=LOADED_FAR, along_pattern=True)
+    return cycle, rows, reach, patterns, fields
+
+
+def test_a_line_contact_running_off_the_wheel_face_has_no_false_dip_at_the_face_end(
+        small_identical_hob_set):
+    """An identical hob's wheel touches its worm along lines that run off the wheel's faces
+    (a random before-stop design: 2-start ZK, m = 1 mm, 25 teeth). The loaded contact's
+    field samples the wheel flank continued past the face; with the flank's tip trim
+    extrapolated there the samples fell on another branch of the envelope (a gap of
+    -1 mm), and the splines rang into the material beside the face end: dips of -1.2 to
+    -13 µm below the line's zero, which the solver loaded as the peak (45 GPa at the face
+    end, 10 GPa inside it). On the material of every loaded field the gap now stays above
+    -0.05 µm: a conjugate line's zero to the samples' and splines' accuracy (at most
+    -0.017 µm here)."""
+    cycle, _, _, _, fields = small_identical_hob_set
     for row, field in zip(cycle.rows, fields):
         assert field.gap[field.material].min() > -5e-5, (row["roll_deg"], row["pair"])
+
+
+def test_a_loaded_field_widens_only_across_the_edges_its_contact_reached(
+        small_identical_hob_set):
+    """A worm set's contact line curves away from its straight field sideways: the field
+    must widen across it alone. Widening its length too (2.5 times a step, against 1.3
+    across) bent the line further out each time: a before-stop ZN set's fields grew to
+    90 mm on samples 4 mm apart, whose splines put 1448 MPa on a false edge (602 MPa once
+    widened across alone)."""
+    from toothcontact.contact.loaded import _Pair
+
+    cycle, rows, reach, patterns, fields = small_identical_hob_set
+    k = int(np.argmax([r["contact_model"] == "line" for r in cycle.rows]))
+    pair = _Pair(cycle, k, 128, fields[k], None, reach[k], patterns[k])
+    before = pair.semi_axes.copy()
+    pair.grow((False, True))
+    assert pair.semi_axes[0] == before[0]
+    assert pair.semi_axes[1] == pytest.approx(min(before[1] * pair.growth[1], reach[k]))
+    assert pair.field.y[-1] > fields[k].y[-1] and pair.field.x[-1] == pytest.approx(
+        fields[k].x[-1], rel=0.05)
+    across = pair.semi_axes.copy()
+    pair.grow((True, False))
+    assert pair.semi_axes[1] == across[1]
+    assert pair.semi_axes[0] == pytest.approx(min(across[0] * pair.growth[0], reach[k]))

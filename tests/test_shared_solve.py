@@ -83,6 +83,22 @@ def test_a_grid_whose_contact_reaches_its_edge_is_named():
     with pytest.raises(P.GridEdgeError, match="grid 1: the contact reaches") as found:
         P.solve_shared([big, small], [1000.0, 1000.0], E_STAR)
     assert found.value.grid == 1
+    assert found.value.axes == (True, True)
+
+
+@pytest.mark.parametrize("long_axis", [0, 1])
+def test_the_edges_a_contact_reaches_are_named_by_axis(long_axis):
+    """A contact line along one axis of its grid, wider than the grid across it, reaches
+    only the edges across the other axis: GridEdgeError.axes says which (the loaded
+    contact then widens its field along that axis alone)."""
+    x = (np.arange(400) - 199.5) * 0.02
+    y = (np.arange(12) - 5.5) * 0.02
+    gap = 0.01 * x[:, None] ** 2 + 0.02 * y[None, :] ** 2
+    if long_axis == 1:
+        gap = gap.T
+    with pytest.raises(P.GridEdgeError) as found:
+        P.solve_shared([P.Grid(gap, 0.02, 0.02)], [1000.0], E_STAR)
+    assert found.value.axes == ((False, True) if long_axis == 0 else (True, False))
 
 
 HELICAL = {"kind": "spur", "teeth": [23, 57], "module": "2.5 mm", "pressure_angle": "20 deg",

@@ -525,11 +525,13 @@ def interference_start(h, dx: float, dy: float, mask, load: float, E_star: float
 
 class GridEdgeError(ValueError):
     """The contact reaches the edge of grid `grid` (its index in a shared solve) on material:
-    the gap does not close within that grid under the load."""
+    the gap does not close within that grid under the load. `axes`: whether it reaches the
+    edges across x (the grid's first or last row) and those across y (its first or last
+    column)."""
 
-    def __init__(self, message: str, grid: int):
+    def __init__(self, message: str, grid: int, axes: tuple[bool, bool]):
         super().__init__(message)
-        self.grid = grid
+        self.grid, self.axes = grid, axes
 
 
 #: the mirror-pressure factor φ of a free end face (Guilbault 2011) by Poisson's ratio: the
@@ -1034,7 +1036,8 @@ def solve_shared(grids: list[Grid], loads_N, E_star_MPa: float, *, tol: float = 
             raise GridEdgeError(
                 f"gap_mm: {which}the contact reaches the grid's edge at cell ({i}, {j}) under "
                 f"load_N = {W:g}: the gap must close inside the grid (enlarge the grid, or "
-                "set mask False where there is no material)", k)
+                "set mask False where there is no material)", k,
+                (bool(S[[0, -1], :].any()), bool(S[:, [0, -1]].any())))
         load, area = float(pk.sum()) * dx * dy, float(S.sum()) * dx * dy
         separation = np.where(m, h + uk - approach, 0.0)
         for array in (pk, uk, separation, m):
