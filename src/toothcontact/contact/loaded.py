@@ -423,9 +423,12 @@ class _Pair:
         self.largest = float(reach)
         self.semi_axes = self.MARGIN * np.minimum(pattern, self.largest)
         # a contact line grows fastest along the face; on a field laid along it (turned)
-        # 2.5 overshot (73 mm about a 35 mm helical line: cells of 0.07 mm along it)
+        # 2.5 overshot (73 mm about a 35 mm helical line: cells of 0.07 mm along it);
+        # across it a field widens only where the contact reached those edges (a worm
+        # set's curved line leaving its straight field sideways): by 2 a step (by 1.3,
+        # twice the position's solves of 1.3 times the cells, at equal pressures)
         self.growth = (np.array([1.6, 1.6]) if cycle.rows[k]["contact_model"] == "ellipse"
-                       else np.array([1.6 if field.turn else 2.5, 1.3]))
+                       else np.array([1.6 if field.turn else 2.5, 2.0]))
         #: the field's box ((2, 2) mm in the plane) once it is narrowed onto the contact
         #: (see narrow); None while it lies about the pattern
         self.box: np.ndarray | None = None
