@@ -9,6 +9,7 @@ import sysconfig
 from pathlib import Path
 
 import pytest
+from documents import complete_run
 
 from toothcontact.runner import bundled_cases
 
@@ -57,10 +58,12 @@ def test_cases_lists_the_packaged_cases_and_run_takes_a_name(installed, tmp_path
 
 
 def test_demo_runs_every_bundled_case_from_an_empty_folder(installed, tmp_path):
+    """Every bundled case's folder complete (documents.complete_run: strict JSON, checks
+    with their kinds, both reports): test_cli runs only some of them through `run`."""
     done = subprocess.run([str(installed / "toothcontact"), "demo", "--out", "out"],
                           cwd=tmp_path, capture_output=True, text=True)
     assert done.returncode == 0, done.stderr[-2000:]
     cases = sorted(p.name for p in (tmp_path / "out").iterdir())
     assert cases == sorted(p.stem for p in bundled_cases())
     for case in cases:
-        json.loads((tmp_path / "out" / case / "result.json").read_text())
+        complete_run(tmp_path / "out" / case)
