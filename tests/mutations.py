@@ -8,13 +8,13 @@ Used by tests/test_fuzz.py (hypothesis, small budget) and benchmarks/fuzz.py (la
 from __future__ import annotations
 
 import copy
-import json
 import random
 import re
 import tomllib
 from pathlib import Path
 
 import tomli_w
+from documents import strict_json
 
 CASES = Path(__file__).resolve().parents[1] / "cases"
 
@@ -139,12 +139,6 @@ def write_case(raw: dict, folder: Path, name: str, source: str) -> Path:
     return path
 
 
-def _strict(text: str):
-    def refuse(constant):
-        raise ValueError(f"not strict JSON: {constant}")
-    return json.loads(text, parse_constant=refuse)
-
-
 def verdict(code: int, output: str, out_dir: Path) -> str | None:
     """None if the run kept the promise, else what went wrong."""
     lines = [line for line in output.strip().splitlines() if line.strip()]
@@ -163,7 +157,7 @@ def verdict(code: int, output: str, out_dir: Path) -> str | None:
     if any(n.endswith(".tmp") or n.startswith(".") for n in names):
         return f"temporary files left: {names}"
     try:
-        _strict((out_dir / "result.json").read_text(encoding="utf-8"))
+        strict_json((out_dir / "result.json").read_text(encoding="utf-8"))
     except ValueError as exc:
         return f"result.json: {exc}"
     return None

@@ -4,6 +4,7 @@ run (plots, pictures, reports) is still made from the values it leaves null."""
 import json
 
 import pytest
+from documents import strict_json
 
 from toothcontact import runner
 from toothcontact.contact import loaded
@@ -29,13 +30,6 @@ pressure_grid = 24
 REASON = "the conjugate-gradient step broke down (forced by the test)"
 
 
-def strict(text: str):
-    """The document parsed as strict JSON (RFC 8259: no NaN or Infinity)."""
-    def refuse(constant):
-        raise ValueError(f"{constant} in result.json")
-    return json.loads(text, parse_constant=refuse)
-
-
 @pytest.mark.parametrize("failing", ["every position", "one position"])
 def test_a_failed_loaded_solve_leaves_a_complete_run(tmp_path, monkeypatch, failing):
     solve, once = loaded._precise_enough, tmp_path / "failed_once"   # both precisions
@@ -52,8 +46,8 @@ def test_a_failed_loaded_solve_leaves_a_complete_run(tmp_path, monkeypatch, fail
     case = tmp_path / "failing.toml"
     case.write_text(CASE)
     document, written = runner.run_case(case, tmp_path / "out")
-    result = strict((tmp_path / "out" / "result.json").read_text())
-    assert result == strict(json.dumps(document))
+    result = strict_json((tmp_path / "out" / "result.json").read_text())
+    assert result == strict_json(json.dumps(document))
     rows = result["positions"]
     failed = [r for r in rows if r["bem_status"] == "failed"]
     assert failed and all(REASON in r["bem_reason"] for r in failed)

@@ -2,12 +2,12 @@
 complete strict-JSON result (issue 12: each input the fuzz found, as a test)."""
 
 import copy
-import json
 import math
 import tomllib
 
 import pytest
 import tomli_w
+from documents import strict_json
 from typer.testing import CliRunner
 
 from toothcontact.cli import app
@@ -45,12 +45,6 @@ def run(raw: dict, tmp_path):
     out = tmp_path / "out"
     result = CliRunner().invoke(app, ["run", str(case), "--out", str(out), "--no-pictures"])
     return result, out
-
-
-def strict(path):
-    def refuse(constant):
-        raise ValueError(constant)
-    return json.loads(path.read_text(), parse_constant=refuse)
 
 
 HELICAL = {"kind": "spur", "teeth": [27, 71], "module": "2.5 mm", "pressure_angle": "20 deg",
@@ -134,7 +128,7 @@ def test_a_tiny_load_on_a_worm_set_is_answered(tmp_path):
     raw = edited("worm_eps_oversized_hob", {"load.output_torque": "1e-9 N*m"})
     result, out = run(raw, tmp_path)
     assert result.exit_code in (0, 1, 4), result.output
-    document = strict(out / "result.json")
+    document = strict_json((out / "result.json").read_text())
     assert document["positions"]
 
 
@@ -144,7 +138,7 @@ def test_a_crown_radius_as_large_as_allowed_gives_finite_tiny_drops(tmp_path):
     raw = edited("spur_crowned_20_60", {"pinion.crown.radius": "1e9 mm", "load": None})
     result, out = run(raw, tmp_path)
     assert result.exit_code in (0, 1), result.output
-    pinion = strict(out / "result.json")["pinion"]
+    pinion = strict_json((out / "result.json").read_text())["pinion"]
     for end in "AB":
         assert pinion[f"crown_drop_{end}_mm"] == pytest.approx(15.0 ** 2 / 2e9, rel=1e-9)
 
