@@ -76,43 +76,40 @@ def heights(flank: Flank, frames: Frame, planes: TangentPlanes, x: np.ndarray, y
     return _continued_from_neighbours(hits, flank, frames, planes, x, y, local, direction)
 
 
-#: rounds of restarting the lines whose Newton solve failed from their nearest line that met
-#: the flank (see _continued_from_neighbours)
-RESTARTS = 3
+#: the Newton steps of a line's restart from its nearest line that met the flank (see
+#: _continued_from_neighbours): from there a line that meets the flank converges in a few;
+#: a wheel flank's evaluation is costly (its meshing condition solved at every step)
+RESTART_STEPS = 8
 
 
 def _continued_from_neighbours(hits: RayHits, flank: Flank, frames: Frame,
                                planes: TangentPlanes, x, y, local, direction) -> RayHits:
     """The hits with each line whose Newton solve did not converge from the contact's
-    tangent map solved again from its nearest converged line of the same plane (that line's
-    parameters moved by the tangent map there), for RESTARTS rounds while any new line
-    converges. A first-order start from the contact point lies far off on a strongly curved
-    or twisted flank (a worm wheel's, a few mm from the contact): lines in the middle of a
-    field failed where the flank exists, and the field took a false edge there."""
-    for _ in range(RESTARTS):
-        lost = ~hits.converged & np.isfinite(x) & np.isfinite(y)
-        if not lost.any():
-            break
-        rows, columns, starts = [], [], []
-        for k in np.flatnonzero(lost.any(axis=1) & hits.converged.any(axis=1)):
-            met = np.flatnonzero(hits.converged[k])
-            far = np.flatnonzero(lost[k])
-            near = met[np.argmin(np.hypot(x[k, far, None] - x[k, met], y[k, far, None]
-                                          - y[k, met]), axis=1)]
-            rows.append(np.full(far.size, k)), columns.append(far), starts.append(near)
-        if not rows:
-            break
-        k, j, near = (np.concatenate(a) for a in (rows, columns, starts))
-        start = _tangent_start(flank, frames[k], planes_at(planes, k), x[k, j][:, None],
-                               y[k, j][:, None], hits.u[k, near], hits.v[k, near])
-        again = intersect(flank, local[k, j][:, None], direction[k], *start)
-        found = again.converged[:, 0]
-        if not found.any():
-            break
-        k, j = k[found], j[found]
-        for name in ("u", "v", "s", "converged", "inside"):
-            getattr(hits, name)[k, j] = getattr(again, name)[found, 0]
-        hits.normal[k, j] = again.normal[found, 0]
+    tangent map solved again, RESTART_STEPS steps, from its nearest converged line of the
+    same plane (that line's parameters moved by the tangent map there). A first-order start
+    from the contact point lies far off on a strongly curved or twisted flank (a worm
+    wheel's, a few mm from the contact): lines in the middle of a field failed where the
+    flank exists, and the field took a false edge there."""
+    lost = ~hits.converged & np.isfinite(x) & np.isfinite(y)
+    rows, columns, starts = [], [], []
+    for k in np.flatnonzero(lost.any(axis=1) & hits.converged.any(axis=1)):
+        met = np.flatnonzero(hits.converged[k])
+        far = np.flatnonzero(lost[k])
+        rows.append(np.full(far.size, k)), columns.append(far)
+        starts.append(met[np.argmin(np.hypot(x[k, far, None] - x[k, met],
+                                             y[k, far, None] - y[k, met]), axis=1)])
+    if not rows:
+        return hits
+    k, j, near = (np.concatenate(a) for a in (rows, columns, starts))
+    start = _tangent_start(flank, frames[k], planes_at(planes, k), x[k, j][:, None],
+                           y[k, j][:, None], hits.u[k, near], hits.v[k, near])
+    again = intersect(flank, local[k, j][:, None], direction[k], *start,
+                      iterations=RESTART_STEPS)
+    found = again.converged[:, 0]
+    k, j = k[found], j[found]
+    for name in ("u", "v", "s", "converged", "inside"):
+        getattr(hits, name)[k, j] = getattr(again, name)[found, 0]
+    hits.normal[k, j] = again.normal[found, 0]
     return hits
 
 
