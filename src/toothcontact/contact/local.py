@@ -95,7 +95,8 @@ def _continued_from_neighbours(hits: RayHits, flank: Flank, frames: Frame,
     for k in np.flatnonzero(lost.any(axis=1) & hits.converged.any(axis=1)):
         met = np.flatnonzero(hits.converged[k])
         far = np.flatnonzero(lost[k])
-        rows.append(np.full(far.size, k)), columns.append(far)
+        rows.append(np.full(far.size, k))
+        columns.append(far)
         starts.append(met[np.argmin(np.hypot(x[k, far, None] - x[k, met],
                                              y[k, far, None] - y[k, met]), axis=1)])
     if not rows:
