@@ -102,8 +102,9 @@ def test_a_chamfered_face_end_carries_its_edge_load_converged_with_the_grid():
     loaded. Its edge pressure (the mean over 0.1 × 0.1 mm) is 2090 and 2079 MPa at
     pressure_grid 256 and 384 (measured): within 3 % (128 reads 1934 MPa, 7 % low: cells of
     0.06 mm along the face against a contact 0.05 mm onto the rounding). The load ratio
-    in the end's strip is 4.5 times the mean (a flush sharp end, a quarter-space, carries
-    1.3: the chamfer puts the edge inside the body, which its rounding only softens)."""
+    in the end's strip is 4.4 times the mean (4.42, 4.35 and 4.32 at 256, 384 and 512; a
+    flush sharp end, a quarter-space, carries 1.3: the chamfer puts the edge inside the
+    body, which its rounding only softens)."""
     raw = copy.deepcopy(SPUR)
     del raw["pinion"]["crown"]
     raw["misalignment"]["slope"] = "0.0003"

@@ -162,9 +162,8 @@ def summarise(field: GapField, s: ContactSolution, position_load: float | None =
                        ("none", None))
     edge_pressure = worst.edge_pressure_MPa if worst is not None and worst.load_N > 0 else 0.0
     interior = _interior_peak(field, s, on_break.values())
-    end_ratio = max((_chamfer_end_ratio(field, s, n, breaks.chamfers) if n in on_break
-                     else _end_load_ratio(e, s) for n, e in named if is_face_end(n)),
-                    default=0.0)
+    end_ratio = max((end_load_ratio(field, s, member, end, breaks.chamfers.get(member))
+                     for member in ("pinion", "gear") for end in "AB"), default=0.0)
     profile = [n for n, e in named if not is_face_end(n) and e.load_N > 0
                and e.edge_pressure_MPa > EDGE_PRESSURE_RATIO * interior]
     judged = s.load_N >= EDGE_LEAST_SHARE * (position_load or s.load_N)
@@ -257,32 +256,87 @@ def chamfered_ends(field: GapField, chamfers: dict[str, float], before: float = 
             for member, start in chamfers.items() for end, sign in (("A", -1.0), ("B", 1.0))}
 
 
-def _chamfer_end_ratio(field: GapField, s: ContactSolution, name: str,
-                       chamfers: dict[str, float]) -> float:
-    """A chamfered face end's load ratio: the load per mm of face on the last EDGE_STRIP of
-    the flank before the chamfer's rounded edge and on that edge, over the contact's mean
-    load per mm over its extent in contact along the face."""
-    member, end = name.rsplit("_end_", 1)
-    v = field.parameters[f"{member}_v"] * (1.0 if end == "B" else -1.0)
+def end_load_ratio(field: GapField, s: ContactSolution, member: str, end: str,
+                   chamfer: float | None = None) -> float:
+    """A face end's load ratio (END_LOAD_RATIO): the load per mm of face in the last
+    EDGE_STRIP of the member's flank before its end `end` ("A" or "B") over the contact's
+    mean load per mm of face over its extent in contact; 0 where the end is not in the
+    field. With a `chamfer` (where its rounded edge starts, mm from mid-face either way) the
+    strip is the last EDGE_STRIP before that start, and the stretch of the contact beyond
+    it, on the rounded edge (the stretch its loaded cells cover wholly: within a cell, where
+    the contact ends is not known), is added to the strip's width.
+
+    Distances along the face are the member's own (its face coordinate's distance from the
+    end over that coordinate's gradient in the field's plane, mm), whatever the field's
+    axes: a field laid along a helical contact line, or a worm wheel's, whose material
+    boundary on one side of the grid mixes face end, tip and root. Each cell counts by its
+    share in the strip (as GapField.share), so that the measure does not jump as the end
+    crosses cell centres; a sharp end's strip is as wide as its cells' area over the
+    material's length along the end (taken on the next strip inward): where a staircase end
+    leaves whole cells past the end, the solver's body, made of those cells, runs on past
+    it too."""
+    name = f"{member}_end_{end}"
     loaded = s.pressure_MPa > 0.0
-    if not loaded.any():
+    if (chamfer is None and name not in field.inside) or not loaded.any():
         return 0.0
-    start = chamfers[member]
-    strip = field.material & (v > start - EDGE_STRIP)
-    load = float(s.pressure_MPa[strip].sum()) * s.dx_mm * s.dy_mm
-    extent = float(v[loaded].max() - v[loaded].min())
-    edge_run = float(v[strip & loaded].max() - start) if (strip & loaded).any() else 0.0
-    return (load / (EDGE_STRIP + max(edge_run, 0.0))) / (s.load_N / max(extent, EDGE_STRIP))
+    dx, dy = field.spacing
+    sign = 1.0 if end == "B" else -1.0
+    # the face coordinate's distance inside the end (or the chamfer's start), in its units
+    within = (chamfer - sign * field.parameters[f"{member}_v"] if chamfer is not None
+              else field.inside[name])
+    # the contact's extent along the face: from its loaded cell nearest the end to the one
+    # farthest from it, each cell whole
+    cells = np.flatnonzero(loaded)
+    values = within.ravel()[cells]
+    extremes = np.unravel_index(cells[[values.argmin(), values.argmax()]], within.shape)
+    (nearest, farthest), (reach_in, reach_out), slope = _face_distance(within, extremes, (dx, dy))
+    if nearest - reach_in >= EDGE_STRIP:            # no loaded cell reaches the strip
+        return 0.0
+    extent = float((farthest + reach_out) - (nearest - reach_in))
+    on_edge = max(-float(nearest + reach_in), 0.0)   # the loaded cells wholly on a rounding
+    # the cells the strip and the band inward of it may hold: within twice the strip and a
+    # cell of the end (in the coordinate's units, at twice its gradient at the contact)
+    reaches = 2.0 * float(slope.max()) * (2.0 * EDGE_STRIP + dx + dy)
+    near = np.nonzero(field.material & (within < reaches))
+    if not near[0].size:
+        return 0.0
+    distance, reach, _ = _face_distance(within, near, (dx, dy))
+
+    def before(limit: float) -> np.ndarray:     # each cell's share at distances below limit
+        return np.clip(0.5 + (limit - distance) / np.where(reach > 0.0, 2.0 * reach, 1.0),
+                       0.0, 1.0)
+
+    strip = before(EDGE_STRIP)
+    if chamfer is not None:       # and the stretch of the rounding loaded cells cover wholly
+        width = EDGE_STRIP + on_edge
+    else:
+        along_end = float((before(2.0 * EDGE_STRIP) - strip).sum()) * dx * dy / EDGE_STRIP
+        if along_end <= 0.0:
+            return 0.0
+        width = float(strip.sum()) * dx * dy / along_end
+    load = float((s.pressure_MPa[near] * strip).sum()) * dx * dy
+    return (load / width) / (s.load_N / max(extent, EDGE_STRIP))
 
 
-def _end_load_ratio(edge: EdgeLoad, s: ContactSolution) -> float:
-    """The load per mm along the edge's axis in its strip over the contact's mean load per
-    mm over its extent in contact along that axis."""
-    if edge.load_N <= 0.0:
-        return 0.0
-    step = s.dx_mm if edge.axis == 0 else s.dy_mm
-    length = float((s.pressure_MPa > 0.0).any(axis=1 - edge.axis).sum()) * step
-    return (edge.load_N / edge.width_mm) / (s.load_N / length)
+def _face_distance(within: np.ndarray, cells: tuple[np.ndarray, np.ndarray],
+                   spacing: tuple[float, float]) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """At `cells` (index arrays) of a field, a coordinate's distance (mm in the field's
+    plane) from where `within` (its value less its bound) is zero, half a cell's extent
+    along it (mm) and its gradient's size (its units per mm): `within` over that gradient
+    (central differences; one-sided at the field's borders)."""
+    gradient = []
+    for axis, step in enumerate(spacing):
+        index = cells[axis]
+        ahead = np.minimum(index + 1, within.shape[axis] - 1)
+        behind = np.maximum(index - 1, 0)
+        forward, backward = list(cells), list(cells)
+        forward[axis], backward[axis] = ahead, behind
+        gradient.append((within[tuple(forward)] - within[tuple(backward)])
+                        / (np.maximum(ahead - behind, 1) * step))
+    slope = np.hypot(*gradient)
+    slope = np.where(slope > 0.0, slope, 1.0)
+    reach = 0.5 * (np.abs(gradient[0]) * spacing[0] + np.abs(gradient[1]) * spacing[1]) / slope
+    return within[cells] / slope, reach, slope
 
 
 def flank_edges(field: GapField, s: ContactSolution) -> list[tuple[str, EdgeLoad]]:
