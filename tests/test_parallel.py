@@ -91,3 +91,27 @@ def test_tasks_run_on_threads_where_processes_cannot_be_made(monkeypatch, error)
     monkeypatch.setattr(parallel, "ProcessPoolExecutor", no_semaphores)
     with workers(2):
         assert parallel_map(where, 3) == [(k * k, os.getpid()) for k in range(3)]
+
+
+@pytest.mark.parametrize("fork", [True, False])
+def test_each_answer_is_told_here_in_order_as_it_comes_back(monkeypatch, fork):
+    """`done(i)` runs in the caller's process and thread, once per task, in order."""
+    monkeypatch.setattr(parallel, "can_fork", lambda: fork)
+    told = []
+    with workers(2):
+        answers = parallel_map(where, 5, done=lambda i: told.append(
+            (i, os.getpid(), threading.get_ident())))
+    assert [a for a, _ in answers] == [k * k for k in range(5)]
+    assert told == [(k, os.getpid(), threading.get_ident()) for k in range(5)]
+
+
+def test_tasks_that_may_not_share_threads_run_in_order_where_nothing_forks(monkeypatch):
+    """threads=False (tasks that draw): where no process can be forked they run one after
+    the other in this thread, not side by side on threads."""
+    monkeypatch.setattr(parallel, "can_fork", lambda: False)
+    seen = []
+    with workers(3):
+        answers = parallel_map(lambda k: seen.append((k, threading.get_ident())) or k, 4,
+                               threads=False)
+    assert answers == [0, 1, 2, 3]
+    assert seen == [(k, threading.get_ident()) for k in range(4)]

@@ -330,35 +330,59 @@ def demo(out: Path = typer.Option(Path("out"), "--out", help="output folder")):
     from rich.console import Console
     from rich.table import Table
 
+    from . import parallel, runner
+
+    table = Table("case", "kind", "checks", "files", "STEP/STL",
+                  title=f"bundled cases -> {out}/<case>/")
+    paths = _guarded(runner.bundled_cases)
+    cores = parallel.machine_cores()
+    # cases side by side in forked workers, each on its share of the cores (one at a time
+    # where no process can be forked: plots and pictures may not be drawn from threads)
+    at_once = min(DEMO_CASES_AT_ONCE, cores) if parallel.can_fork() else 1
+
+    def row(i: int):
+        with parallel.workers(max(1, cores // at_once)):
+            try:
+                return _demo_row(paths[i], out)
+            except typer.Exit as exc:        # its message is printed: the code comes back
+                return exc.exit_code
+
+    with _Progress(len(paths), "demo") as progress:
+        progress.stage(f"{len(paths)} cases, {at_once} at a time")
+        with parallel.workers(at_once):
+            rows = _guarded(lambda: parallel.parallel_map(
+                row, len(paths), done=lambda i: progress.advance(), threads=False))
+    for found in rows:
+        if isinstance(found, int):
+            raise typer.Exit(found)
+        table.add_row(*found)
+    Console(width=110).print(table)
+
+
+#: bundled cases `demo` runs side by side at most (each with its share of the cores)
+DEMO_CASES_AT_ONCE = 4
+
+
+def _demo_row(path: Path, out: Path) -> tuple[str, str, str, str, str]:
+    """One bundled case run into out/<case>/ and its solids exported: its row of the demo's
+    table (case, kind, checks, files, STEP/STL)."""
     from . import runner
     from .case import SOLID_KINDS
     from .extras import installed
 
-    table = Table("case", "kind", "checks", "files", "STEP/STL",
-                  title=f"bundled cases -> {out}/<case>/")
     cad = installed("cad")
-    paths = _guarded(runner.bundled_cases)
-    with _Progress(len(paths), "demo") as progress:
-        for path in paths:
-            progress.stage(path.stem)
-            if not cad and path.stem.startswith("imported_"):
-                table.add_row(path.stem, "imported", "", "", "needs the cad extra (STEP input)")
-                progress.advance()
-                continue
-            document, written = _guarded(lambda: runner.run_case(
-                path, out / path.stem, progress=lambda what: progress.stage(f"{path.stem}: {what}")))
-            failed = sum(not c["ok"] and c["kind"] == "design" for c in document["checks"])
-            solids = ""
-            if document["kind"] in SOLID_KINDS and not cad:
-                solids = "needs the cad extra"
-            elif document["kind"] in SOLID_KINDS:
-                progress.stage(f"{path.stem}: solids")
-                record = _guarded(lambda: runner.export_case(path, out / path.stem))
-                solids = ", ".join(f"{n} {p['flank_deviation_um']:.2f} µm"
-                                   for n, p in record["parts"].items())
-            pngs = sum(p.suffix == ".png" for p in written)
-            table.add_row(path.stem, document["kind"],
-                          f"{len(document['checks']) - failed} pass, {failed} flagged",
-                          f"{len(written) - pngs} + {pngs} png", solids)
-            progress.advance()
-    Console(width=110).print(table)
+    if not cad and path.stem.startswith("imported_"):
+        return path.stem, "imported", "", "", "needs the cad extra (STEP input)"
+    document, written = _guarded(lambda: runner.run_case(path, out / path.stem))
+    failed = sum(not c["ok"] and c["kind"] == "design" for c in document["checks"])
+    solids = ""
+    if document["kind"] in SOLID_KINDS and not cad:
+        solids = "needs the cad extra"
+    elif document["kind"] in SOLID_KINDS:
+        record = _guarded(lambda: runner.export_case(path, out / path.stem))
+        solids = ", ".join(f"{n} {p['flank_deviation_um']:.2f} µm"
+                           for n, p in record["parts"].items())
+    pngs = sum(p.suffix == ".png" for p in written)
+    return (path.stem, document["kind"],
+            f"{len(document['checks']) - failed} pass, {failed} flagged",
+            f"{len(written) - pngs} + {pngs} png", solids)

@@ -63,21 +63,33 @@ def can_fork() -> bool:
             and threading.active_count() == 1)
 
 
-def parallel_map(task: Callable[[int], object], count: int) -> list:
+def parallel_map(task: Callable[[int], object], count: int,
+                 done: Callable[[int], None] | None = None, threads: bool = True) -> list:
     """[task(0), ..., task(count - 1)], on the context's workers (see `workers`; at most
-    `count`): forked processes where `can_fork`, else threads. The answers come back in
-    order and are the same whatever the workers; an exception a task raises is raised
-    here."""
+    `count`): forked processes where `can_fork`, else threads (or, with threads=False, in
+    order in this thread: tasks that draw, which threads may not do side by side). The
+    answers come back in order and are the same whatever the workers; an exception a task
+    raises is raised here. `done(i)` is called here, in this thread, as each answer comes
+    back in order."""
     n = min(_WORKERS.get() or machine_cores(), count)
     with threadpool_limits(1, "blas"):
-        if n <= 1:
-            return [task(i) for i in range(count)]
-        processes = _forked_pool(n, task) if can_fork() else None
+        processes = _forked_pool(n, task) if n > 1 and can_fork() else None
         if processes is not None:
             with processes:
-                return list(processes.map(_run, range(count)))
-        with ThreadPoolExecutor(n) as threads:
-            return list(threads.map(task, range(count)))
+                return _collected(processes.map(_run, range(count)), done)
+        if n <= 1 or not threads:
+            return _collected((task(i) for i in range(count)), done)
+        with ThreadPoolExecutor(n) as pool:
+            return _collected(pool.map(task, range(count)), done)
+
+
+def _collected(answers, done: Callable[[int], None] | None) -> list:
+    out = []
+    for i, answer in enumerate(answers):
+        out.append(answer)
+        if done is not None:
+            done(i)
+    return out
 
 
 def _forked_pool(n: int, task: Callable[[int], object]) -> ProcessPoolExecutor | None:
