@@ -102,3 +102,22 @@ def test_an_end_the_field_does_not_cross_carries_nothing():
     unloaded = ContactSolution(*(np.zeros_like(solution.pressure_MPa),) * 3, solution.mask,
                                0.03, 0.03, 0.0, 1.0, 0.0, 0.0, 0.0, 0.0, 0, 0.0)
     assert end_load_ratio(field, unloaded, "gear", "B") == 0.0
+
+
+@pytest.mark.parametrize("beyond", [0.02, 0.05, 0.08, 0.15])
+def test_a_wider_members_end_measures_the_material_from_where_it_ends(beyond):
+    """The pinion's face ends `beyond` (mm) past the gear's: the contact ends at the gear's
+    end, and the pinion's end strip starts there too (else it would hold a sliver of the
+    contact's end and read it as the whole strip: 4 % high at 0.08 mm); past a strip's
+    width the pinion's end is not the contact's and reads nothing."""
+    field, solution = band_on_a_field(20, 0.0, EDGE_STRIP / 3.0, 0.004)
+    face = field.parameters["gear_v"]
+    field.parameters["pinion_v"][:] = face - beyond
+    field.inside["pinion_end_B"] = beyond - face
+    field.beyond["pinion_end_B"] = beyond - face < 0
+    pinions = end_load_ratio(field, solution, "pinion", "B")
+    if beyond > EDGE_STRIP:
+        assert pinions == 0.0
+    else:
+        assert pinions == pytest.approx(closed_form(), rel=0.03)
+    assert ratio(field, solution) == pytest.approx(closed_form(), rel=0.03)

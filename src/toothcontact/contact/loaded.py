@@ -294,26 +294,30 @@ def end_load_ratio(field: GapField, s: ContactSolution, member: str, end: str,
         return 0.0
     extent = float((farthest + reach_out) - (nearest - reach_in))
     on_edge = max(-float(nearest + reach_in), 0.0)   # the loaded cells wholly on a rounding
-    # the cells the strip and the band inward of it may hold: within twice the strip and a
+    # the cells the strip and the band inward of it may hold: within three strips and a
     # cell of the end (in the coordinate's units, at twice its gradient at the contact)
-    reaches = 2.0 * float(slope.max()) * (2.0 * EDGE_STRIP + dx + dy)
+    reaches = 2.0 * float(slope.max()) * (3.0 * EDGE_STRIP + dx + dy)
     near = np.nonzero(field.material & (within < reaches))
     if not near[0].size:
         return 0.0
     distance, reach, _ = _face_distance(within, near, (dx, dy))
+    # where the other member's face ends first, the strip starts at its end (the material's)
+    start = max(float((distance - reach).min()), 0.0)
+    if start >= EDGE_STRIP:
+        return 0.0
 
     def before(limit: float) -> np.ndarray:     # each cell's share at distances below limit
-        return np.clip(0.5 + (limit - distance) / np.where(reach > 0.0, 2.0 * reach, 1.0),
-                       0.0, 1.0)
+        return np.clip(0.5 + (start + limit - distance)
+                       / np.where(reach > 0.0, 2.0 * reach, 1.0), 0.0, 1.0)
 
     strip = before(EDGE_STRIP)
     if chamfer is not None:       # and the stretch of the rounding loaded cells cover wholly
         width = EDGE_STRIP + on_edge
     else:
         along_end = float((before(2.0 * EDGE_STRIP) - strip).sum()) * dx * dy / EDGE_STRIP
-        if along_end <= 0.0:
-            return 0.0
-        width = float(strip.sum()) * dx * dy / along_end
+        width = float(strip.sum()) * dx * dy / along_end if along_end > 0.0 else 0.0
+    if width <= 0.0:
+        return 0.0
     load = float((s.pressure_MPa[near] * strip).sum()) * dx * dy
     return (load / width) / (s.load_N / max(extent, EDGE_STRIP))
 
