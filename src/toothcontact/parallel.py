@@ -84,6 +84,7 @@ def parallel_map(task: Callable[[int], object], count: int,
 
 
 def _collected(answers, done: Callable[[int], None] | None) -> list:
+    """The answers as a list, `done(i)` told as answer i comes."""
     out = []
     for i, answer in enumerate(answers):
         out.append(answer)
