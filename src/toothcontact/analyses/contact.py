@@ -241,7 +241,9 @@ def loaded_sections(cycle, C_E: float, grid: int, teeth, bending: str,
         f"contact's peak {worst['bem_p_max_MPa']:.0f} MPa, at roll {worst['roll_deg']:.2f} deg "
         f"pair {worst['pair']}; largest end load ratio "
         f"{max(r['end_load_ratio'] for r in answered):.2f} (end-loaded above "
-        f"{END_LOAD_RATIO:g})"))
+        f"{END_LOAD_RATIO:g})"
+        + ("; a lead crown, or a worm wheel cut by an oversized hob, keeps the load off the "
+           "face ends" if any(r["end_loaded"] for r in answered) else "")))
 
 
 #: the per-contact keys of the stresses below it (subsurface_sections)
