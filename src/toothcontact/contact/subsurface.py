@@ -53,27 +53,39 @@ def point_load_stresses(x, y, z, nu: float) -> np.ndarray:
     x, y, z = np.broadcast_arrays(*(np.asarray(v, dtype) for v in (x, y, z)))
     rho = np.sqrt(x * x + y * y + z * z)
     c = 1.0 / (2.0 * math.pi)
-    inner = 1.0 / (rho * (rho + z))
-    theta = -c * (1.0 - 2.0 * nu) * (inner - z / rho ** 3)
-    spread = c * ((1.0 - 2.0 * nu) * (2.0 * rho + z) / (rho ** 3 * (rho + z) ** 2)
-                  - 3.0 * z / rho ** 5)
-    shear = -3.0 * c * z * z / rho ** 5
+    over = 1.0 / rho                        # 1/ρ, 1/ρ³ and 1/ρ⁵ by products (no pow)
+    over3 = over * over * over
+    over5 = over3 * over * over
+    closer = 1.0 / (rho + z)
+    inner = over * closer
+    theta = -c * (1.0 - 2.0 * nu) * (inner - z * over3)
+    spread = c * ((1.0 - 2.0 * nu) * (2.0 * rho + z) * over3 * closer * closer
+                  - 3.0 * z * over5)
+    shear = -3.0 * c * z * z * over5
     return np.stack([theta + spread * x * x, theta + spread * y * y,
-                     -3.0 * c * z ** 3 / rho ** 5, spread * x * y, shear * x, shear * y])
+                     z * shear, spread * x * y, shear * x, shear * y])
 
 
 def _influence(shape: tuple[int, int], nx: int, ny: int, dx: float, dy: float, z: float,
                nu: float) -> np.ndarray:
     """The stresses (6, *shape) at depth z under a unit pressure on one dx × dy cell of an
     nx × ny grid, at every offset of it, in FFT (wrap-around) order on a padded grid of
-    `shape` (at least 2n - 1 each way: a linear convolution)."""
-    i = np.arange(shape[0])
-    j = np.arange(shape[1])
-    i = np.where(i < nx, i, i - shape[0])
-    j = np.where(j < ny, j, j - shape[1])
-    X, Y = np.meshgrid((i * dx).astype(np.float32), (j * dy).astype(np.float32),
-                       indexing="ij")
-    out = point_load_stresses(X, Y, np.float32(z), nu) * np.float32(dx * dy)
+    `shape` (at least 2n - 1 each way: a linear convolution).
+
+    The offsets a linear convolution of n cells reads are -(n - 1)...n - 1 each way; the
+    stresses are evaluated on the offsets >= 0 and mirrored (σxy and σxz odd in x, σxy and
+    σyz odd in y), the offsets no cell reads left zero."""
+    X, Y = np.meshgrid((np.arange(nx) * dx).astype(np.float32),
+                       (np.arange(ny) * dy).astype(np.float32), indexing="ij")
+    quadrant = point_load_stresses(X, Y, np.float32(z), nu) * np.float32(dx * dy)
+    out = np.zeros((6,) + tuple(shape), np.float32)
+    out[:, :nx, :ny] = quadrant
+    odd_x = np.array([1, 1, 1, -1, -1, 1], np.float32)[:, None, None]
+    odd_y = np.array([1, 1, 1, -1, 1, -1], np.float32)[:, None, None]
+    if nx > 1:
+        out[:, shape[0] - nx + 1:, :ny] = odd_x * quadrant[:, :0:-1]
+    if ny > 1:
+        out[:, :, shape[1] - ny + 1:] = odd_y * out[:, :, ny - 1:0:-1]
     nodes, weights = np.polynomial.legendre.leggauss(GAUSS)
     a = np.arange(-min(NEAR, nx - 1), min(NEAR, nx - 1) + 1)
     b = np.arange(-min(NEAR, ny - 1), min(NEAR, ny - 1) + 1)
@@ -95,8 +107,10 @@ def stresses(pressure: np.ndarray, dx: float, dy: float, z: float, nu: float,
     p = np.asarray(pressure, float)
     nx, ny = p.shape
     shape, load = transformed or _transformed(p)
-    kernel = fft.rfft2(_influence(shape, nx, ny, dx, dy, z, nu).astype(np.float32), workers=1)
-    return fft.irfft2(kernel * load, s=shape, workers=1)[:, :nx, :ny].astype(float)
+    product = fft.rfft2(_influence(shape, nx, ny, dx, dy, z, nu), workers=1) * load
+    # back along the complex axis first, then only the grid's rows along the real one
+    rows = fft.ifft(product, axis=1, overwrite_x=True, workers=1)[:, :nx]
+    return fft.irfft(rows, n=shape[1], axis=2, workers=1)[..., :ny].astype(float)
 
 
 def _transformed(p: np.ndarray) -> tuple[tuple[int, int], np.ndarray]:
