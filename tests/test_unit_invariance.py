@@ -187,6 +187,11 @@ def document(raw: dict) -> dict:
 
 
 CASES = bundled()
+#: the cases analysed with the positions check and the stresses below the contacts; the
+#: others without them (the check repeats the analysis at midway positions, the stresses
+#: read the solved pressure: neither takes a unit of its own, and together they were half
+#: of this test's time, 56 s of it on the spline)
+WHOLE = ("spur_crowned_20_60", "worm_eps_oversized_hob")
 
 
 @pytest.mark.parametrize("name", sorted(CASES))
@@ -194,6 +199,8 @@ def test_a_case_in_other_units_gives_the_same_result(name):
     raw = small(CASES[name], interference=False)
     if "analysis" in raw:
         raw["analysis"]["positions"] = 3
+        if name not in WHOLE and raw["kind"] in ("spur", "spline", "worm", "imported"):
+            raw["analysis"].update(positions_check=False, subsurface=False)
     other = in_other_units(raw)
     assert other != raw or name.startswith("hertz_sphere"), "nothing was rewritten"
     found = list(differences(document(raw), document(other)))
