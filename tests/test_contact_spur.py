@@ -207,7 +207,8 @@ def test_spline_contact_all_teeth(tilt):
     from toothcontact.analyses import analyse
 
     raw = tomllib.loads((Path(__file__).parents[1] / "cases" / "spline_crowned_18t.toml").read_text())
-    raw.update(misalignment=tilt, analysis={"positions": 1, "grid": [9, 41]})
+    raw.update(misalignment=tilt, analysis={"positions": 1, "grid": [9, 41],
+                                                "positions_check": False, "subsurface": False})
     doc = analyse(parse_case(raw)).as_dict()
     rows = doc["positions"]
     gaps = {r["pair"]: r["separation_mm"] for r in rows}
@@ -233,7 +234,8 @@ def test_tip_interference_is_found_when_the_centre_distance_is_too_short():
     from toothcontact.analyses import analyse
 
     base = {**CASE, "load": {"tangential_load": "8000 N"},
-            "analysis": {"positions": 3, "grid": [15, 21]}}
+            "analysis": {"positions": 3, "grid": [15, 21], "positions_check": False,
+                         "subsurface": False}}
     nominal = analyse(parse_case(base)).as_dict()
     assert nominal["interference"]["found"] == []
     close = analyse(parse_case({**base, "center_distance": "119 mm"})).as_dict()

@@ -138,6 +138,9 @@ nu = 0.4
 [load]
 output_torque = "40 N*m"
 flank = "left"
+[analysis]
+positions_check = false
+subsurface = false
 """
 
 

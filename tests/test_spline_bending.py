@@ -42,7 +42,8 @@ def aligned():
         raw = tomllib.load(f)
     raw.pop("crown")
     raw["misalignment"] = "0 deg"
-    raw.setdefault("analysis", {}).update(interference=False, positions=1)
+    raw.setdefault("analysis", {}).update(interference=False, positions=1,
+                                           positions_check=False, subsurface=False)
     case = parse_case(raw)
     return case, analyse(case)
 
@@ -93,7 +94,8 @@ def test_a_tilted_spline_loads_both_face_ends_alike():
     it."""
     with open(CASES_DIR / "spline_crowned_18t.toml", "rb") as f:
         raw = tomllib.load(f)
-    raw.setdefault("analysis", {}).update(interference=False, positions=3)
+    raw.setdefault("analysis", {}).update(interference=False, positions=3,
+                                           positions_check=False, subsurface=False)
     raw["misalignment"] = "0.2 deg"
     result = analyse(parse_case(raw))
     ends = {}
