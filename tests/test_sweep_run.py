@@ -209,6 +209,7 @@ def test_an_optimisation_over_a_spectrum_runs_and_resumes_without_rerunning(tmp_
     path.write_text(
         'kind = "sweep"\nbase = "spur_crowned_20_60"\nsamples = 2\nseed = 3\n'
         '[set]\n"analysis.pressure_grid" = 0\n"analysis.interference" = false\n'
+        '"analysis.positions" = 5\n'
         '[spectrum]\nfield = "load.tangential_load"\nlevels = ["4000 N", "8000 N"]\n'
         'shares = [0.75, 0.25]\n'
         '[[tolerance]]\nfield = "misalignment.slope"\ndistribution = "uniform"\n'
