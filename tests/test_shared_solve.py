@@ -82,14 +82,23 @@ def test_a_grid_whose_contact_reaches_its_edge_is_named():
     big = P.Grid(bowl(96, 0.02, 0.015, 0.02, 0.0), 0.02, 0.02)
     with pytest.raises(P.GridEdgeError, match="grid 1: the contact reaches") as found:
         P.solve_shared([big, small], [1000.0, 1000.0], E_STAR)
-    assert found.value.grid == 1
-    assert found.value.axes == (True, True)
+    assert found.value.reached == {1: (True, True)}
+
+
+def test_every_grid_whose_contact_reaches_its_edge_is_named_at_once():
+    """Two of three grids too small for their contacts: both are named in one error (a
+    caller widens them together, not in one solve each)."""
+    small = P.Grid(bowl(12, 0.02, 0.015, 0.02, 0.0), 0.02, 0.02)
+    big = P.Grid(bowl(96, 0.02, 0.015, 0.02, 0.0), 0.02, 0.02)
+    with pytest.raises(P.GridEdgeError, match="grid 0, 2: the contact reaches") as found:
+        P.solve_shared([small, big, small], [1000.0, 1000.0, 1000.0], E_STAR)
+    assert found.value.reached == {0: (True, True), 2: (True, True)}
 
 
 @pytest.mark.parametrize("long_axis", [0, 1])
 def test_the_edges_a_contact_reaches_are_named_by_axis(long_axis):
     """A contact line along one axis of its grid, wider than the grid across it, reaches
-    only the edges across the other axis: GridEdgeError.axes says which (the loaded
+    only the edges across the other axis: GridEdgeError.reached says which (the loaded
     contact then widens its field along that axis alone)."""
     x = (np.arange(400) - 199.5) * 0.02
     y = (np.arange(12) - 5.5) * 0.02
@@ -98,7 +107,7 @@ def test_the_edges_a_contact_reaches_are_named_by_axis(long_axis):
         gap = gap.T
     with pytest.raises(P.GridEdgeError) as found:
         P.solve_shared([P.Grid(gap, 0.02, 0.02)], [1000.0], E_STAR)
-    assert found.value.axes == ((False, True) if long_axis == 0 else (True, False))
+    assert found.value.reached == {0: (False, True) if long_axis == 0 else (True, False)}
 
 
 HELICAL = {"kind": "spur", "teeth": [23, 57], "module": "2.5 mm", "pressure_angle": "20 deg",

@@ -763,10 +763,10 @@ def _share(pairs: list[_Pair], load: float, E_star: float) -> list[ContactSoluti
     composite modulus E_star (MPa): one shared solve (pressure.solve_shared) started from
     the rigid analysis's split (the load equally among the pairs in contact; the others
     take load once the approach reaches them), first on the coarse grids where the teeth
-    bend; a pair whose contact reaches its field's edge gets a wider field, one that spans
-    too few cells a narrower one about it (_Pair.narrow), and the position is solved again
-    (where the narrowed fields cannot be solved, the solutions before stand). None for a
-    pair that carries no load."""
+    bend; the pairs whose contacts reach their fields' edges get wider fields (all at once),
+    one that spans too few cells a narrower one about it (_Pair.narrow), and the position
+    is solved again (where the narrowed fields cannot be solved, the solutions before
+    stand). None for a pair that carries no load."""
     touching = [p.rigid_contact for p in pairs]
     if not any(touching):
         touching = [True] * len(pairs)
@@ -785,11 +785,19 @@ def _share(pairs: list[_Pair], load: float, E_star: float) -> list[ContactSoluti
             solutions = _precise_enough([p.grid() for p in pairs], loads, E_star,
                                         starts=starts, tol=GAP_TOLERANCE)
         except GridEdgeError as exc:
-            try:
-                pairs[exc.grid].grow(exc.axes)
-            except ValueError:
+            # every field that can widen does (one by one, a spline's 18 fields took 18
+            # solves of their position); one already covering its flanks may have reached
+            # its edge only because another was too small: the position fails where none
+            # can widen
+            outgrown = []
+            for grid, axes in exc.reached.items():
+                try:
+                    pairs[grid].grow(axes)
+                except ValueError as error:
+                    outgrown.append(error)
+            if len(outgrown) == len(exc.reached):
                 if wide is None:
-                    raise
+                    raise outgrown[0]
                 return _widened(pairs, wide)
             continue
         except RuntimeError:
