@@ -141,3 +141,41 @@ where it has one, and the summary carries the largest with
     assert all("subsurface_shear_max_MPa" not in r for r in off.sections["positions"])
     assert sum(r["load_share"] for r in rows if r["roll_deg"] == rows[0]["roll_deg"]) \
         == pytest.approx(1.0)
+
+
+@pytest.mark.parametrize("along", [1.0, 3.0])
+def test_cells_longer_than_the_half_width_along_a_line_contact_give_mcewens_shear(along):
+    """The line contact above on cells `along` b long along the line (a loaded gear
+    contact's cells are 0.033 mm along it; a tip's corner contact is 0.01-0.03 mm wide):
+    the shear at 0.786 b is McEwen's 0.300 p0 within 1 %. Taking the cells within NEAR
+    cells as point loads and 6 Gauss points along them, it was 0.320 at 1 b and 0.741 at
+    3 b."""
+    n, half = 64, 1.3
+    x = (np.arange(n) + 0.5) / n * 2 * half - half
+    across = np.sqrt(np.clip(1.0 - x * x, 0.0, None))[:, None]
+
+    def at_mid_length(length):
+        cells = int(round(length / along)) // 2 * 2
+        s = subsurface.stresses(np.repeat(across, cells, axis=1), 2 * half / n, along, 0.786,
+                                0.3)
+        return s[:, :, cells // 2 - 1:cells // 2 + 1].mean(axis=2)
+
+    shear = subsurface.principal_shear(2 * at_mid_length(80.0) - at_mid_length(40.0)).max()
+    assert shear == pytest.approx(0.3003, rel=0.01)
+
+
+def test_a_narrow_line_contacts_peak_is_found_below_long_cells():
+    """A crowned line contact 0.014 mm half-wide (a corner contact's width) on a loaded
+    gear field's cells, 0.033 mm along it and 0.0015 across: peak finds McEwen's shear,
+    0.300 p0 at 0.786 b, and the line contact's von Mises stress, 0.557 p0 at 0.70 b
+    (Johnson fig. 4.6, ν = 0.3), within 1.5 % and 3 % of depth. The depths were held to
+    half the longer cell side (0.0165 mm, 1.2 b deep): 4 % and 7 % high there."""
+    b, p0, dx, dy = 0.014, 1500.0, 0.033, 0.0015
+    X = (np.arange(600) - 299.5) * dx
+    y = (np.arange(20) - 9.5) * dy
+    p = p0 * np.sqrt(np.clip(1 - (y[None, :] / b) ** 2 - (X[:, None] / 9.7) ** 2, 0, None))
+    found = subsurface.peak(p, dx, dy, 0.3)
+    assert found.shear_MPa == pytest.approx(0.300 * p0, rel=0.015)
+    assert found.shear_depth_mm == pytest.approx(0.786 * b, rel=0.03)
+    assert found.von_mises_MPa == pytest.approx(0.557 * p0, rel=0.015)
+    assert found.von_mises_depth_mm == pytest.approx(0.70 * b, rel=0.03)

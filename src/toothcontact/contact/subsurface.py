@@ -4,8 +4,9 @@ depths: what pitting and case crushing are judged by.
 
 The stress at depth z is the pressure convolved with Boussinesq's stresses under a normal
 point load (Johnson, *Contact Mechanics*, 1985, §3.2, turned to Cartesian axes),
-integrated over each pressure cell (the cell's midpoint beyond NEAR cells, a Gauss-Legendre
-rule of GAUSS² points on the cells nearer), and summed by FFT over grids zero-padded to
+integrated over each pressure cell (the cell's midpoint beyond NEAR of the longer cell
+side, a Gauss-Legendre rule on the cells nearer: GAUSS points per axis or more, at most
+half the depth apart), and summed by FFT over grids zero-padded to
 twice their size: a linear, not a periodic, convolution (Liu, Wang & Liu, *Wear* 243
 (2000) 101-111, "DC-FFT"), in single precision (twice as fast; 1e-6 of the peak).
 Frictionless: the pressure's tractions are normal. The depths are scanned at DEPTHS times
@@ -86,15 +87,33 @@ def _influence(shape: tuple[int, int], nx: int, ny: int, dx: float, dy: float, z
         out[:, shape[0] - nx + 1:, :ny] = odd_x * quadrant[:, :0:-1]
     if ny > 1:
         out[:, :, shape[1] - ny + 1:] = odd_y * out[:, :, ny - 1:0:-1]
-    nodes, weights = np.polynomial.legendre.leggauss(GAUSS)
-    a = np.arange(-min(NEAR, nx - 1), min(NEAR, nx - 1) + 1)
-    b = np.arange(-min(NEAR, ny - 1), min(NEAR, ny - 1) + 1)
-    A, B, U, V = np.meshgrid(a * dx, b * dy, 0.5 * dx * nodes, 0.5 * dy * nodes,
-                             indexing="ij")
-    w = np.outer(weights, weights) * (0.25 * dx * dy)
-    near = (point_load_stresses(A - U, B - V, z, nu) * w).sum(axis=(3, 4))
-    out[:, (a % shape[0])[:, None], (b % shape[1])[None, :]] = near
+    # the cells within NEAR of the longer cell side each way are integrated by Gauss-Legendre
+    # with nodes at most half the depth apart along each axis (a long cell at a shallow
+    # depth is no point load: a line contact's shear 2.5 times McEwen's on cells 3 b long);
+    # those of the shorter side beyond NEAR of its own cells, at their midline across it
+    nodes = [max(GAUSS, math.ceil(2.0 * d / z)) for d in (dx, dy)]
+    inner = [np.arange(-k, k + 1) for k in (min(NEAR, nx - 1), min(NEAR, ny - 1))]
+    _integrated(out, inner[0], inner[1], dx, dy, z, nu, nodes)
+    longest = max(dx, dy)
+    for axis, (d, n) in enumerate(((dx, nx), (dy, ny))):
+        reach, k = min(math.ceil(NEAR * longest / d - 1e-9), n - 1), inner[axis][-1]
+        if reach > k:
+            beyond = np.concatenate([np.arange(-reach, -k), np.arange(k + 1, reach + 1)])
+            offsets = [beyond, inner[1]] if axis == 0 else [inner[0], beyond]
+            _integrated(out, *offsets, dx, dy, z, nu,
+                        [1, nodes[1]] if axis == 0 else [nodes[0], 1])
     return out
+
+
+def _integrated(out: np.ndarray, a: np.ndarray, b: np.ndarray, dx: float, dy: float, z: float,
+                nu: float, nodes: list[int]) -> None:
+    """The stresses at offsets a·dx, b·dy (into `out`, FFT order) under a unit pressure on
+    a dx × dy cell, integrated over it by Gauss-Legendre rules of `nodes` points per axis."""
+    (ux, wx), (uy, wy) = (np.polynomial.legendre.leggauss(n) for n in nodes)
+    A, B, U, V = np.meshgrid(a * dx, b * dy, 0.5 * dx * ux, 0.5 * dy * uy, indexing="ij")
+    w = np.outer(wx, wy) * (0.25 * dx * dy)
+    out[:, (a % out.shape[1])[:, None], (b % out.shape[2])[None, :]] = (
+        point_load_stresses(A - U, B - V, z, nu) * w).sum(axis=(3, 4))
 
 
 def stresses(pressure: np.ndarray, dx: float, dy: float, z: float, nu: float,
@@ -172,7 +191,8 @@ def peak(pressure: np.ndarray, dx: float, dy: float, nu: float) -> SubsurfacePea
             found[z] = _largest(stresses(p, dx, dy, z, nu, transformed))
         return found[z]
 
-    for z in np.unique(np.maximum(np.array(DEPTHS) * half_width, 0.5 * max(dx, dy))):
+    # no shallower than half the shorter cell side (the pressure steps across it)
+    for z in np.unique(np.maximum(np.array(DEPTHS) * half_width, 0.5 * min(dx, dy))):
         at(float(z))
     out = []
     for column in (0, 1):
