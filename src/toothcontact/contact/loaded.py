@@ -64,6 +64,16 @@ EDGE_LEAST_SHARE = 0.02
 #: longest cell (mm) of a loaded contact's grid along a long contact, where the grid's size
 #: allows: a third of the edge strip, which then averages over three cells or more
 CELL = EDGE_STRIP / 3.0
+#: the longest cell (mm) along a contact whose pattern stays CLEAR_REACH (mm) or more from
+#: where a line along it crosses an edge of the material or a kink of a modification (a
+#: relief's start, a tip rounding, an end chamfer): there the pressure changes over the
+#: contact's own length, not across an edge strip or a kink the line crosses. Nor may it
+#: lie on a tip rounding: a corner contact's largest shear lies 0.01-0.02 mm deep, where
+#: the stresses below cells 0.067 mm long moved 1-4 % from those below 0.033 mm
+#: (subsurface.peak resolves what the cells hold, not the pressure between them). A
+#: contact whose loaded pressure comes nearer or onto one (on its coarse solve, or on the
+#: full one) is solved again on CELL (_Pair.sharpen).
+CLEAR_CELL, CLEAR_REACH = 2.0 * CELL, 1.0
 #: a loaded contact spanning fewer than RESOLVE_CELLS cells along an axis of its field is
 #: solved again on a field narrowed to NARROW_SPAN times its extent there (_Pair.narrow)
 RESOLVE_CELLS, NARROW_SPAN = 10, 3.0
@@ -222,28 +232,34 @@ class EdgeBreaks:
     """The broken edges of a cycle's flanks: `roundings` (member -> (the roll angle where
     its tip edge's rounding starts, +1 or -1 toward the tip)) and `chamfers` (member -> the
     face position, mm from mid-face either way, where its end chamfer's rounded edge
-    starts)."""
+    starts); and where each member's modifications bend its flank (`kinks`: member ->
+    (roll angles, rad, of its profile_breaks; face positions, mm, of its lead_breaks)):
+    relief starts, roundings' and chamfers' ends."""
 
     roundings: dict = dataclasses.field(default_factory=dict)
     chamfers: dict = dataclasses.field(default_factory=dict)
+    kinks: dict = dataclasses.field(default_factory=dict)
 
 
 def edge_breaks(cycle) -> EdgeBreaks:
     """The tip roundings (or chamfers) and end chamfers of a cycle's members (those
     without one left out)."""
-    roundings, chamfers = {}, {}
+    roundings, chamfers, kinks = {}, {}, {}
     for member in ("pinion", "gear"):
         flank = getattr(cycle, member)
         modifications = getattr(flank, "modifications", None)
-        edge = getattr(modifications, "tip_edge", None)
+        if modifications is None:
+            continue
+        gear = flank.base.gear
+        edge = modifications.tip_edge
         if edge is not None:
-            base = flank.base
-            toward = 1.0 if base.tip_roll >= edge.start else -1.0
-            roundings[member] = (edge.start / base.gear.base_radius, toward)
-        chamfer = getattr(modifications, "end_chamfer", None)
-        if chamfer is not None:
-            chamfers[member] = chamfer.start(flank.base.gear.face_width)
-    return EdgeBreaks(roundings, chamfers)
+            toward = 1.0 if flank.base.tip_roll >= edge.start else -1.0
+            roundings[member] = (edge.start / gear.base_radius, toward)
+        if modifications.end_chamfer is not None:
+            chamfers[member] = modifications.end_chamfer.start(gear.face_width)
+        kinks[member] = (np.sort(np.array(modifications.profile_breaks)) / gear.base_radius,
+                         np.array(modifications.lead_breaks(gear.face_width)))
+    return EdgeBreaks(roundings, chamfers, kinks)
 
 
 def chamfered_ends(field: GapField, chamfers: dict[str, float], before: float = 0.0
@@ -438,7 +454,7 @@ def loaded_cycle(cycle, C_E: float, points: int = 128, teeth: PairCompliance | N
         solvable = [k for k in ks if rows[k].get("rigid_contact", True)
                     or fields[k].material.any()]
         try:
-            pairs = [_Pair(cycle, k, points, fields[k], teeth, reaches[k], patterns[k])
+            pairs = [_Pair(cycle, k, points, fields[k], teeth, reaches[k], patterns[k], breaks)
                      for k in solvable]
             solutions = dict(zip(solvable, zip(pairs, _share(pairs, load, 1.0 / C_E))))
         except (ValueError, RuntimeError) as exc:
@@ -461,9 +477,36 @@ def loaded_cycle(cycle, C_E: float, points: int = 128, teeth: PairCompliance | N
     return out, failed
 
 
+def near_crossing(field: GapField, breaks: EdgeBreaks, loaded: np.ndarray, reach: float
+                  ) -> bool:
+    """Whether `loaded` cells lie within `reach` (mm) of where a line of the field along
+    its longer axis crosses an edge of the material or a kink of either flank's
+    modifications (`breaks.kinks`: a relief's start, a rounding, a chamfer). A spur
+    pair's tip rounding runs along its contact line: no line crosses it."""
+    from scipy.ndimage import maximum_filter1d
+
+    region = (~field.material).astype(np.int64)
+    for member, (rolls, faces) in breaks.kinks.items():
+        region = region * (len(rolls) + 1) + np.searchsorted(
+            rolls, field.parameters[f"{member}_u"])
+        region = region * (len(faces) + 1) + np.searchsorted(
+            faces, field.parameters[f"{member}_v"])
+    axis = 0 if region.shape[0] >= region.shape[1] else 1
+    if axis == 1:                           # lines along the longer axis as rows
+        region, loaded = region.T, loaded.T
+    change = region[1:] != region[:-1]
+    crossing = np.zeros(region.shape, np.uint8)
+    crossing[1:] |= change
+    crossing[:-1] |= change
+    cells = 2 * math.ceil(reach / field.spacing[axis]) + 1
+    near = maximum_filter1d(crossing, cells, axis=0, mode="constant")
+    return bool((near.view(bool) & loaded).any())
+
+
 class _Pair:
     """One contact to solve: its gap field, widened when the loaded contact reaches the
-    field's edge (a cut ellipse spreads away from the cut; a line mostly along itself)."""
+    field's edge (a cut ellipse spreads away from the cut; a line mostly along itself), its
+    cells along the contact CLEAR_CELL long until the contact comes near an edge."""
 
     #: the pattern's box enlarged by this much at first
     MARGIN = 1.5
@@ -471,10 +514,17 @@ class _Pair:
     REACH = 1.05
 
     def __init__(self, cycle, k: int, points: int, field: GapField,
-                 teeth: PairCompliance | None, reach: float, pattern: np.ndarray):
-        """Row k of the cycle on its first `field`; `reach` (mm) its field_reach, `pattern`
-        (mm, (2,)) its pattern_semi_axes."""
+                 teeth: PairCompliance | None, reach: float, pattern: np.ndarray,
+                 breaks: EdgeBreaks):
+        """Row k of the cycle on its first `field` (cells of CELL at most: built again on
+        CLEAR_CELL where its pattern is clear); `reach` (mm) its field_reach, `pattern`
+        (mm, (2,)) its pattern_semi_axes, `breaks` its flanks' broken edges and kinks."""
         self.cycle, self.k, self.points, self.teeth = cycle, k, points, teeth
+        self.breaks = breaks
+        #: the longest cell of its fields (mm): CLEAR_CELL where its pattern (its field's
+        #: middle, 1/MARGIN of it both ways) stays clear of the crossings (near_crossing)
+        #: and off the tip roundings, else CELL
+        self.cell = CELL
         #: whether the pair touches without load (else it is kept beyond the approach)
         self.rigid_contact = cycle.rows[k].get("rigid_contact", True)
         #: the largest semi-axis a field needs (see field_reach)
@@ -490,7 +540,20 @@ class _Pair:
         #: the field's box ((2, 2) mm in the plane) once it is narrowed onto the contact
         #: (see narrow); None while it lies about the pattern
         self.box: np.ndarray | None = None
-        self._use(field)
+        # its pattern: the field's middle, 1/MARGIN of it both ways
+        n0, n1 = field.gap.shape
+        middle = np.zeros((n0, n1), bool)
+        rim = 0.5 * (1.0 - 1.0 / self.MARGIN)
+        middle[int(rim * n0):n0 - int(rim * n0), int(rim * n1):n1 - int(rim * n1)] = True
+        axis = 0 if n0 >= n1 else 1
+        middle &= field.material
+        if field.spacing[axis] < 0.95 * CELL or any(
+                (middle & on).any() for on in tip_roundings(field, breaks.roundings).values()
+                ) or near_crossing(field, breaks, middle, CLEAR_REACH):
+            self._use(field)
+            return
+        self.cell = CLEAR_CELL
+        self._use(self._field())
 
     def _use(self, field: GapField) -> None:
         """Solve on `field` from now on (its structure operators and free ends built)."""
@@ -519,9 +582,39 @@ class _Pair:
         if np.array_equal(grown, self.semi_axes):
             raise self._outgrown()
         self.semi_axes = grown
-        self._use(contact_fields(self.cycle, [self.k], self.points, 1.0,
-                                 self.semi_axes[None], CELL, snap=True, far=LOADED_FAR,
-                                 along_pattern=True)[0])
+        self._use(self._field())
+
+    def _field(self) -> GapField:
+        """The field over the pair's box (or its semi-axes about its pattern while it has
+        none), on cells of `cell` at most."""
+        where = (dict(margin=1.0, semi_axes=self.semi_axes[None]) if self.box is None
+                 else dict(boxes=self.box[None]))
+        return contact_fields(self.cycle, [self.k], self.points, largest_cell=self.cell,
+                              snap=True, far=LOADED_FAR, along_pattern=True, **where)[0]
+
+    def sharpen(self, solution: ContactSolution | None, steps: tuple[int, int] = (1, 1)
+                ) -> bool:
+        """Put a field of CLEAR_CELL back on cells of CELL where the loaded contact
+        (`solution`, on every `steps`-th cell of the field) comes within CLEAR_REACH of a
+        crossing (near_crossing) or onto a tip rounding after all; whether its field
+        changed (the position is then solved again)."""
+        f = self.field
+        axis = 0 if f.gap.shape[0] >= f.gap.shape[1] else 1
+        if solution is None or self.cell == CELL:
+            return False
+        loaded = np.zeros(f.gap.shape, bool)
+        loaded[::steps[0], ::steps[1]] = solution.pressure_MPa > 0.0
+        # a coarse solve's loaded cell stands for the cells up to the next one it keeps
+        reach = CLEAR_REACH + (steps[axis] - 1) * f.spacing[axis]
+        if not near_crossing(f, self.breaks, loaded, reach) and not any(
+                (loaded & on).any() for on in tip_roundings(f, self.breaks.roundings).values()):
+            return False
+        self.cell = CELL
+        field = self._field()
+        if field.gap.shape == f.gap.shape:      # held to its most points either way
+            return False
+        self._use(field)
+        return True
 
     def _outgrown(self) -> ValueError:
         return ValueError(f"the loaded contact at roll {self.cycle.rows[self.k]['roll_deg']:.3f} "
@@ -560,9 +653,7 @@ class _Pair:
     def _narrowed(self, box: np.ndarray) -> None:
         """Solve on the field over `box` ((2, 2) mm in the plane) from now on."""
         self.box = box
-        self._use(contact_fields(self.cycle, [self.k], self.points, snap=True,
-                                 boxes=box[None], largest_cell=CELL, far=LOADED_FAR,
-                                 along_pattern=True)[0])
+        self._use(self._field())
 
     def grid(self, coarse: bool = False) -> Grid:
         """The field as the solver's grid, with the teeth's bending where there is a tooth
@@ -774,12 +865,14 @@ def _share(pairs: list[_Pair], load: float, E_star: float) -> list[ContactSoluti
     # the solutions before a narrowing and their fields: kept where the narrowed fields
     # cannot be solved
     wide: tuple[list, list[GapField]] | None = None
-    for _ in range(6 * len(pairs) + 1):
+    for _ in range(7 * len(pairs) + 1):
         try:
             starts = None
             if pairs[0].structure is not None:
                 coarse = _precise_enough([p.grid(coarse=True) for p in pairs], loads, E_star,
                                          tol=COARSE_TOLERANCE)
+                if any([p.sharpen(s, p.steps) for p, s in zip(pairs, coarse)]):
+                    continue
                 starts = [p.refined(s) for p, s in zip(pairs, coarse)]
                 loads = np.array([0.0 if s is None else s.load_N for s in coarse])
             solutions = _precise_enough([p.grid() for p in pairs], loads, E_star,
@@ -804,6 +897,8 @@ def _share(pairs: list[_Pair], load: float, E_star: float) -> list[ContactSoluti
             if wide is None:
                 raise
             return _widened(pairs, wide)
+        if any([pair.sharpen(s) for pair, s in zip(pairs, solutions)]):
+            continue
         found_on = [pair.field for pair in pairs]
         if not any([pair.narrow(s) for pair, s in zip(pairs, solutions)]):
             return solutions
