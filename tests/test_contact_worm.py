@@ -230,11 +230,11 @@ def test_a_loaded_field_widens_only_across_the_edges_its_contact_reached(
     across) bent the line further out each time: a before-stop ZN set's fields grew to
     90 mm on samples 4 mm apart, whose splines put 1448 MPa on a false edge (602 MPa once
     widened across alone)."""
-    from toothcontact.contact.loaded import _Pair
+    from toothcontact.contact.loaded import _Pair, edge_breaks
 
     cycle, rows, reach, patterns, fields = small_identical_hob_set
     k = int(np.argmax([r["contact_model"] == "line" for r in cycle.rows]))
-    pair = _Pair(cycle, k, 128, fields[k], None, reach[k], patterns[k])
+    pair = _Pair(cycle, k, 128, fields[k], None, reach[k], patterns[k], edge_breaks(cycle))
     before = pair.semi_axes.copy()
     pair.grow((False, True))
     assert pair.semi_axes[0] == before[0]
