@@ -546,10 +546,8 @@ class _Pair:
         rim = 0.5 * (1.0 - 1.0 / self.MARGIN)
         middle[int(rim * n0):n0 - int(rim * n0), int(rim * n1):n1 - int(rim * n1)] = True
         axis = 0 if n0 >= n1 else 1
-        middle &= field.material
-        if field.spacing[axis] < 0.95 * CELL or any(
-                (middle & on).any() for on in tip_roundings(field, breaks.roundings).values()
-                ) or near_crossing(field, breaks, middle, CLEAR_REACH):
+        if field.spacing[axis] < 0.95 * CELL or not self._clear(
+                field, middle & field.material, CLEAR_REACH):
             self._use(field)
             return
         self.cell = CLEAR_CELL
@@ -606,8 +604,7 @@ class _Pair:
         loaded[::steps[0], ::steps[1]] = solution.pressure_MPa > 0.0
         # a coarse solve's loaded cell stands for the cells up to the next one it keeps
         reach = CLEAR_REACH + (steps[axis] - 1) * f.spacing[axis]
-        if not near_crossing(f, self.breaks, loaded, reach) and not any(
-                (loaded & on).any() for on in tip_roundings(f, self.breaks.roundings).values()):
+        if self._clear(f, loaded, reach):
             return False
         self.cell = CELL
         field = self._field()
@@ -615,6 +612,12 @@ class _Pair:
             return False
         self._use(field)
         return True
+
+    def _clear(self, field: GapField, loaded: np.ndarray, reach: float) -> bool:
+        """Whether the `loaded` cells of `field` stay `reach` (mm) or more from every
+        crossing along its lines (near_crossing) and off the tip roundings."""
+        return not near_crossing(field, self.breaks, loaded, reach) and not any(
+            (loaded & on).any() for on in tip_roundings(field, self.breaks.roundings).values())
 
     def _outgrown(self) -> ValueError:
         return ValueError(f"the loaded contact at roll {self.cycle.rows[self.k]['roll_deg']:.3f} "
