@@ -1024,8 +1024,9 @@ def solve_shared(grids: list[Grid], loads_N, E_star_MPa: float, *, tol: float = 
     reached = {}
     for k, ((h, *_), s) in enumerate(zip(checked, system.slices)):
         S = p[s].reshape(h.shape) > 0.0
-        if S[[0, -1], :].any() or S[:, [0, -1]].any():
-            reached[k] = (bool(S[[0, -1], :].any()), bool(S[:, [0, -1]].any()))
+        edges = (bool(S[[0, -1], :].any()), bool(S[:, [0, -1]].any()))
+        if any(edges):
+            reached[k] = edges
     if reached:
         # every grid whose contact reaches its edge is named: a caller widens them all
         # before solving again (one by one, a spline's 18 fields took 18 solves)
