@@ -22,6 +22,15 @@ LOST_SPANS = 5.0
 #: is taken and no further evaluation is spent confirming it
 TOLERANCE = 1e-7
 
+#: a caller that takes only hits inside the flank's domain (search.separation) abandons a
+#: ray whose residual has not halved in this many steps: Newton's iteration converges
+#: quadratically once near a root, and a line that misses the flank (a pinion point facing
+#: no gear flank, past its tip) cycles instead, with residuals of millimetres to metres, for
+#: every step allowed. On the bundled spur, helical, FZG, spline and worm cases no ray that
+#: ends inside the domain goes this long without halving it; a quarter to half of the rigid
+#: search's ray steps were spent on the cycling ones (tests/test_rays.py)
+STALL_STEPS = 4
+
 
 @dataclass(frozen=True)
 class RayHits:
@@ -39,13 +48,14 @@ class RayHits:
 
 
 def intersect(flank: Flank, points: np.ndarray, directions: np.ndarray, u0: np.ndarray,
-              v0: np.ndarray, iterations: int = 30) -> RayHits:
+              v0: np.ndarray, iterations: int = 30, inside_only: bool = False) -> RayHits:
     """Newton solve of r(u, v) - P - s·n = 0 from the starting parameters (u0, v0).
 
     points, directions: (..., 3) in the flank's frame; u0, v0: starting guesses (...).
     Each iteration works on the rays still running only (kept packed): a ray stops when its
     residual is below TOLERANCE (converged, after one last step), or when it has no Newton
-    step or wanders off."""
+    step or wanders off; with inside_only (a caller that takes only the hits inside the
+    domain) also when its residual has not halved in STALL_STEPS steps."""
     shape = np.broadcast_shapes(np.shape(u0), np.shape(v0), np.shape(points)[:-1],
                                 np.shape(directions)[:-1])
     n = int(np.prod(shape))
@@ -62,6 +72,8 @@ def intersect(flank: Flank, points: np.ndarray, directions: np.ndarray, u0: np.n
     P = np.broadcast_to(points, shape + (3,)).reshape(-1, 3)[index].T
     m = -np.broadcast_to(directions, shape + (3,)).reshape(-1, 3)[index].T
     pu, pv, ps = u[index], v[index], s[index]
+    # each running ray's least squared residual and the steps since it last fell to a quarter
+    least, since = np.full(index.size, np.inf), np.zeros(index.size, int)
     for _ in range(iterations):
         if index.size == 0:
             break
@@ -69,7 +81,8 @@ def intersect(flank: Flank, points: np.ndarray, directions: np.ndarray, u0: np.n
         with np.errstate(all="ignore"):
             r, r_u, r_v = flank.tangents(pu, pv)
             y = tuple(P[i] - r[i] - ps * m[i] for i in range(3))       # minus the residual
-            last = dot(y, y) < TOLERANCE * TOLERANCE
+            residual = dot(y, y)
+            last = residual < TOLERANCE * TOLERANCE
             # Newton step: [r_u r_v m]·(du, dv, ds) = y, by Cramer's rule
             a, b, c = cross(r_v, m), cross(m, r_u), cross(r_u, r_v)
             det = dot(r_u, a)
@@ -86,10 +99,16 @@ def intersect(flank: Flank, points: np.ndarray, directions: np.ndarray, u0: np.n
                 [np.broadcast_to(ci, final.shape)[final] for ci in c], axis=-1)
         keep = (stepped & ~last & (pu > ua - reach_u) & (pu < ub + reach_u)
                 & (pv > va - reach_v) & (pv < vb + reach_v))
+        if inside_only:
+            halved = residual < 0.25 * least
+            least = np.where(halved, residual, least)
+            since = np.where(halved, 0, since + 1)
+            keep &= since < STALL_STEPS
         leave = ~keep
         u[index[leave]], v[index[leave]], s[index[leave]] = pu[leave], pv[leave], ps[leave]
         index, P, m = index[keep], P[:, keep], m[:, keep]
         pu, pv, ps = pu[keep], pv[keep], ps[keep]
+        least, since = least[keep], since[keep]
     u[index], v[index], s[index] = pu, pv, ps
     slack = 1e-9
     inside = converged & (u >= ua - slack) & (u <= ub + slack) & (v >= va - slack) & (v <= vb + slack)

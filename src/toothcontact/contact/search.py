@@ -45,7 +45,7 @@ def separation(pinion: Flank, gear: Flank, pinion_frame: Frame, gear_frame: Fram
         points = gear_frame.to_local(pinion_frame.to_world(sample.points))
         normals = gear_frame.vectors_to_local(pinion_frame.vectors_to_world(sample.normals))
         u0, v0 = gear.parameters_near(points)
-        hits = intersect(gear, points, normals, u0, v0)
+        hits = intersect(gear, points, normals, u0, v0, inside_only=True)
         facing = (hits.inside & (np.abs(hits.s) <= REACH)
                   & (np.einsum("...i,...i->...", hits.normal, normals) < 0.0))
     return Separation(np.where(facing, hits.s, np.nan), hits.u, hits.v)
