@@ -188,9 +188,9 @@ output_torque = "51 N*m"
 def small_identical_hob_set():
     """The rigid cycle of SMALL_IDENTICAL_HOB_SET (7 positions) and its loaded-contact
     fields as the loaded contact lays them: (cycle, rows, field reaches, semi-axes,
-    fields)."""
+    the fields' samples, fields)."""
     from toothcontact.case import parse_case
-    from toothcontact.contact.field import LOADED_FAR, contact_fields, pattern_semi_axes
+    from toothcontact.contact.field import LOADED_FAR, contact_samples, pattern_semi_axes
     from toothcontact.contact.loaded import CELL, _Pair, field_reach
 
     parts = gearset.worm_set(parse_case(tomllib.loads(SMALL_IDENTICAL_HOB_SET)))
@@ -201,10 +201,10 @@ def small_identical_hob_set():
     rows = np.arange(len(cycle.rows))
     reach = field_reach(cycle, rows)
     patterns = pattern_semi_axes(cycle, rows)
-    fields = contact_fields(cycle, rows, 128, _Pair.MARGIN,
-                            np.minimum(patterns, reach[:, None]), largest_cell=CELL,
-                            snap=True, far=LOADED_FAR, along_pattern=True)
-    return cycle, rows, reach, patterns, fields
+    samples = contact_samples(cycle, rows, _Pair.MARGIN, np.minimum(patterns, reach[:, None]),
+                              far=LOADED_FAR, along_pattern=True)
+    fields = [s.field(128, CELL, snap=True) for s in samples]
+    return cycle, rows, reach, patterns, samples, fields
 
 
 def test_a_line_contact_running_off_the_wheel_face_has_no_false_dip_at_the_face_end(
@@ -218,7 +218,7 @@ def test_a_line_contact_running_off_the_wheel_face_has_no_false_dip_at_the_face_
     end, 10 GPa inside it). On the material of every loaded field the gap now stays above
     -0.05 µm: a conjugate line's zero to the samples' and splines' accuracy (at most
     -0.017 µm here)."""
-    cycle, _, _, _, fields = small_identical_hob_set
+    cycle, _, _, _, _, fields = small_identical_hob_set
     for row, field in zip(cycle.rows, fields):
         assert field.gap[field.material].min() > -5e-5, (row["roll_deg"], row["pair"])
 
@@ -232,9 +232,10 @@ def test_a_loaded_field_widens_only_across_the_edges_its_contact_reached(
     widened across alone)."""
     from toothcontact.contact.loaded import _Pair, edge_breaks
 
-    cycle, rows, reach, patterns, fields = small_identical_hob_set
+    cycle, rows, reach, patterns, samples, fields = small_identical_hob_set
     k = int(np.argmax([r["contact_model"] == "line" for r in cycle.rows]))
-    pair = _Pair(cycle, k, 128, fields[k], None, reach[k], patterns[k], edge_breaks(cycle))
+    pair = _Pair(cycle, k, 128, samples[k], fields[k], None, reach[k], patterns[k],
+                 edge_breaks(cycle))
     before = pair.semi_axes.copy()
     pair.grow((False, True))
     assert pair.semi_axes[0] == before[0]

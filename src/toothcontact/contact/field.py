@@ -164,43 +164,89 @@ STEEPEST = 3.0
 LOADED_FAR = 5.0
 
 
+@dataclass(frozen=True)
+class FieldSamples:
+    """One contact's gap solved exactly (rays.py) on the lines of a SAMPLES × SAMPLES grid
+    over its box, centre ± half ((2,) mm, in the plane's axes turned by `turn`, rad): the
+    gap less the modifications and both flanks' parameters (`filled`, (5, n, n)), filled by
+    smooth_fill where a line meets no flank continued from the contact (`met` False). Its
+    gap fields on any cells are carried from them by splines (`field`): a field laid again
+    on other cells over the same box solves no line again."""
+
+    pinion: Flank
+    gear: Flank
+    filled: np.ndarray
+    met: np.ndarray
+    centre: np.ndarray
+    half: np.ndarray
+    turn: float
+
+    def field(self, shape, largest_cell: float | None = None, snap: bool = False
+              ) -> GapField:
+        """The gap field on `shape` points ((nx, ny), or an int n: about n² on cells as
+        square as square_cells makes them, none longer than `largest_cell` mm where it
+        can). snap: the points along x and y moved (by less than a cell) and respaced so
+        that the face ends and the tip, root and form edges crossing the field square to an
+        axis lie on cell boundaries (see snapped_points)."""
+        if np.ndim(shape) == 0:
+            shape = square_cells(self.half[None], int(shape), largest_cell)[0]
+        nx, ny = (int(n) for n in shape)
+        points = (np.linspace(-1.0, 1.0, nx), np.linspace(-1.0, 1.0, ny))
+        # snapping places the edges from the flanks' parameters alone: the field it moves
+        # takes the modifications' gap (a drop at every cell) only once moved
+        field = _spline_field(self, points, modified=not snap)
+        if snap:
+            moved = [snapped_points(field, self.centre[i], self.half[i], i) for i in (0, 1)]
+            field = _spline_field(self, tuple(p if m is None else m
+                                              for p, m in zip(points, moved)))
+        return replace(field, turn=self.turn) if self.turn else field
+
+
+#: the lines solved exactly per side of a gap field
+SAMPLES = 25
+
+
 def gap_fields(pinion: Flank, gear: Flank, pinion_frames: Frame, gear_frames: Frame,
                planes: TangentPlanes, pinion_uv, gear_uv, half: np.ndarray,
-               shape, samples: int = 25, centre: np.ndarray | None = None,
-               snap: bool = False, far: float = FAR, turn: np.ndarray | None = None
-               ) -> list[GapField]:
-    """The gap fields of K contacts (frames and planes stacked (K,), parameters (K,)), each
+               shape, centre: np.ndarray | None = None, snap: bool = False,
+               far: float = FAR, turn: np.ndarray | None = None) -> list[GapField]:
+    """The gap fields of K contacts (see gap_samples) on `shape` points (one (nx, ny) for
+    all, or one per contact, (K, 2)); snap: see FieldSamples.field."""
+    samples = gap_samples(pinion, gear, pinion_frames, gear_frames, planes, pinion_uv,
+                          gear_uv, half, centre, far, turn)
+    shapes = np.broadcast_to(np.asarray(shape, int), (len(samples), 2))
+    return [s.field(n, snap=snap) for s, n in zip(samples, shapes)]
+
+
+def gap_samples(pinion: Flank, gear: Flank, pinion_frames: Frame, gear_frames: Frame,
+                planes: TangentPlanes, pinion_uv, gear_uv, half: np.ndarray,
+                centre: np.ndarray | None = None, far: float = FAR,
+                turn: np.ndarray | None = None) -> list[FieldSamples]:
+    """The gap samples of K contacts (frames and planes stacked (K,), parameters (K,)), each
     over centre[k] + [-half[k, 0], half[k, 0]] × [-half[k, 1], half[k, 1]] mm (centre (K, 2)
-    in the plane from the contact point, default 0; the contact must lie inside) on `shape`
-    points (one (nx, ny) for all, or one per contact, (K, 2)): the exact samples of all of
-    them in one ray solve per flank, then per contact the splines. snap: the points along x
-    and y moved (by less than a cell) and respaced so that the face ends and the tip, root
-    and form edges crossing a field square to an axis lie on cell boundaries (see
-    snapped_points). far: the height (mm) above the plane beyond which no hit is taken.
-    turn ((K,) rad): each field's axes turned from the plane's e1 toward e2 (its box and
-    centre given in the turned axes)."""
+    in the plane from the contact point, default 0; the contact must lie inside): all of
+    them in one ray solve per flank. far: the height (mm) above the plane beyond which no
+    hit is taken. turn ((K,) rad): each field's axes turned from the plane's e1 toward e2
+    (its box and centre given in the turned axes)."""
     half = np.asarray(half, float).reshape(-1, 2)
     turn = np.zeros(len(half)) if turn is None else np.asarray(turn, float).reshape(-1)
     if turn.any():
         planes = turned(planes, turn)
     centre = np.zeros_like(half) if centre is None else np.asarray(centre, float).reshape(-1, 2)
-    shapes = np.broadcast_to(np.asarray(shape, int), half.shape)
-    unit = np.linspace(-1.0, 1.0, samples)
+    unit = np.linspace(-1.0, 1.0, SAMPLES)
     U, V = (a.ravel() for a in np.meshgrid(unit, unit, indexing="ij"))
     X, Y = centre[:, :1] + half[:, :1] * U, centre[:, 1:] + half[:, 1:] * V     # (K, samples²)
     hp = heights(pinion, pinion_frames, planes, X, Y, *pinion_uv)
     hg = heights(gear, gear_frames, planes, X, Y, *gear_uv)
     out = []
-    grid = (samples, samples)
+    grid = (SAMPLES, SAMPLES)
     pinion_normals = pinion_frames.vectors_to_local(planes.normal[:, None, :])[:, 0]
     gear_normals = gear_frames.vectors_to_local(planes.normal[:, None, :])[:, 0]
-    names = [f"{member}_{name}" for member in ("pinion", "gear") for name in ("u", "v")]
     for k in range(len(half)):
-        nx, ny = (int(n) for n in shapes[k])
         reach = min(float(np.max(half[k])), far)
-        spacing = 2.0 * half[k] / (samples - 1)
+        spacing = 2.0 * half[k] / (SAMPLES - 1)
         # the sample nearest the contact point, from which the flanks are followed
-        at = tuple(int(np.clip(np.rint((-c / h + 1.0) * 0.5 * (samples - 1)), 0, samples - 1))
+        at = tuple(int(np.clip(np.rint((-c / h + 1.0) * 0.5 * (SAMPLES - 1)), 0, SAMPLES - 1))
                    for c, h in zip(centre[k], half[k]))
         met = (_continued(_take(hp, k), pinion, pinion_normals[k], reach, grid, spacing, at)
                & _continued(_take(hg, k), gear, gear_normals[k], reach, grid, spacing, at))
@@ -211,17 +257,7 @@ def gap_fields(pinion: Flank, gear: Flank, pinion_frames: Frame, gear_frames: Fr
         parameters = [getattr(hits, name)[k] for hits in (hp, hg) for name in ("u", "v")]
         samples_ = [(hg.s - hp.s)[k] - modification_gap(pinion, gear, *parameters)] + parameters
         filled = smooth_fill(np.stack([q.reshape(grid) for q in samples_]), met)
-        points = (np.linspace(-1.0, 1.0, nx), np.linspace(-1.0, 1.0, ny))
-        # snapping places the edges from the flanks' parameters alone: the field it moves
-        # takes the modifications' gap (a drop at every cell) only once moved
-        field = _spline_field(filled, met, points, centre[k], half[k], pinion, gear, names,
-                              modified=not snap)
-        if snap:
-            moved = [snapped_points(field, centre[k, i], half[k, i], i) for i in (0, 1)]
-            field = _spline_field(filled, met, tuple(p if m is None else m
-                                                     for p, m in zip(points, moved)),
-                                  centre[k], half[k], pinion, gear, names)
-        out.append(replace(field, turn=float(turn[k])) if turn[k] else field)
+        out.append(FieldSamples(pinion, gear, filled, met, centre[k], half[k], float(turn[k])))
     return out
 
 
@@ -241,24 +277,27 @@ def modification_gap(pinion: Flank, gear: Flank, pinion_u, pinion_v, gear_u, gea
                if hasattr(flank, "normal_drop"))
 
 
-def _spline_field(filled: np.ndarray, met: np.ndarray, points, centre, half, pinion: Flank,
-                  gear: Flank, names: list[str], modified: bool = True) -> GapField:
-    """One contact's field at `points` (x, y in units of the half-sides about the centre)
-    from its samples (`filled`: the gap and the flanks' parameters on the samples, `met`:
-    where both surfaces exist), by the tensor-product cubic splines; modified=False leaves
-    the modifications' gap out (a field that only places the flanks' edges)."""
-    samples = met.shape[0]
-    to_fine = [_cardinal_splines(samples, p) for p in points]
+#: the names of both flanks' parameters in a field, as in FieldSamples.filled after the gap
+PARAMETERS = [f"{member}_{name}" for member in ("pinion", "gear") for name in ("u", "v")]
+
+
+def _spline_field(samples: FieldSamples, points, modified: bool = True) -> GapField:
+    """The field of the samples at `points` (x, y in units of the half-sides about the
+    centre), by the tensor-product cubic splines; modified=False leaves the modifications'
+    gap out (a field that only places the flanks' edges)."""
+    met, centre, half = samples.met, samples.centre, samples.half
+    n = met.shape[0]
+    to_fine = [_cardinal_splines(n, p) for p in points]
     # each point's nearest sample: where it did not meet both surfaces, none exists
-    ix, iy = (np.clip(np.rint((p + 1.0) * 0.5 * (samples - 1)), 0, samples - 1).astype(int)
+    ix, iy = (np.clip(np.rint((p + 1.0) * 0.5 * (n - 1)), 0, n - 1).astype(int)
               for p in points)
-    carried = to_fine[0] @ filled @ to_fine[1].T
+    carried = to_fine[0] @ samples.filled @ to_fine[1].T
     exists = met[np.ix_(ix, iy)]
-    parameters = dict(zip(names, carried[1:]))
+    parameters = dict(zip(PARAMETERS, carried[1:]))
     if modified:
-        carried[0] += modification_gap(pinion, gear, *carried[1:])
+        carried[0] += modification_gap(samples.pinion, samples.gear, *carried[1:])
     beyond, inside = {"beyond_surface": ~exists}, {}
-    for member, flank in (("pinion", pinion), ("gear", gear)):
+    for member, flank in (("pinion", samples.pinion), ("gear", samples.gear)):
         for name, (low, high) in zip(("u", "v"), flank.domain):
             value = parameters[f"{member}_{name}"]
             for edge, within in ((flank.edges[name + "0"], value - low),
@@ -382,18 +421,27 @@ def contact_fields(cycle, rows, shape, margin=1.3, semi_axes: np.ndarray | None 
                    largest_cell: float | None = None, snap: bool = False,
                    boxes: np.ndarray | None = None, far: float = FAR,
                    along_pattern: bool = False) -> list[GapField]:
-    """The gap fields of the given rows of a contact cycle, each over the bounding box of an
-    ellipse about the centre of its pattern along its A axis (cycle.pattern_centre: the
+    """The gap fields of the given rows of a contact cycle (see contact_samples for the
+    boxes, `far` and along_pattern) on `shape` points: (nx, ny) for every field, or an int
+    n: n² points each, on cells as square as `square_cells` makes them (no longer than
+    `largest_cell`, mm, where it can). snap: face ends on cell boundaries
+    (FieldSamples.field)."""
+    return [s.field(shape, largest_cell, snap) for s in
+            contact_samples(cycle, rows, margin, semi_axes, boxes, far, along_pattern)]
+
+
+def contact_samples(cycle, rows, margin=1.3, semi_axes: np.ndarray | None = None,
+                    boxes: np.ndarray | None = None, far: float = FAR,
+                    along_pattern: bool = False) -> list[FieldSamples]:
+    """The gap samples of the given rows of a contact cycle, each over the bounding box of
+    an ellipse about the centre of its pattern along its A axis (cycle.pattern_centre: the
     contact point, or a contact line's middle; A axis along the row's axis angle; across
     it the contact point) enlarged by `margin` (scalar
     or one per row): the Hertz ellipse or the contact line, or the semi-axes given ((K, 2),
     mm). Centred on the pattern, a flat contact line's field does not depend on where along
-    it round-off put the contact point. snap: face ends on cell boundaries (gap_fields).
-    `shape`: (nx, ny) points for
-    every field, or an int n: n² points each, on cells as square as `square_cells` makes
-    them (no longer than `largest_cell`, mm, where it can). boxes ((K, 2, 2) mm, [[x_low,
+    it round-off put the contact point. boxes ((K, 2, 2) mm, [[x_low,
     x_high], [y_low, y_high]] in each row's plane): the fields' boxes as given instead.
-    far: see gap_fields. along_pattern: each field laid along its pattern's A axis where
+    far: see gap_samples. along_pattern: each field laid along its pattern's A axis where
     that turns from e1 by more than TURN_LEAST (field_turns; boxes are then in the turned
     axes): an oblique contact line (a helical pair's) then crosses its field's length
     instead of its width, whose cells it can make fine across it."""
@@ -402,8 +450,7 @@ def contact_fields(cycle, rows, shape, margin=1.3, semi_axes: np.ndarray | None 
     if boxes is not None:
         boxes = np.asarray(boxes, float).reshape(-1, 2, 2)
         half = 0.5 * (boxes[:, :, 1] - boxes[:, :, 0])
-        return _fields(cycle, rows, half, 0.5 * (boxes[:, :, 1] + boxes[:, :, 0]), shape,
-                       largest_cell, snap, far, turn)
+        return _samples(cycle, rows, half, 0.5 * (boxes[:, :, 1] + boxes[:, :, 0]), far, turn)
     if semi_axes is None:
         semi_axes = pattern_semi_axes(cycle, rows)
     a, b = np.asarray(semi_axes, float).reshape(-1, 2).T
@@ -421,8 +468,7 @@ def contact_fields(cycle, rows, shape, margin=1.3, semi_axes: np.ndarray | None 
     # the contact point stays inside the field where its semi-axes are held below the
     # pattern's (a far field's reach)
     along = np.clip(along, -CENTRE_SHARE * a, CENTRE_SHARE * a)
-    return _fields(cycle, rows, half, along[:, None] * direction, shape, largest_cell, snap,
-                   far, turn)
+    return _samples(cycle, rows, half, along[:, None] * direction, far, turn)
 
 
 #: the share of a field's semi-axis its centre may lie from the contact point
@@ -448,18 +494,15 @@ def field_turns(cycle, rows) -> np.ndarray:
     return np.where(np.abs(angle) > TURN_LEAST, angle, 0.0)
 
 
-def _fields(cycle, rows: np.ndarray, half: np.ndarray, centre: np.ndarray, shape,
-            largest_cell: float | None, snap: bool, far: float,
-            turn: np.ndarray | None = None) -> list[GapField]:
-    """The gap fields of the rows over the boxes centre ± half ((K, 2), mm, in axes turned
-    by `turn`; see contact_fields)."""
+def _samples(cycle, rows: np.ndarray, half: np.ndarray, centre: np.ndarray, far: float,
+             turn: np.ndarray) -> list[FieldSamples]:
+    """The gap samples of the rows over the boxes centre ± half ((K, 2), mm, in axes turned
+    by `turn`; see contact_samples)."""
     uv = {m: (np.asarray(getattr(cycle.contacts, f"{m}_u"))[rows],
               np.asarray(getattr(cycle.contacts, f"{m}_v"))[rows]) for m in ("pinion", "gear")}
-    if np.ndim(shape) == 0:
-        shape = square_cells(half, int(shape), largest_cell)
-    return gap_fields(cycle.pinion, cycle.gear, cycle.pinion_frames[rows], cycle.gear_frames[rows],
-                      planes_at(cycle.planes, rows), uv["pinion"], uv["gear"], half, shape,
-                      centre=centre, snap=snap, far=far, turn=turn)
+    return gap_samples(cycle.pinion, cycle.gear, cycle.pinion_frames[rows],
+                       cycle.gear_frames[rows], planes_at(cycle.planes, rows), uv["pinion"],
+                       uv["gear"], half, centre=centre, far=far, turn=turn)
 
 
 #: a flank edge is snapped to a cell boundary where its crossings of the field's lines lie

@@ -38,7 +38,8 @@ import numpy as np
 
 from ..parallel import parallel_map
 from .compliance import FaceLoad, PairCompliance
-from .field import LOADED_FAR, GapField, contact_fields, is_face_end, pattern_semi_axes
+from .field import (LOADED_FAR, FieldSamples, GapField, contact_samples, is_face_end,
+                    pattern_semi_axes)
 from .local import face_length
 from .pressure import (ContactSolution, EdgeLoad, FreeEnd, Grid, GridEdgeError,
                        ObliqueFreeEnd, free_end_factor, solve_shared)
@@ -436,10 +437,10 @@ def loaded_cycle(cycle, C_E: float, points: int = 128, teeth: PairCompliance | N
         positions.setdefault(row["roll_deg"], []).append(k)
     every = np.arange(len(rows))
     reaches, patterns = field_reach(cycle, every), pattern_semi_axes(cycle, every)
-    fields = contact_fields(cycle, every, points, _Pair.MARGIN,   # one batch
-                            np.minimum(patterns, reaches[:, None]),
-                            largest_cell=CELL, snap=True, far=LOADED_FAR,
-                            along_pattern=True)
+    samples = contact_samples(cycle, every, _Pair.MARGIN,                # one batch
+                              np.minimum(patterns, reaches[:, None]), far=LOADED_FAR,
+                              along_pattern=True)
+    fields = [s.field(points, CELL, snap=True) for s in samples]
     groups = list(positions.values())
     breaks = edge_breaks(cycle)
 
@@ -454,8 +455,8 @@ def loaded_cycle(cycle, C_E: float, points: int = 128, teeth: PairCompliance | N
         solvable = [k for k in ks if rows[k].get("rigid_contact", True)
                     or fields[k].material.any()]
         try:
-            pairs = [_Pair(cycle, k, points, fields[k], teeth, reaches[k], patterns[k], breaks)
-                     for k in solvable]
+            pairs = [_Pair(cycle, k, points, samples[k], fields[k], teeth, reaches[k],
+                           patterns[k], breaks) for k in solvable]
             solutions = dict(zip(solvable, zip(pairs, _share(pairs, load, 1.0 / C_E))))
         except (ValueError, RuntimeError) as exc:
             return str(exc)
@@ -513,14 +514,18 @@ class _Pair:
     #: the widest field's semi-axis over the flanks' length along the face
     REACH = 1.05
 
-    def __init__(self, cycle, k: int, points: int, field: GapField,
+    def __init__(self, cycle, k: int, points: int, samples: FieldSamples, field: GapField,
                  teeth: PairCompliance | None, reach: float, pattern: np.ndarray,
                  breaks: EdgeBreaks):
-        """Row k of the cycle on its first `field` (cells of CELL at most: built again on
-        CLEAR_CELL where its pattern is clear); `reach` (mm) its field_reach, `pattern`
-        (mm, (2,)) its pattern_semi_axes, `breaks` its flanks' broken edges and kinks."""
+        """Row k of the cycle on its first `field` (of its `samples`, on cells of CELL at
+        most: laid again on CLEAR_CELL where its pattern is clear); `reach` (mm) its
+        field_reach, `pattern` (mm, (2,)) its pattern_semi_axes, `breaks` its flanks' broken
+        edges and kinks."""
         self.cycle, self.k, self.points, self.teeth = cycle, k, points, teeth
         self.breaks = breaks
+        #: the exact samples of the gap over the field's box (a field on other cells over
+        #: the same box is carried from them; a box grown or narrowed is solved afresh)
+        self.samples: FieldSamples | None = samples
         #: the longest cell of its fields (mm): CLEAR_CELL where its pattern (its field's
         #: middle, 1/MARGIN of it both ways) stays clear of the crossings (near_crossing)
         #: and off the tip roundings, else CELL
@@ -579,16 +584,18 @@ class _Pair:
         grown = np.minimum(self.semi_axes * np.where(axes, self.growth, 1.0), self.largest)
         if np.array_equal(grown, self.semi_axes):
             raise self._outgrown()
-        self.semi_axes = grown
+        self.semi_axes, self.samples = grown, None
         self._use(self._field())
 
     def _field(self) -> GapField:
         """The field over the pair's box (or its semi-axes about its pattern while it has
         none), on cells of `cell` at most."""
-        where = (dict(margin=1.0, semi_axes=self.semi_axes[None]) if self.box is None
-                 else dict(boxes=self.box[None]))
-        return contact_fields(self.cycle, [self.k], self.points, largest_cell=self.cell,
-                              snap=True, far=LOADED_FAR, along_pattern=True, **where)[0]
+        if self.samples is None:
+            where = (dict(margin=1.0, semi_axes=self.semi_axes[None]) if self.box is None
+                     else dict(boxes=self.box[None]))
+            self.samples = contact_samples(self.cycle, [self.k], far=LOADED_FAR,
+                                           along_pattern=True, **where)[0]
+        return self.samples.field(self.points, self.cell, snap=True)
 
     def sharpen(self, solution: ContactSolution | None, steps: tuple[int, int] = (1, 1)
                 ) -> bool:
@@ -655,7 +662,7 @@ class _Pair:
 
     def _narrowed(self, box: np.ndarray) -> None:
         """Solve on the field over `box` ((2, 2) mm in the plane) from now on."""
-        self.box = box
+        self.box, self.samples = box, None
         self._use(self._field())
 
     def grid(self, coarse: bool = False) -> Grid:
