@@ -1,6 +1,6 @@
 """Where one sweep sample's time goes (issue 32): the bundled spur pair analysed as a sweep
 sample runs it (`spur_crowned_20_60`, no positions check, no subsurface stresses, no rigid
-patterns, one worker), its stages timed by cProfile's cumulative time, here and at a named
+patterns, no ease-off map, one worker), its stages timed by cProfile's cumulative time, here and at a named
 commit (25866f5, the issue's reference) in the same run, each in a fresh interpreter; the
 best of N wall times beside them, and the import of the analysis path.
 
@@ -55,7 +55,7 @@ from toothcontact.parallel import workers
 import_s = time.perf_counter() - start
 raw = tomllib.load(open({case!r}, "rb"))
 raw.setdefault("analysis", {{}}).update(positions_check=False, subsurface=False,
-                                        rigid_patterns=False)
+                                        rigid_patterns=False, ease_off=False)
 while True:                  # a tree before some of these settings: without them
     try:
         parse_case(raw)

@@ -3,7 +3,7 @@ besides its samples, and what a 1,000-sample study would take, in one run.
 
 1. Per sample: the bundled crowned spur pair (`spur_crowned_20_60`: 21 positions,
    interference on) analysed as a sweep sample runs it (no positions check, no stresses
-   below the contacts, no rigid patterns) on one worker, best of `--repeat` in a fresh
+   below the contacts, no rigid patterns, no ease-off map) on one worker, best of `--repeat` in a fresh
    interpreter (sample_stages.probe) over ROUNDS rounds, with this tree's code beside
    `--against` (25866f5, issue 32's reference) checked out and probed in turn; and one
    design's latency: the case as bundled (positions check and subsurface stresses on) on

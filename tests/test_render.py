@@ -326,3 +326,16 @@ def test_a_helical_pair_is_seen_across_its_contact_lines(tmp_path):
     assert cycle.rows[k]["a_mm"] > 9.0
     assert np.ptp(pixels, axis=0).max() > 300
     assert abs(np.dot(looking, axis)) < math.cos(math.radians(45))
+
+
+def test_without_the_ease_off_only_the_pair_is_drawn(aligned, tmp_path):
+    """[analysis] ease_off = false: the pattern and the pressure are painted on the ease-off,
+    which the analysis did not map; the pair at its position is drawn, and nothing else."""
+    import dataclasses
+
+    case, result = aligned
+    result = SimpleNamespace(cycle=dataclasses.replace(result.cycle, ease_off=None),
+                             loaded=synthetic_loaded(result.cycle), parts=result.parts)
+    written = render.pictures_for(result, case, tmp_path, name="test")
+    assert [p.name for p in written] == ["pair.png"]
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["pair.png"]

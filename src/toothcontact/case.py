@@ -760,6 +760,11 @@ class AnalysisSpec(Model):
         None, description="measure each contact's rigid pattern on its separation field "
                           "(the rows' rigid_pattern_* keys); default: in a run, and in a "
                           "sweep's samples only where their rows are kept")
+    ease_off: bool | None = Field(
+        None, description="map the ease-off of the flank over the cycle (the result's "
+                          "ease_off section and picture, and the rendered pattern and "
+                          "pressure, which are painted on it); default: in a run, not in a "
+                          "sweep's samples")
 
 
 #: the default material, steel, in core units (MPa); built without parsing its units, so

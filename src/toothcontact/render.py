@@ -1293,8 +1293,9 @@ def pictures_for(result, case, out_dir: str | Path, name: str = "", position: in
     `out_dir`: pattern_head_on.png, pattern_perspective.png and pair.png for a contact case
     (spur, spline or worm with a load), pressure.png (the largest over the cycle) and
     pressure_peak.png (at the position of the largest pressure) when the result carries the
-    loaded contact; pair.png alone for a spur, spline or worm case without a load; [] for every
-    other kind (analytic kinds, imported meshes)."""
+    loaded contact; pair.png alone for a spur, spline or worm case without a load or without
+    the ease-off ([analysis] ease_off = false); [] for every other kind (analytic kinds,
+    imported meshes)."""
     out = Path(out_dir)
     kind = getattr(case, "kind", None)
     cycle = getattr(result, "cycle", None)
@@ -1309,15 +1310,18 @@ def pictures_for(result, case, out_dir: str | Path, name: str = "", position: in
         written.append(_finish(geometry_scene(case, result.parts, name, bodies),
                                out / "pair.png"))
         return written
-    patch = flank_patch(cycle)
-    for view, filename in (("head-on", "pattern_head_on.png"),
-                           ("perspective", "pattern_perspective.png")):
-        written.append(_finish(pattern_scene(result, case, name, view, bodies, patch),
-                               out / filename))
+    # the pattern and the pressure are painted on the ease-off: none without it
+    patch = None if cycle.ease_off is None else flank_patch(cycle)
+    if patch is not None:
+        for view, filename in (("head-on", "pattern_head_on.png"),
+                               ("perspective", "pattern_perspective.png")):
+            written.append(_finish(pattern_scene(result, case, name, view, bodies, patch),
+                                   out / filename))
     if bodies is not None:
         written.append(_finish(pair_scene(result, case, name, position, exaggerate, bodies),
                                out / "pair.png"))
-    if getattr(result, "loaded", None) and any(x is not None for x in result.loaded):
+    if patch is not None and getattr(result, "loaded", None) and any(
+            x is not None for x in result.loaded):
         written.append(_finish(pressure_scene(result, case, name, patch), out / "pressure.png"))
         roll = peak_position(cycle.rows)
         if roll is not None:

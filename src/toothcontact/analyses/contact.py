@@ -23,7 +23,8 @@ def cycle_settings(a: schema.AnalysisSpec, phase: float = 0.0, **kind_settings):
     from ..contact.cycle import CycleSettings
 
     return CycleSettings(a.positions, phase, a.grid, a.approach, field_grid=a.field_grid,
-                         patterns=a.rigid_patterns is not False, **kind_settings)
+                         patterns=a.rigid_patterns is not False,
+                         ease_off=a.ease_off is not False, **kind_settings)
 
 
 #: the largest loaded pressure may move by this much (fraction) with twice the positions
@@ -35,10 +36,11 @@ TE_POSITIONS_TOLERANCE, TE_POSITIONS_FLOOR = 0.10, 0.1
 
 
 def midway_case(case: schema.CaseInfo) -> schema.CaseInfo:
-    """The case as check_positions' second pass runs it: without the rigid patterns (row
-    keys the check does not read, which leave the loaded contact as it is)."""
+    """The case as check_positions' second pass runs it: without the rigid patterns and the
+    ease-off (a row's keys and a map the check does not read, which leave the loaded
+    contact as it is)."""
     return case.model_copy(update={"analysis": case.analysis.model_copy(update={
-        "rigid_patterns": False})})
+        "rigid_patterns": False, "ease_off": False})})
 
 
 def check_positions(result: Result, positions: int, midway) -> None:
@@ -340,6 +342,7 @@ def contact_sections(cycle, loads: dict, result: Result, arm: tuple[float, str])
     if not isinstance(cycle, list):
         ease = cycle.ease_off
         result.cycle = cycle
+    if not isinstance(cycle, list) and ease is not None:
         result.sections["ease_off"] = {
             "face_mm": ease.face_mm.round(4).tolist(), "radius_mm": ease.radius_mm.round(4).tolist(),
             "separation_um": [[None if not np.isfinite(s) else round(float(s) * 1e3, 3)

@@ -174,7 +174,8 @@ def duty_cycle_sections(case, result: Result, run_level) -> None:
         return
     rating = case.rating
     load_factor = rating.application_factor * rating.dynamic_factor
-    quiet = case.analysis.model_copy(update={"positions_check": False, "subsurface": False})
+    quiet = case.analysis.model_copy(update={"positions_check": False, "subsurface": False,
+                                             "ease_off": False})
     z1, z2 = case.teeth
     materials = {"pinion": case.material, "gear": case.gear_material or case.material}
     rows = []

@@ -75,6 +75,9 @@ class CycleSettings:
     #: whose flank the ease-off is mapped on: "pinion" (the driver), or "gear" (the driven
     #: member: a worm wheel's, where a worm gear's pattern is judged)
     ease_off_member: str = "pinion"
+    #: whether the ease-off is mapped at all (a sweep's samples leave it: their tables do
+    #: not hold it)
+    ease_off: bool = True
     field_grid: int = 201     # points per side of each contact's separation field; 0 = none
     #: whether the rows' rigid patterns are measured on those fields (field_grid also sets
     #: how finely a contact line is sampled, which they leave as it is)
@@ -91,7 +94,8 @@ class ContactCycle:
     row's placed frames (stacked (K,)) and tangent plane, the direction of each row's A axis
     (rad from e1, the ellipse's long axis or the contact line), the centre of each row's
     pattern in its plane ((K, 2), mm along e1 and e2 from the contact point: a contact
-    line's part in contact may lie to one side of it) and the ease-off of the pinion flank."""
+    line's part in contact may lie to one side of it) and the ease-off of the pinion flank
+    (None where the settings leave it out)."""
 
     rows: list[dict]
     pinion: Flank
@@ -102,7 +106,7 @@ class ContactCycle:
     planes: TangentPlanes
     axis_angle: np.ndarray
     pattern_centre: np.ndarray
-    ease_off: EaseOff
+    ease_off: EaseOff | None
     settings: CycleSettings
     #: per row, the gear's turn from its conjugate place (rad, as its frame turns: the
     #: transmission error before its sign is made a lag)
@@ -211,10 +215,10 @@ def parallel_cycle(mesh, pinion: Flank, gear: Flank, normal_load: float,
                 row.update(UNTOUCHED)
         ease = (_ease_off(mesh, pinion, gear, phis, pairs, pinion_frames, gear_frames, delta,
                           *near_pairs, settings.ease_off_grid)
-                if settings.ease_off_member == "pinion" else None)
+                if settings.ease_off and settings.ease_off_member == "pinion" else None)
     cycle = ContactCycle(rows, pinion, gear, pf, gf, contacts, planes, angle, centre, ease,
                          settings, delta[P], np.abs(slope[P]), semi_axes, unkept)
-    if ease is None:       # the driven member's, from the cycle's own placements
+    if settings.ease_off and ease is None:  # the driven member's, from the cycle's placements
         cycle = replace(cycle, ease_off=_driven_ease_off(cycle, settings.ease_off_grid))
     if settings.field_grid and settings.patterns:
         for row, pattern in zip(rows, rigid_patterns(cycle, settings.field_grid)):

@@ -33,7 +33,8 @@ def sample_record(number: int, inputs: dict, raw: dict, folder: str | None,
     `status` ("ok" or the error) and the summary's figures (the case's `summary` under its
     own names; numbers, flags and texts; no positions check, the stresses below the contacts
     only where the case's `[analysis] subsurface` is true, the rigid patterns only where its
-    `rigid_patterns` is or the rows are kept); and, if `positions`, the result's rows per
+    `rigid_patterns` is or the rows are kept, the ease-off only where its `ease_off` is);
+    and, if `positions`, the result's rows per
     mesh position and pair (their table cells, with `sample`), else []."""
     from ..analyses import analyse
     from ..case import parse_case
@@ -50,13 +51,14 @@ def sample_record(number: int, inputs: dict, raw: dict, folder: str | None,
             record[f"input:{field}"] = _value(case, field)
         if getattr(case, "analysis", None) is not None:
             # the positions' convergence is the base design's question: a sample skips it,
-            # the stresses below the contacts unless the case asks for them, and the rigid
-            # patterns (row keys only) unless its rows are kept
+            # the stresses below the contacts and the ease-off (a map no table holds) unless
+            # the case asks for them, and the rigid patterns (row keys only) unless its rows
+            # are kept
             analysis = case.analysis
             patterns = positions if analysis.rigid_patterns is None else analysis.rigid_patterns
             case = case.model_copy(update={"analysis": analysis.model_copy(update={
                 "positions_check": False, "subsurface": bool(analysis.subsurface),
-                "rigid_patterns": patterns})})
+                "rigid_patterns": patterns, "ease_off": bool(analysis.ease_off)})})
         with workers(cores):
             sections = analyse(case).sections
         record.update(_cells(sections.get("summary", {})))
