@@ -255,8 +255,8 @@ def gap_samples(pinion: Flank, gear: Flank, pinion_frames: Frame, gear_frames: F
         # the gap less the modifications, and both flanks' parameters (to place their edges
         # in the field and to put the modifications back on the lines)
         parameters = [getattr(hits, name)[k] for hits in (hp, hg) for name in ("u", "v")]
-        samples_ = [(hg.s - hp.s)[k] - modification_gap(pinion, gear, *parameters)] + parameters
-        filled = smooth_fill(np.stack([q.reshape(grid) for q in samples_]), met)
+        quantities = [(hg.s - hp.s)[k] - modification_gap(pinion, gear, *parameters)] + parameters
+        filled = smooth_fill(np.stack([q.reshape(grid) for q in quantities]), met)
         out.append(FieldSamples(pinion, gear, filled, met, centre[k], half[k], float(turn[k])))
     return out
 
@@ -278,7 +278,7 @@ def modification_gap(pinion: Flank, gear: Flank, pinion_u, pinion_v, gear_u, gea
 
 
 #: the names of both flanks' parameters in a field, as in FieldSamples.filled after the gap
-PARAMETERS = [f"{member}_{name}" for member in ("pinion", "gear") for name in ("u", "v")]
+PARAMETERS = tuple(f"{member}_{name}" for member in ("pinion", "gear") for name in ("u", "v"))
 
 
 def _spline_field(samples: FieldSamples, points, modified: bool = True) -> GapField:
