@@ -340,9 +340,9 @@ def contact_sections(cycle, loads: dict, result: Result, arm: tuple[float, str])
     for row in rows:
         row["transmission_error_um"] = 1e-3 * arm[0] * row["transmission_error_urad"]
     if not isinstance(cycle, list):
-        ease = cycle.ease_off
         result.cycle = cycle
-    if not isinstance(cycle, list) and ease is not None:
+    ease = None if isinstance(cycle, list) else cycle.ease_off
+    if ease is not None:
         result.sections["ease_off"] = {
             "face_mm": ease.face_mm.round(4).tolist(), "radius_mm": ease.radius_mm.round(4).tolist(),
             "separation_um": [[None if not np.isfinite(s) else round(float(s) * 1e3, 3)
