@@ -17,7 +17,7 @@ import subprocess
 import sys
 from pathlib import Path
 
-from timing import checked_out
+from timing import checked_out, source_path
 
 ROOT = Path(__file__).resolve().parent.parent
 CASE = ROOT / "cases" / "spur_relieved_20_60.toml"
@@ -62,7 +62,7 @@ print(min(times))
 
 def best_of(code: str, src: Path, repeat: int) -> float:
     """The least time (s) a fresh interpreter on `src` prints for `code`, of `repeat`."""
-    env = dict(os.environ, PYTHONPATH=str(src), OMP_NUM_THREADS="1")
+    env = {**source_path(src.parent), "OMP_NUM_THREADS": "1"}
     return min(float(subprocess.run([sys.executable, "-c", code], env=env, check=True,
                                     capture_output=True, text=True, cwd=src.parent)
                      .stdout.split()[-1]) for _ in range(repeat))

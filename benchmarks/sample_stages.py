@@ -12,12 +12,11 @@ from __future__ import annotations
 
 import argparse
 import json
-import os
 import subprocess
 import sys
 from pathlib import Path
 
-from timing import checked_out
+from timing import checked_out, source_path
 
 ROOT = Path(__file__).resolve().parent.parent
 CASE = ROOT / "cases" / "spur_crowned_20_60.toml"
@@ -91,7 +90,7 @@ print(json.dumps({{"wall_s": min(walls), "stages": stages, "import_s": import_s}
 
 def probe(source: Path, repeat: int) -> dict:
     code = PROBE.format(case=str(CASE), repeat=repeat, stages=STAGES)
-    env = {**os.environ, "PYTHONPATH": str(source / "src")}
+    env = source_path(source)
     done = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True,
                           env=env, cwd=source)
     if done.returncode:

@@ -12,12 +12,11 @@ from __future__ import annotations
 
 import argparse
 import json
-import os
 import subprocess
 import sys
 from pathlib import Path
 
-from timing import checked_out
+from timing import checked_out, source_path
 
 ROOT = Path(__file__).resolve().parent.parent
 
@@ -35,7 +34,7 @@ def best_of(args: list[str], src: Path, repeat: int) -> float:
     """The least wall time (s) of `repeat` fresh interpreters running `args` on `src`."""
     import time
 
-    env = dict(os.environ, PYTHONPATH=str(src))
+    env = source_path(src.parent)
     times = []
     for _ in range(repeat):
         start = time.perf_counter()

@@ -16,15 +16,25 @@ besides its samples, and what a 1,000-sample study would take, in one run.
    intercept; samples/s, the efficiency against W times one worker's rate and against W
    cores each at part 1's one-core sample time, the tables identical across the counts, and the projection of a 1,000-sample study
    (fixed + 1000 / rate).
-3. Faults: a `--killed-samples` sweep on a Dask scheduler and two workers started as
+3. The machine alone: W fresh interpreters probing one sample each at once (no Dask), for
+   each `--workers` count: what W concurrent samples cost on this machine's shared
+   caches, memory bandwidth, clock and (where its cores are hyperthreads) execution
+   units; the sweep's efficiency is judged against it too.
+4. A cluster of separate processes (`dask scheduler` and the largest `--workers` count of
+   `dask worker --nthreads 1`, as a deployment runs them): the same Monte Carlo timed as
+   in part 2 (the cluster started before the timing, so its fixed cost excludes the start).
+5. Faults: a `--killed-samples` sweep on a Dask scheduler and two workers started as
    separate processes (`dask scheduler`, `dask worker`), one worker SIGKILLed once the
    first sample is in: the sweep completes and its table equals a local run's.
 
-Prints a table and writes benchmarks/sweep.json; `--parts` runs some of the three and keeps
-the others' last record (each part records the commit it measured).
+Prints a table and writes benchmarks/sweep.json (or `--record`: another machine's);
+`--parts` runs some of them and keeps the others' last record (each part records the
+commit it measured). `--against` takes a commit or a folder holding that commit's tree (a
+machine without the repository's history).
 
     .venv/bin/python benchmarks/sweep.py [--samples 40] [--workers 1 2] [--repeat 3]
-        [--against 25866f5] [--killed-samples 40] [--parts per_sample scaling killed_worker]
+        [--against 25866f5] [--killed-samples 40] [--record benchmarks/sweep.json]
+        [--parts per_sample scaling machine cluster killed_worker]
 """
 
 from __future__ import annotations
@@ -38,10 +48,11 @@ import subprocess
 import sys
 import tempfile
 import time
+from concurrent.futures import ThreadPoolExecutor
 from pathlib import Path
 
 from sample_stages import probe as sample_probe
-from timing import checked_out
+from timing import checked_out, source_path
 
 HERE = Path(__file__).resolve().parent
 ROOT = HERE.parent
@@ -88,7 +99,7 @@ def latency(source: Path, repeat: int) -> float:
     """One design's best wall time (s) with the tree at `source` (a repository root)."""
     code = LATENCY.format(case=str(source / "cases" / f"{CASE}.toml"), repeat=repeat)
     done = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True,
-                          env={**os.environ, "PYTHONPATH": str(source / "src")}, cwd=source)
+                          env=source_path(source), cwd=source)
     if done.returncode:
         raise SystemExit(f"{source}: {done.stderr.strip().splitlines()[-1]}")
     return json.loads(done.stdout.strip().splitlines()[-1])["wall_s"]
@@ -117,6 +128,7 @@ def per_sample(repeat: int, against: str) -> dict:
 
 
 def sweep_file(folder: Path, samples: int) -> Path:
+    folder.mkdir(parents=True, exist_ok=True)
     path = folder / f"mc_{samples}.toml"
     path.write_text(SWEEP.format(base=(ROOT / "cases" / f"{CASE}.toml").as_posix(),
                                  samples=samples))
@@ -129,13 +141,28 @@ def table(written) -> list[dict]:
     return pq.read_table(written[0]).to_pylist()
 
 
-def timed_sweep(path: Path, out: Path, workers: int) -> tuple[float, list[dict]]:
-    """A sweep file run on `workers` local workers: its wall time (s) and its table."""
+def timed_sweep(path: Path, out: Path, **where) -> tuple[float, list[dict]]:
+    """A sweep file run on `workers=` local workers or on a `scheduler=`: its wall time (s)
+    and its table."""
     from toothcontact import runner
 
     start = time.perf_counter()
-    _, written = runner.run_sweep(path, out, workers=workers)
+    _, written = runner.run_sweep(path, out, **where)
     return time.perf_counter() - start, table(written)
+
+
+def rated(samples: int, workers: int, folder: Path, **where) -> tuple[dict, list[dict]]:
+    """One round (`workers` samples) and `samples` samples, each timed whole: the rate is
+    the slope between them, the fixed cost their intercept (see the module)."""
+    one_round, _ = timed_sweep(sweep_file(folder, workers), folder / f"round_{workers}",
+                               **where)
+    wall, rows = timed_sweep(sweep_file(folder, samples), folder / f"workers_{workers}",
+                             **where)
+    rate = (samples - workers) / (wall - one_round)
+    fixed = max(one_round - workers / rate, 0.0)
+    return {"wall_s": wall, "samples_per_s": samples / wall, "rate_samples_per_s": rate,
+            "one_round_wall_s": one_round, "fixed_s": fixed, "study_s": fixed + STUDY / rate,
+            "ok": sum(r["status"] == "ok" for r in rows)}, rows
 
 
 def scaling(samples: int, counts: list[int], folder: Path, one_core_s: float | None) -> dict:
@@ -144,16 +171,8 @@ def scaling(samples: int, counts: list[int], folder: Path, one_core_s: float | N
     takes every core, its positions on threads)."""
     out, tables = {}, {}
     for workers in counts:
-        one_round, _ = timed_sweep(sweep_file(folder, workers), folder / f"round_{workers}",
-                                   workers)
-        wall, tables[workers] = timed_sweep(sweep_file(folder, samples),
-                                            folder / f"workers_{workers}", workers)
-        rate = (samples - workers) / (wall - one_round)
-        fixed = max(one_round - workers / rate, 0.0)
-        out[str(workers)] = {"wall_s": wall, "samples_per_s": samples / wall,
-                             "rate_samples_per_s": rate, "one_round_wall_s": one_round,
-                             "fixed_s": fixed, "study_s": fixed + STUDY / rate,
-                             "ok": sum(r["status"] == "ok" for r in tables[workers])}
+        out[str(workers)], tables[workers] = rated(samples, workers, folder / str(workers),
+                                                   workers=workers)
     single = out.get("1")
     for workers, entry in out.items():
         entry["efficiency"] = (None if single is None else
@@ -165,6 +184,33 @@ def scaling(samples: int, counts: list[int], folder: Path, one_core_s: float | N
     first = tables[counts[0]]
     return {"samples": samples, "study": STUDY, "workers": out,
             "same_table": all(t == first for t in tables.values())}
+
+
+def machine(counts: list[int], repeat: int) -> dict:
+    """Each count's W concurrent sample probes (fresh interpreters, one thread each, no
+    Dask): the mean of their best walls (s) and the efficiency, one probe's wall over it."""
+    out = {}
+    for count in counts:
+        with ThreadPoolExecutor(count) as pool:
+            walls = [r["wall_s"] for r in pool.map(lambda _: sample_probe(ROOT, repeat),
+                                                    range(count))]
+        out[str(count)] = {"mean_wall_s": sum(walls) / count, "walls_s": walls}
+    for entry in out.values():
+        entry["efficiency"] = out[str(counts[0])]["mean_wall_s"] / entry["mean_wall_s"]
+    return {"counts": out, "repeat": repeat, "first_count": counts[0]}
+
+
+def cluster(samples: int, workers: int, folder: Path, one_core_s: float | None) -> dict:
+    """The Monte Carlo on a scheduler and `workers` worker processes started beforehand."""
+    from toothcontact.sweep.run import separate_processes
+
+    folder.mkdir(parents=True, exist_ok=True)
+    with separate_processes(folder, workers) as (where, _):
+        entry, rows = rated(samples, workers, folder, scheduler=where)
+    _, local = timed_sweep(sweep_file(folder, samples), folder / "local", workers=workers)
+    return {**entry, "samples": samples, "workers": workers, "same_table_as_local": rows == local,
+            "one_core_efficiency": (None if one_core_s is None else
+                                    entry["rate_samples_per_s"] * one_core_s / workers)}
 
 
 def killed_worker(samples: int, folder: Path) -> dict:
@@ -192,7 +238,19 @@ def killed_worker(samples: int, folder: Path) -> dict:
             "same_table_as_local": remote == table(local)}
 
 
-PARTS = ("per_sample", "scaling", "killed_worker")
+PARTS = ("per_sample", "scaling", "machine", "cluster", "killed_worker")
+
+
+def machine_name() -> str:
+    """The processor, its logical cores and (where /proc/cpuinfo says) threads per core."""
+    info = Path("/proc/cpuinfo").read_text() if Path("/proc/cpuinfo").exists() else ""
+    fields = dict(line.split(":", 1) for line in info.splitlines()[:30] if ":" in line)
+    fields = {k.strip(): v.strip() for k, v in fields.items()}
+    smt = ""
+    if fields.get("siblings") and fields.get("cpu cores"):
+        smt = f", {int(fields['siblings']) // int(fields['cpu cores'])} thread(s) per core"
+    return (f"{fields.get('model name', platform.machine())}, {os.cpu_count()} logical "
+            f"cores{smt}, Python {platform.python_version()}")
 
 
 def main() -> None:
@@ -203,24 +261,34 @@ def main() -> None:
     parser.add_argument("--repeat", type=int, default=3)
     parser.add_argument("--against", default="25866f5")
     parser.add_argument("--parts", nargs="+", choices=PARTS, default=list(PARTS))
+    parser.add_argument("--record", type=Path, default=HERE / "sweep.json")
+    parser.add_argument("--commit", help="the commit measured (default: git's HEAD; for a "
+                                         "tree copied without its repository)")
     args = parser.parse_args()
     counts = sorted(set(args.workers))
     if counts[0] < 1 or args.samples <= counts[-1]:
         raise SystemExit("--workers: counts >= 1, and --samples more than the largest")
-    path = HERE / "sweep.json"
+    path = args.record
     record = json.loads(path.read_text()) if path.exists() else {}
-    record["machine"] = (f"{platform.machine()}, {os.cpu_count()} cores, Python "
-                         f"{platform.python_version()}")
-    commit = subprocess.run(["git", "-C", str(ROOT), "rev-parse", "--short", "HEAD"],
-                            capture_output=True, text=True).stdout.strip()
+    record["machine"] = machine_name()
+    commit = args.commit or subprocess.run(
+        ["git", "-C", str(ROOT), "rev-parse", "--short", "HEAD"], capture_output=True,
+        text=True).stdout.strip()
     with tempfile.TemporaryDirectory() as tmp:
+        def one_core() -> float | None:
+            """Part 1's one-core sample time, this run's or the record's."""
+            return (record.get("per_sample") or {}).get("now_s")
+
         runs = {"per_sample": lambda: per_sample(args.repeat, args.against),
-                "scaling": lambda: scaling(args.samples, counts, Path(tmp),
-                                           (record.get("per_sample") or {}).get("now_s")),
+                "scaling": lambda: scaling(args.samples, counts, Path(tmp) / "local",
+                                           one_core()),
+                "machine": lambda: machine(counts, args.repeat),
+                "cluster": lambda: cluster(args.samples, counts[-1], Path(tmp) / "cluster",
+                                           one_core()),
                 "killed_worker": lambda: killed_worker(args.killed_samples, Path(tmp))}
         for part in args.parts:
             record[part] = {**runs[part](), "commit": commit}
-    s, sc, k = (record.get(part) for part in PARTS)
+    s, sc, m, c, k = (record.get(part) for part in PARTS)
     if s:
         print(f"{CASE} ({s.get('commit', '?')} against {s['against']}) "
               f"{s['against']:>10} {'now':>8} {'speed-up':>9}")
@@ -244,6 +312,19 @@ def main() -> None:
         print("eff.: the rate over W times one worker's (which takes every core); /core: "
               "over W cores each as fast as the per-sample probe's one core")
         print(f"same table on every count: {sc['same_table']}")
+    if m:
+        print(f"\nconcurrent sample probes, no Dask ({m.get('commit', '?')}): "
+              f"{'mean wall':>10} {'efficiency':>11}")
+        for count, e in m["counts"].items():
+            print(f"{count + ' at once':>40} {e['mean_wall_s']:9.2f}s {e['efficiency']:10.0%}")
+    if c:
+        core = ("-" if c.get("one_core_efficiency") is None
+                else f"{c['one_core_efficiency']:.0%}")
+        print(f"\nseparate scheduler and {c['workers']} worker processes "
+              f"({c.get('commit', '?')}): {c['wall_s']:.1f}s for {c['samples']}, "
+              f"{c['rate_samples_per_s']:.3f}/s, /core {core}, fixed {c['fixed_s']:.1f}s, "
+              f"{STUDY} samples {c['study_s'] / 60:.1f} min, same table as local: "
+              f"{c['same_table_as_local']}")
     if k:
         print(f"\nseparate scheduler, one of two workers killed after sample "
               f"{k['killed_after_sample']}: {k['answered']}/{k['samples']} answered in "

@@ -5,6 +5,7 @@ commit checked out beside this one to time in the same run."""
 from __future__ import annotations
 
 import math
+import os
 import subprocess
 import tempfile
 import time
@@ -12,6 +13,13 @@ from contextlib import contextmanager
 from pathlib import Path
 
 ROOT = Path(__file__).resolve().parent.parent
+
+
+def source_path(source: Path) -> dict:
+    """The environment with `source`'s `src` first on PYTHONPATH (what the caller's
+    PYTHONPATH names, carried packages say, after it)."""
+    paths = [str(source / "src"), *filter(None, [os.environ.get("PYTHONPATH")])]
+    return {**os.environ, "PYTHONPATH": os.pathsep.join(paths)}
 
 
 def timed(fn, repeat: int = 1):
@@ -27,7 +35,12 @@ def timed(fn, repeat: int = 1):
 @contextmanager
 def checked_out(revision: str):
     """The repository at `revision`, checked out with `git worktree` into a temporary
-    folder for the block (its path; removed after)."""
+    folder for the block (its path; removed after); a `revision` that names a folder is
+    that tree as it is (a machine without the repository's history: the old tree copied
+    there)."""
+    if Path(revision).is_dir():
+        yield Path(revision).resolve()
+        return
     with tempfile.TemporaryDirectory() as folder:
         old = Path(folder) / "old"
         subprocess.run(["git", "worktree", "add", "--detach", str(old), revision],

@@ -14,7 +14,6 @@ from __future__ import annotations
 
 import argparse
 import json
-import os
 import random
 import subprocess
 import sys
@@ -22,7 +21,7 @@ import tempfile
 import time
 from pathlib import Path
 
-from timing import ROOT, checked_out
+from timing import ROOT, checked_out, source_path
 
 KEYS = ("bem_max_p_max_MPa", "max_flank_p_max_MPa", "max_p_max_MPa", "bem_failed_contacts")
 
@@ -47,7 +46,7 @@ def run(tree: Path, text: str, folder: Path) -> dict:
     KEYS, the exit code and the wall time (s)."""
     case = folder / "design.toml"
     case.write_text(text)
-    env = {**os.environ, "PYTHONPATH": str(tree / "src")}
+    env = source_path(tree)
     start = time.perf_counter()
     done = subprocess.run([sys.executable, "-m", "toothcontact", "run", str(case), "--out",
                            str(folder / "out"), "--no-pictures"], env=env,

@@ -9,7 +9,6 @@ from __future__ import annotations
 import logging
 import contextlib
 import math
-import os
 import subprocess
 import sys
 import threading
@@ -226,18 +225,25 @@ def separate_processes(folder: Path, workers: int = 2):
     killed on exit. `folder` holds the scheduler file."""
     from distributed import Client
 
-    dask = os.path.join(os.path.dirname(sys.executable), "dask")
+    def dask(command: str) -> list[str]:
+        """`dask COMMAND` run as its module by this interpreter (no `dask` script needed
+        beside it: packages installed with --target have none)."""
+        return [sys.executable, "-m", f"distributed.cli.dask_{command}"]
+
     address = Path(folder) / "scheduler.json"
     quiet = {"stdout": subprocess.DEVNULL, "stderr": subprocess.DEVNULL}
-    scheduler = subprocess.Popen([dask, "scheduler", "--scheduler-file", str(address),
+    scheduler = subprocess.Popen([*dask("scheduler"), "--scheduler-file", str(address),
                                   "--port", "0", "--no-dashboard"], **quiet)
     started = []
     try:
         for _ in range(300):
             if address.is_file():
                 break
+            if scheduler.poll() is not None:
+                raise RuntimeError(f"the Dask scheduler exited ({scheduler.returncode}) "
+                                   f"before writing {address}")
             time.sleep(0.1)
-        started = [subprocess.Popen([dask, "worker", "--scheduler-file", str(address),
+        started = [subprocess.Popen([*dask("worker"), "--scheduler-file", str(address),
                                      "--nthreads", "1", "--no-nanny", "--no-dashboard"],
                                     **quiet) for _ in range(workers)]
         with Client(scheduler_file=str(address)) as client:
