@@ -16,10 +16,10 @@ besides its samples, and what a 1,000-sample study would take, in one run.
    intercept; samples/s, the efficiency against W times one worker's rate and against W
    cores each at part 1's one-core sample time, the tables identical across the counts, and the projection of a 1,000-sample study
    (fixed + 1000 / rate).
-3. The machine alone: W fresh interpreters probing one sample each at once (no Dask), for
-   each `--workers` count: what W concurrent samples cost on this machine's shared
-   caches, memory bandwidth, clock and (where its cores are hyperthreads) execution
-   units; the sweep's efficiency is judged against it too.
+3. Alone: W fresh interpreters probing one sample each at once (no Dask), for each
+   `--workers` count: what W concurrent samples cost on this machine's shared caches,
+   memory bandwidth, clock and (where its cores are hyperthreads) execution units; and W
+   pure-Python spins at once, what the machine gives W processes that share nothing.
 4. A cluster of separate processes (`dask scheduler` and the largest `--workers` count of
    `dask worker --nthreads 1`, as a deployment runs them): the same Monte Carlo timed as
    in part 2 (the cluster started before the timing, so its fixed cost excludes the start).
@@ -151,15 +151,13 @@ def timed_sweep(path: Path, out: Path, **where) -> tuple[float, list[dict]]:
     return time.perf_counter() - start, table(written)
 
 
-def rated(samples: int, workers: int, folder: Path, **where) -> tuple[dict, list[dict]]:
-    """One round (`workers` samples) and `samples` samples, each timed whole: the rate is
-    the slope between them, the fixed cost their intercept (see the module)."""
-    one_round, _ = timed_sweep(sweep_file(folder, workers), folder / f"round_{workers}",
-                               **where)
-    wall, rows = timed_sweep(sweep_file(folder, samples), folder / f"workers_{workers}",
-                             **where)
-    rate = (samples - workers) / (wall - one_round)
-    fixed = max(one_round - workers / rate, 0.0)
+def rated(samples: int, count: int, folder: Path, **where) -> tuple[dict, list[dict]]:
+    """One round (`count` samples, one per worker) and `samples` samples, each timed whole:
+    the rate is the slope between them, the fixed cost their intercept (see the module)."""
+    one_round, _ = timed_sweep(sweep_file(folder, count), folder / "round", **where)
+    wall, rows = timed_sweep(sweep_file(folder, samples), folder / "all", **where)
+    rate = (samples - count) / (wall - one_round)
+    fixed = max(one_round - count / rate, 0.0)
     return {"wall_s": wall, "samples_per_s": samples / wall, "rate_samples_per_s": rate,
             "one_round_wall_s": one_round, "fixed_s": fixed, "study_s": fixed + STUDY / rate,
             "ok": sum(r["status"] == "ok" for r in rows)}, rows
@@ -186,17 +184,39 @@ def scaling(samples: int, counts: list[int], folder: Path, one_core_s: float | N
             "same_table": all(t == first for t in tables.values())}
 
 
-def machine(counts: list[int], repeat: int) -> dict:
-    """Each count's W concurrent sample probes (fresh interpreters, one thread each, no
-    Dask): the mean of their best walls (s) and the efficiency, one probe's wall over it."""
+#: a fixed amount of pure-Python work (no memory traffic, no libraries): prints its wall (s)
+SPIN = """
+import time
+start = time.perf_counter()
+total = 0
+for i in range(10_000_000):
+    total += i * i
+print(time.perf_counter() - start)
+"""
+
+
+def spin() -> float:
+    """SPIN's wall time (s) in a fresh interpreter."""
+    return float(subprocess.run([sys.executable, "-c", SPIN], capture_output=True, text=True,
+                                check=True).stdout.split()[-1])
+
+
+def alone(counts: list[int], repeat: int) -> dict:
+    """Each count's W concurrent sample probes (fresh interpreters, one worker each, no
+    Dask), and W concurrent spins, the machine's own measure: for each, the mean wall (s)
+    and the efficiency, the first count's mean wall over it."""
     out = {}
     for count in counts:
         with ThreadPoolExecutor(count) as pool:
             walls = [r["wall_s"] for r in pool.map(lambda _: sample_probe(ROOT, repeat),
                                                     range(count))]
-        out[str(count)] = {"mean_wall_s": sum(walls) / count, "walls_s": walls}
+            spins = list(pool.map(lambda _: spin(), range(count)))
+        out[str(count)] = {"mean_wall_s": sum(walls) / count, "walls_s": walls,
+                           "spin_mean_wall_s": sum(spins) / count}
+    first = out[str(counts[0])]
     for entry in out.values():
-        entry["efficiency"] = out[str(counts[0])]["mean_wall_s"] / entry["mean_wall_s"]
+        entry["efficiency"] = first["mean_wall_s"] / entry["mean_wall_s"]
+        entry["spin_efficiency"] = first["spin_mean_wall_s"] / entry["spin_mean_wall_s"]
     return {"counts": out, "repeat": repeat, "first_count": counts[0]}
 
 
@@ -238,7 +258,7 @@ def killed_worker(samples: int, folder: Path) -> dict:
             "same_table_as_local": remote == table(local)}
 
 
-PARTS = ("per_sample", "scaling", "machine", "cluster", "killed_worker")
+PARTS = ("per_sample", "scaling", "alone", "cluster", "killed_worker")
 
 
 def machine_name() -> str:
@@ -282,7 +302,7 @@ def main() -> None:
         runs = {"per_sample": lambda: per_sample(args.repeat, args.against),
                 "scaling": lambda: scaling(args.samples, counts, Path(tmp) / "local",
                                            one_core()),
-                "machine": lambda: machine(counts, args.repeat),
+                "alone": lambda: alone(counts, args.repeat),
                 "cluster": lambda: cluster(args.samples, counts[-1], Path(tmp) / "cluster",
                                            one_core()),
                 "killed_worker": lambda: killed_worker(args.killed_samples, Path(tmp))}
@@ -314,9 +334,10 @@ def main() -> None:
         print(f"same table on every count: {sc['same_table']}")
     if m:
         print(f"\nconcurrent sample probes, no Dask ({m.get('commit', '?')}): "
-              f"{'mean wall':>10} {'efficiency':>11}")
+              f"{'mean wall':>10} {'efficiency':>11} {'pure-Python spin':>17}")
         for count, e in m["counts"].items():
-            print(f"{count + ' at once':>40} {e['mean_wall_s']:9.2f}s {e['efficiency']:10.0%}")
+            print(f"{count + ' at once':>40} {e['mean_wall_s']:9.2f}s {e['efficiency']:10.0%} "
+                  f"{e['spin_mean_wall_s']:9.2f}s {e['spin_efficiency']:5.0%}")
     if c:
         core = ("-" if c.get("one_core_efficiency") is None
                 else f"{c['one_core_efficiency']:.0%}")

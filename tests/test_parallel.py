@@ -71,6 +71,25 @@ def test_a_tasks_error_is_raised_to_the_caller(monkeypatch, fork):
         parallel_map(failing, 4)
 
 
+def blas_threads() -> set[int]:
+    """The thread counts of the BLAS libraries loaded (numpy's and scipy's)."""
+    import numpy  # noqa: F401  (loads its BLAS)
+    import scipy.linalg  # noqa: F401
+    from threadpoolctl import threadpool_info
+
+    return {pool["num_threads"] for pool in threadpool_info() if pool["user_api"] == "blas"}
+
+
+def test_blas_runs_on_the_contexts_workers_and_is_restored_after():
+    from threadpoolctl import threadpool_limits
+
+    with threadpool_limits(2, "blas"):          # as on a two-core machine, whatever this one
+        assert blas_threads() == {2}
+        with workers(1):
+            assert blas_threads() == {1}
+        assert blas_threads() == {2}
+
+
 def test_a_worker_count_below_one_is_refused():
     with pytest.raises(ValueError, match="count: 0 must be an integer >= 1"):
         with workers(0):

@@ -10,7 +10,9 @@ reads (the cycle, its fields, the tooth model): only the task's answer is pickle
 Why BLAS on one thread: OpenBLAS's threads spin after each call and take the core from the
 other workers. Two analyses of the bundled spur case run side by side took 1.6 to 2.6
 times as long as one alone; with BLAS on one thread, as long as one alone (the matrices
-here are small).
+here are small). Between the parallel maps too, a context of `workers(n)` keeps BLAS on n
+threads: one sweep sample on one core otherwise used 1.09 cores of two (OpenBLAS's second
+thread, for no gain in wall time).
 
 Forking is safe only where no other thread can hold a lock the child needs. Processes are
 therefore used only where:
@@ -40,13 +42,16 @@ _WORKERS: ContextVar[int | None] = ContextVar("workers", default=None)
 
 @contextmanager
 def workers(count: int):
-    """Run every `parallel_map` in this context on `count` workers (a sweep's sample takes
-    its worker's share of the cores; 1: in order, in this thread)."""
+    """Run every `parallel_map` in this context on `count` workers, and BLAS on at most
+    `count` threads between them (a sweep's sample takes its worker's share of the cores;
+    1: in order, in this thread). BLAS's limit is the process's, not the context's: a
+    process runs one sample at a time."""
     if not (isinstance(count, int) and count >= 1):
         raise ValueError(f"count: {count!r} must be an integer >= 1 (workers)")
     token = _WORKERS.set(count)
     try:
-        yield
+        with threadpool_limits(count, "blas"):
+            yield
     finally:
         _WORKERS.reset(token)
 
