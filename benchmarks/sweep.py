@@ -296,8 +296,10 @@ def main() -> None:
         text=True).stdout.strip()
     with tempfile.TemporaryDirectory() as tmp:
         def one_core() -> float | None:
-            """Part 1's one-core sample time, this run's or the record's."""
-            return (record.get("per_sample") or {}).get("now_s")
+            """One sample's time on one core: part 1's (this run's or the record's), else
+            part 3's with one probe alone."""
+            alone_one = ((record.get("alone") or {}).get("counts") or {}).get("1") or {}
+            return (record.get("per_sample") or {}).get("now_s", alone_one.get("mean_wall_s"))
 
         runs = {"per_sample": lambda: per_sample(args.repeat, args.against),
                 "scaling": lambda: scaling(args.samples, counts, Path(tmp) / "local",
