@@ -87,6 +87,8 @@ def test_blas_runs_on_the_contexts_workers_and_is_restored_after():
         assert blas_threads() == {2}
         with workers(1):
             assert blas_threads() == {1}
+        with workers(4):                        # at most the threads it had
+            assert blas_threads() == {2}
         assert blas_threads() == {2}
 
 

@@ -10,9 +10,9 @@ reads (the cycle, its fields, the tooth model): only the task's answer is pickle
 Why BLAS on one thread: OpenBLAS's threads spin after each call and take the core from the
 other workers. Two analyses of the bundled spur case run side by side took 1.6 to 2.6
 times as long as one alone; with BLAS on one thread, as long as one alone (the matrices
-here are small). Between the parallel maps too, a context of `workers(n)` keeps BLAS on n
-threads: one sweep sample on one core otherwise used 1.09 cores of two (OpenBLAS's second
-thread, for no gain in wall time).
+here are small). Between the parallel maps too, a context of `workers(n)` keeps BLAS on at
+most n threads: one sweep sample on one core otherwise used 1.09 cores of two (OpenBLAS's
+second thread, for no gain in wall time).
 
 Forking is safe only where no other thread can hold a lock the child needs. Processes are
 therefore used only where:
@@ -34,7 +34,7 @@ from concurrent.futures import ProcessPoolExecutor, ThreadPoolExecutor
 from contextlib import contextmanager
 from contextvars import ContextVar
 
-from threadpoolctl import threadpool_limits
+from threadpoolctl import threadpool_info, threadpool_limits
 
 #: the workers `parallel_map` uses in this context: None for the machine's cores
 _WORKERS: ContextVar[int | None] = ContextVar("workers", default=None)
@@ -50,10 +50,16 @@ def workers(count: int):
         raise ValueError(f"count: {count!r} must be an integer >= 1 (workers)")
     token = _WORKERS.set(count)
     try:
-        with threadpool_limits(count, "blas"):
+        with threadpool_limits(min(count, _blas_threads() or count), "blas"):
             yield
     finally:
         _WORKERS.reset(token)
+
+
+def _blas_threads() -> int | None:
+    """The most threads a loaded BLAS library runs on now (None: none loaded)."""
+    return max((pool["num_threads"] for pool in threadpool_info() if pool["user_api"] == "blas"),
+               default=None)
 
 
 def machine_cores() -> int:
