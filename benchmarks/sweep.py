@@ -34,7 +34,7 @@ machine without the repository's history).
 
     .venv/bin/python benchmarks/sweep.py [--samples 40] [--workers 1 2] [--repeat 3]
         [--against 25866f5] [--killed-samples 40] [--record benchmarks/sweep.json]
-        [--parts per_sample scaling machine cluster killed_worker]
+        [--parts per_sample scaling alone cluster killed_worker]
 """
 
 from __future__ import annotations
@@ -310,7 +310,7 @@ def main() -> None:
                 "killed_worker": lambda: killed_worker(args.killed_samples, Path(tmp))}
         for part in args.parts:
             record[part] = {**runs[part](), "commit": commit}
-    s, sc, m, c, k = (record.get(part) for part in PARTS)
+    s, sc, a, c, k = (record.get(part) for part in PARTS)
     if s:
         print(f"{CASE} ({s.get('commit', '?')} against {s['against']}) "
               f"{s['against']:>10} {'now':>8} {'speed-up':>9}")
@@ -334,10 +334,10 @@ def main() -> None:
         print("eff.: the rate over W times one worker's (which takes every core); /core: "
               "over W cores each as fast as the per-sample probe's one core")
         print(f"same table on every count: {sc['same_table']}")
-    if m:
-        print(f"\nconcurrent sample probes, no Dask ({m.get('commit', '?')}): "
+    if a:
+        print(f"\nconcurrent sample probes, no Dask ({a.get('commit', '?')}): "
               f"{'mean wall':>10} {'efficiency':>11} {'pure-Python spin':>17}")
-        for count, e in m["counts"].items():
+        for count, e in a["counts"].items():
             print(f"{count + ' at once':>40} {e['mean_wall_s']:9.2f}s {e['efficiency']:10.0%} "
                   f"{e['spin_mean_wall_s']:9.2f}s {e['spin_efficiency']:5.0%}")
     if c:
