@@ -165,8 +165,7 @@ def rated(samples: int, count: int, folder: Path, **where) -> tuple[dict, list[d
 
 def scaling(samples: int, counts: list[int], folder: Path, one_core_s: float | None) -> dict:
     """Each worker count's sweep (see the module); `one_core_s`: one sample's time on one
-    core (part 1), against which each count's rate is also judged (a single local worker
-    takes every core, its positions on threads)."""
+    core (part 1), against which each count's rate is also judged."""
     out, tables = {}, {}
     for workers in counts:
         out[str(workers)], tables[workers] = rated(samples, workers, folder / str(workers),
@@ -331,8 +330,8 @@ def main() -> None:
             print(f"{workers + ' worker(s)':>40} {e['wall_s']:7.1f}s "
                   f"{e['rate_samples_per_s']:8.3f} {eff:>6} {core:>6} {e['fixed_s']:6.1f}s "
                   f"{e['study_s'] / 60:11.1f} min")
-        print("eff.: the rate over W times one worker's (which takes every core); /core: "
-              "over W cores each as fast as the per-sample probe's one core")
+        print("eff.: the rate over W times one worker's; /core: over W cores each as fast "
+              "as the per-sample probe's one core")
         print(f"same table on every count: {sc['same_table']}")
     if a:
         print(f"\nconcurrent sample probes, no Dask ({a.get('commit', '?')}): "

@@ -1,6 +1,7 @@
 """Independent tasks on the machine's cores (toothcontact.parallel): forked processes where
-no other thread runs, threads where one does, in order on one worker; the answers in
-order and alike every way, a task's error raised to the caller."""
+no other thread runs, in order in the caller's thread where one does or where no process
+can be made, and on one worker; the answers in order and alike every way, a task's error
+raised to the caller."""
 
 import os
 import subprocess
@@ -16,6 +17,11 @@ from toothcontact.parallel import parallel_map, workers
 def where(index):
     """The task's index squared and the process that computed it."""
     return index * index, os.getpid()
+
+
+def here(index):
+    """The task's index squared and the process and thread that computed it."""
+    return index * index, os.getpid(), threading.get_ident()
 
 
 def test_a_process_with_one_thread_may_fork():
@@ -35,20 +41,21 @@ def test_forked_workers_answer_in_order(monkeypatch):
     assert os.getpid() not in {pid for _, pid in answers}
 
 
-def test_tasks_run_on_threads_while_another_thread_runs():
+def test_tasks_run_in_order_here_while_another_thread_runs():
     """A child forked from a process with other threads could deadlock on a lock one of
-    them holds: then the tasks run on threads, in this process."""
+    them holds: then the tasks run one after the other in this thread (threads would gain
+    nothing, see the module)."""
     stop = threading.Event()
     other = threading.Thread(target=stop.wait)
     other.start()
     try:
         assert not parallel.can_fork()
         with workers(2):
-            answers = parallel_map(where, 5)
+            answers = parallel_map(here, 5)
     finally:
         stop.set()
         other.join()
-    assert answers == [(k * k, os.getpid()) for k in range(5)]
+    assert answers == [(k * k, os.getpid(), threading.get_ident()) for k in range(5)]
 
 
 def test_one_worker_runs_the_tasks_in_order_here():
@@ -101,9 +108,9 @@ def test_a_worker_count_below_one_is_refused():
 @pytest.mark.parametrize("error", [OSError(38, "Function not implemented"),
                                    NotImplementedError("This Python build lacks "
                                                        "multiprocessing.synchronize")])
-def test_tasks_run_on_threads_where_processes_cannot_be_made(monkeypatch, error):
+def test_tasks_run_in_order_here_where_processes_cannot_be_made(monkeypatch, error):
     """Without working semaphores (a container without /dev/shm) the pool cannot be made:
-    the tasks run on threads, in this process."""
+    the tasks run one after the other in this thread."""
 
     def no_semaphores(*args, **kwargs):
         raise error
@@ -111,7 +118,8 @@ def test_tasks_run_on_threads_where_processes_cannot_be_made(monkeypatch, error)
     monkeypatch.setattr(parallel, "can_fork", lambda: True)
     monkeypatch.setattr(parallel, "ProcessPoolExecutor", no_semaphores)
     with workers(2):
-        assert parallel_map(where, 3) == [(k * k, os.getpid()) for k in range(3)]
+        assert parallel_map(here, 3) == [(k * k, os.getpid(), threading.get_ident())
+                                         for k in range(3)]
 
 
 @pytest.mark.parametrize("fork", [True, False])
@@ -125,14 +133,3 @@ def test_each_answer_is_told_here_in_order_as_it_comes_back(monkeypatch, fork):
     assert [a for a, _ in answers] == [k * k for k in range(5)]
     assert told == [(k, os.getpid(), threading.get_ident()) for k in range(5)]
 
-
-def test_tasks_that_may_not_share_threads_run_in_order_where_nothing_forks(monkeypatch):
-    """threads=False (tasks that draw): where no process can be forked they run one after
-    the other in this thread, not side by side on threads."""
-    monkeypatch.setattr(parallel, "can_fork", lambda: False)
-    seen = []
-    with workers(3):
-        answers = parallel_map(lambda k: seen.append((k, threading.get_ident())) or k, 4,
-                               threads=False)
-    assert answers == [0, 1, 2, 3]
-    assert seen == [(k, threading.get_ident()) for k in range(4)]

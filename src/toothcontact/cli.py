@@ -337,7 +337,7 @@ def demo(out: Path = typer.Option(Path("out"), "--out", help="output folder")):
     paths = _guarded(runner.bundled_cases)
     cores = parallel.machine_cores()
     # cases side by side in forked workers, each on its share of the cores (one at a time
-    # where no process can be forked: plots and pictures may not be drawn from threads)
+    # where no process can be forked)
     at_once = min(DEMO_CASES_AT_ONCE, cores) if parallel.can_fork() else 1
 
     def row(i: int):
@@ -351,7 +351,7 @@ def demo(out: Path = typer.Option(Path("out"), "--out", help="output folder")):
         progress.stage(f"{len(paths)} cases, {at_once} at a time")
         with parallel.workers(at_once):
             rows = _guarded(lambda: parallel.parallel_map(
-                row, len(paths), done=lambda i: progress.advance(), threads=False))
+                row, len(paths), done=lambda i: progress.advance()))
     for found in rows:
         if isinstance(found, int):
             raise typer.Exit(found)

@@ -1,11 +1,18 @@
 """Independent tasks on the machine's cores: worker processes forked for the call where the
-platform and the process allow it, else threads; BLAS on one thread either way.
+platform and the process allow it, else one after the other in this thread; BLAS on one
+thread either way.
 
 Why processes: a loaded cycle's positions are many small transforms, sparse products and
-numpy operations, and the Python between them holds the GIL. On the bundled spur case's
-positions two threads were 1.3 times faster than one, two forked processes 1.55 times
-(each runs some 15 % slower beside the other). A forked worker inherits what the task
-reads (the cycle, its fields, the tooth model): only the task's answer is pickled back.
+numpy operations, and the Python between them holds the GIL. Two forked processes solved
+the bundled spur case's positions 1.55 times faster than one (each runs some 15 % slower
+beside the other). A forked worker inherits what the task reads (the cycle, its fields,
+the tooth model): only the task's answer is pickled back.
+
+Why not threads where no process can be forked: they gain nothing. Analyses with their
+positions on two threads against one, in a process that may not fork (as a Dask worker's),
+on two cores: the bundled spur case 3.86-4.34 s against 3.42-4.30 s, using 5.6-5.9 s of
+CPU against 3.4-4.3 s; the helical case 5.42-6.76 s against 5.91-6.37 s (8.0-9.8 s of
+CPU against 5.9-6.4 s); the worm set slower on two (2.22-2.44 s against 1.99-2.01 s).
 
 Why BLAS on one thread: OpenBLAS's threads spin after each call and take the core from the
 other workers. Two analyses of the bundled spur case run side by side took 1.6 to 2.6
@@ -20,7 +27,7 @@ therefore used only where:
   default start method is spawn; Windows does not fork);
 - this process is not a daemon (a Dask worker's process may have no children);
 - no other Python thread runs (a progress display's refresh thread, a Dask client).
-Elsewhere the tasks run on threads.
+Elsewhere the tasks run in order, in this thread.
 """
 
 from __future__ import annotations
@@ -30,7 +37,7 @@ import os
 import sys
 import threading
 from collections.abc import Callable
-from concurrent.futures import ProcessPoolExecutor, ThreadPoolExecutor
+from concurrent.futures import ProcessPoolExecutor
 from contextlib import contextmanager
 from contextvars import ContextVar
 
@@ -43,9 +50,9 @@ _WORKERS: ContextVar[int | None] = ContextVar("workers", default=None)
 @contextmanager
 def workers(count: int):
     """Run every `parallel_map` in this context on `count` workers, and BLAS on at most
-    `count` threads between them (a sweep's sample takes its worker's share of the cores;
-    1: in order, in this thread). BLAS's limit is the process's, not the context's: a
-    process runs one sample at a time."""
+    `count` threads between them (1: in order, in this thread, as a sweep's sample runs).
+    BLAS's limit is the process's, not the context's: a process runs one sample at a
+    time."""
     if not (isinstance(count, int) and count >= 1):
         raise ValueError(f"count: {count!r} must be an integer >= 1 (workers)")
     token = _WORKERS.set(count)
@@ -75,23 +82,19 @@ def can_fork() -> bool:
 
 
 def parallel_map(task: Callable[[int], object], count: int,
-                 done: Callable[[int], None] | None = None, threads: bool = True) -> list:
+                 done: Callable[[int], None] | None = None) -> list:
     """[task(0), ..., task(count - 1)], on the context's workers (see `workers`; at most
-    `count`): forked processes where `can_fork`, else threads (or, with threads=False, in
-    order in this thread: tasks that draw, which threads may not do side by side). The
-    answers come back in order and are the same whatever the workers; an exception a task
-    raises is raised here. `done(i)` is called here, in this thread, as each answer comes
-    back in order."""
+    `count`): forked processes where `can_fork`, else in order in this thread (see the
+    module). The answers come back in order and are the same whatever the workers; an
+    exception a task raises is raised here. `done(i)` is called here, in this thread, as
+    each answer comes back in order."""
     n = min(_WORKERS.get() or machine_cores(), count)
     with threadpool_limits(1, "blas"):
         processes = _forked_pool(n, task) if n > 1 and can_fork() else None
-        if processes is not None:
-            with processes:
-                return _collected(processes.map(_run, range(count)), done)
-        if n <= 1 or not threads:
+        if processes is None:
             return _collected((task(i) for i in range(count)), done)
-        with ThreadPoolExecutor(n) as pool:
-            return _collected(pool.map(task, range(count)), done)
+        with processes:
+            return _collected(processes.map(_run, range(count)), done)
 
 
 def _collected(answers, done: Callable[[int], None] | None) -> list:

@@ -25,10 +25,10 @@ RETRIES = 2
 
 
 def sample_record(number: int, inputs: dict, raw: dict, folder: str | None,
-                  positions: bool = False, cores: int = 1) -> tuple[dict, list[dict]]:
-    """One sample analysed (on a worker, its positions solved on `cores` cores, by threads:
-    a Dask worker's process may not fork, see toothcontact.parallel): its
-    record, `sample`, each varied input (the case's value in core units, or its text),
+                  positions: bool = False) -> tuple[dict, list[dict]]:
+    """One sample analysed (on a worker, its positions one after the other on the worker's
+    thread: a Dask worker's process may not fork, and threads gain nothing, see
+    toothcontact.parallel): its record, `sample`, each varied input (the case's value in core units, or its text),
     `status` ("ok" or the error) and the summary's figures (the case's `summary` under its
     own names; numbers, flags and texts; no positions check, the stresses below the contacts
     only where the case's `[analysis] subsurface` is true, the rigid patterns only where its
@@ -58,7 +58,7 @@ def sample_record(number: int, inputs: dict, raw: dict, folder: str | None,
             case = case.model_copy(update={"analysis": analysis.model_copy(update={
                 "positions_check": False, "subsurface": bool(analysis.subsurface),
                 "rigid_patterns": patterns, "ease_off": bool(analysis.ease_off)})})
-        with workers(cores):
+        with workers(1):
             sections = analyse(case).sections
         record.update(_cells(sections.get("summary", {})))
         if positions:
@@ -97,8 +97,7 @@ class Workers:
     """Where samples run: an existing Dask scheduler at `scheduler`, else a LocalCluster of
     `workers` processes (the machine's cores) started at `start` or its first use and
     closed with this (a context manager); one cluster serves every sweep an optimisation
-    runs. A sample solves its positions on its worker's share of the local cores
-    (`cores`), on one core on a deployment's workers (sized there, one per core)."""
+    runs. A sample takes one worker's thread."""
 
     def __init__(self, scheduler: str | None = None, workers: int | None = None):
         self.scheduler, self.workers = scheduler, workers
@@ -121,11 +120,13 @@ class Workers:
         `client` to raise)."""
         from distributed import Client, LocalCluster
 
+        from ..parallel import machine_cores
+
         try:
             if self.scheduler is None:
                 # errors only: a worker slow to stop at the end ("still alive after 4.0
                 # seconds, killing") is Dask's housekeeping, not the user's business
-                self._cluster = LocalCluster(n_workers=self._local()[0],
+                self._cluster = LocalCluster(n_workers=self.workers or machine_cores(),
                                              threads_per_worker=1, processes=True,
                                              dashboard_address=":0",
                                              silence_logs=logging.ERROR)
@@ -147,21 +148,6 @@ class Workers:
         if self._failure is not None:
             raise self._failure
         return self._client
-
-    def _local(self) -> tuple[int, int]:
-        """(workers, cores) of the local cluster: `workers`, else one per core."""
-        from ..parallel import machine_cores
-
-        cores = machine_cores()
-        return self.workers or cores, cores
-
-    @property
-    def cores(self) -> int:
-        """Cores per sample."""
-        if self.scheduler is not None:
-            return 1
-        workers, cores = self._local()
-        return max(1, cores // workers)
 
     def __enter__(self) -> "Workers":
         return self
@@ -205,7 +191,7 @@ def run(samples: list[Sample], folder: Path | None, out: Path, workers: Workers,
         futures = workers.client.map(
             sample_record, [s.sample for s in todo], [s.inputs for s in todo],
             [s.raw for s in todo], [None if folder is None else str(folder)] * len(todo),
-            [positions] * len(todo), [workers.cores] * len(todo), retries=RETRIES,
+            [positions] * len(todo), retries=RETRIES,
             pure=False)
         for future in as_completed(futures):
             record, rows = future.result()
