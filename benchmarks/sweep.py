@@ -3,19 +3,19 @@ besides its samples, and what a 1,000-sample study would take, in one run.
 
 1. Per sample: the bundled crowned spur pair (`spur_crowned_20_60`: 21 positions,
    interference on) analysed as a sweep sample runs it (no positions check, no stresses
-   below the contacts, no rigid patterns, no ease-off map) on one worker, best of `--repeat` in a fresh
-   interpreter (sample_stages.probe) over ROUNDS rounds, with this tree's code beside
-   `--against` (25866f5, issue 32's reference) checked out and probed in turn; and one
-   design's latency: the case as bundled (positions check and subsurface stresses on) on
-   all of the machine's cores, both trees.
+   below the contacts, no rigid patterns, no ease-off map) on one worker, best of
+   `--repeat` in a fresh interpreter (sample_stages.probe) over ROUNDS rounds, with this
+   tree's code beside `--against` (25866f5, issue 32's reference) checked out and probed
+   in turn; and one design's latency: the case as bundled (positions check and subsurface
+   stresses on) on all of the machine's cores, both trees.
 2. Scale: a Monte Carlo of the same case (slope normal 0.8 ± 0.3 mrad, crown radius
    uniform 3000-5000 mm, Latin hypercube) on a local Dask cluster of each `--workers`
    count: `--samples` samples and one round (as many samples as workers), both timed
    whole, so that the rate is the slope between them and the sweep's fixed cost (cluster
    start and close, imports, planning, the last statistics, figures and report) their
    intercept; samples/s, the efficiency against W times one worker's rate and against W
-   cores each at part 1's one-core sample time, the tables identical across the counts, and the projection of a 1,000-sample study
-   (fixed + 1000 / rate).
+   cores each at part 1's one-core sample time, the tables identical across the counts,
+   and the projection of a 1,000-sample study (fixed + 1000 / rate).
 3. Alone: W fresh interpreters probing one sample each at once (no Dask), for each
    `--workers` count: what W concurrent samples cost on this machine's shared caches,
    memory bandwidth, clock and (where its cores are hyperthreads) execution units; and W

@@ -28,13 +28,13 @@ def sample_record(number: int, inputs: dict, raw: dict, folder: str | None,
                   positions: bool = False) -> tuple[dict, list[dict]]:
     """One sample analysed (on a worker, its positions one after the other on the worker's
     thread: a Dask worker's process may not fork, and threads gain nothing, see
-    toothcontact.parallel): its record, `sample`, each varied input (the case's value in core units, or its text),
-    `status` ("ok" or the error) and the summary's figures (the case's `summary` under its
-    own names; numbers, flags and texts; no positions check, the stresses below the contacts
-    only where the case's `[analysis] subsurface` is true, the rigid patterns only where its
-    `rigid_patterns` is or the rows are kept, the ease-off only where its `ease_off` is);
-    and, if `positions`, the result's rows per
-    mesh position and pair (their table cells, with `sample`), else []."""
+    toothcontact.parallel): its record, `sample`, each varied input (the case's value in
+    core units, or its text), `status` ("ok" or the error) and the summary's figures (the
+    case's `summary` under its own names; numbers, flags and texts; no positions check, the
+    stresses below the contacts only where the case's `[analysis] subsurface` is true, the
+    rigid patterns only where its `rigid_patterns` is or the rows are kept, the ease-off
+    only where its `ease_off` is); and, if `positions`, the result's rows per mesh position
+    and pair (their table cells, with `sample`), else []."""
     from ..analyses import analyse
     from ..case import parse_case
     from ..memory import keep_freed_memory
