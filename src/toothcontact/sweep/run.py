@@ -197,9 +197,11 @@ WARM_MODULES = ("distributed", "pint", "fcl", "threadpoolctl", "scipy.integrate"
 def _start_method() -> str:
     """How the local cluster's worker processes start: forked from a forkserver that has
     imported WARM_MODULES where the platform has one (Linux, macOS), else spawned (a new
-    interpreter each, importing what its first sample needs, all of them at once). Two
-    workers on two cores: a 4-sample sweep of the bundled spur case 16.5-17.1 s against
-    17.9-18.5 s spawned, its first samples 1.1-2.1 s sooner. A worker that a nanny restarts
+    interpreter each, importing what its first sample needs, all of them at once). The
+    server imports once, before the first worker is ready (3.1-3.8 s after the start here
+    against 1.4-2.0 s spawned); its workers then start warm. On two cores, two workers: a
+    4-sample sweep of the bundled spur case 16.5-17.1 s against 17.9-18.5 s spawned; one
+    worker, one sample: 10.7-10.9 s against 10.2-10.8 s. A worker that a nanny restarts
     later (one that died) is spawned, as is Dask's default."""
     import multiprocessing
 
