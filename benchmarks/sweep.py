@@ -11,7 +11,7 @@ besides its samples, and what a 1,000-sample study would take, in one run.
 2. Scale: a Monte Carlo of the same case (slope normal 0.8 ± 0.3 mrad, crown radius
    uniform 3000-5000 mm, Latin hypercube) on a local Dask cluster of each `--workers`
    count: `--samples` samples and one round (as many samples as workers), both timed
-   whole, so that the rate is the slope between them and the sweep's fixed cost (cluster
+   whole, each in a fresh interpreter as the `sweep` command runs it, so that the rate is the slope between them and the sweep's fixed cost (cluster
    start and close, imports, planning, the last statistics, figures and report) their
    intercept; samples/s, the efficiency against W times one worker's rate and against W
    cores each at part 1's one-core sample time, the tables identical across the counts,
@@ -141,14 +141,28 @@ def table(written) -> list[dict]:
     return pq.read_table(written[0]).to_pylist()
 
 
-def timed_sweep(path: Path, out: Path, **where) -> tuple[float, list[dict]]:
-    """A sweep file run on `workers=` local workers or on a `scheduler=`: its wall time (s)
-    and its table."""
-    from toothcontact import runner
+#: one sweep in a fresh interpreter, as the `sweep` command runs one: a local cluster's
+#: workers fork from a server that lives as long as the process that started it, so a sweep
+#: after another in one process would find it started
+SWEEP_RUN = """
+from toothcontact import runner
+_, written = runner.run_sweep({path!r}, {out!r}, **{where!r})
+print(written[0])
+"""
 
+
+def timed_sweep(path: Path, out: Path, **where) -> tuple[float, list[dict]]:
+    """A sweep file run on `workers=` local workers or on a `scheduler=`, in a fresh
+    interpreter: its wall time (s, the interpreter's start and imports included) and its
+    table."""
+    code = SWEEP_RUN.format(path=str(path), out=str(out), where=where)
     start = time.perf_counter()
-    _, written = runner.run_sweep(path, out, **where)
-    return time.perf_counter() - start, table(written)
+    done = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True,
+                          env=source_path(ROOT))
+    wall = time.perf_counter() - start
+    if done.returncode:
+        raise SystemExit(f"sweep {path}: {done.stderr.strip().splitlines()[-1]}")
+    return wall, table([done.stdout.strip().splitlines()[-1]])
 
 
 def rated(samples: int, count: int, folder: Path, **where) -> tuple[dict, list[dict]]:

@@ -6,8 +6,6 @@ refused before anything runs."""
 from __future__ import annotations
 
 import json
-import multiprocessing
-import sys
 
 import numpy as np
 import pyarrow.parquet as pq
@@ -16,7 +14,7 @@ from typer.testing import CliRunner
 
 from toothcontact import runner
 from toothcontact.cli import app
-from toothcontact.sweep.run import Workers, sample_record
+from toothcontact.sweep.run import sample_record
 from toothcontact.sweep.statistics import wilson
 
 
@@ -86,39 +84,6 @@ def test_a_resumed_sweep_computes_only_what_its_checkpoints_lack(two_workers, tm
     assert sorted(r["sample"] for r in done) == [1, 3]
     assert (pq.read_table(out / "samples.parquet").to_pylist()
             == pq.read_table(folder / "out" / "samples.parquet").to_pylist())
-
-
-@pytest.mark.skipif("forkserver" not in multiprocessing.get_all_start_methods(),
-                    reason="no forkserver on this platform: the workers are spawned")
-def test_a_local_clusters_workers_start_with_the_modules_a_sample_needs():
-    """The local cluster's workers are forked from a server that imported WARM_MODULES: a
-    worker holds the loaded contact's modules before its first sample (a spawned one
-    would import them in it)."""
-    with Workers(workers=1) as pool:
-        held = pool.client.run(lambda: "toothcontact.contact.loaded" in sys.modules)
-    assert list(held.values()) == [True]
-
-
-def test_a_sample_imports_nothing_beyond_the_warm_modules(fresh_python):
-    """WARM_MODULES is not stale: a spur sample and a lubricated worm set's import no module
-    of the package or of its numerical libraries beyond them (the helical, spline and
-    other worm cases add none to these two)."""
-    code = """
-import importlib, json, sys, tomllib
-from toothcontact.runner import bundled_cases
-from toothcontact.sweep.run import WARM_MODULES, sample_record
-for name in WARM_MODULES:
-    importlib.import_module(name)
-before = set(sys.modules)
-for path in bundled_cases():
-    if path.stem in ("spur_crowned_20_60", "worm_eps_oversized_hob"):
-        record, _ = sample_record(0, {}, tomllib.loads(path.read_text()), str(path.parent))
-        assert record["status"] == "ok", record["status"]
-new = [m for m in set(sys.modules) - before
-       if m.split(".")[0] in ("toothcontact", "scipy", "numpy", "pint", "fcl", "distributed")]
-print(json.dumps(sorted(new)))
-"""
-    assert json.loads(fresh_python(code)) == []
 
 
 def test_a_sample_that_fails_is_recorded_with_its_error():

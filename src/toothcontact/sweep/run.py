@@ -118,7 +118,6 @@ class Workers:
     def _connect(self) -> None:
         """The client, on a new local cluster or at the scheduler (an error is kept for
         `client` to raise)."""
-        import dask
         from distributed import Client, LocalCluster
 
         from ..parallel import machine_cores
@@ -127,12 +126,10 @@ class Workers:
             if self.scheduler is None:
                 # errors only: a worker slow to stop at the end ("still alive after 4.0
                 # seconds, killing") is Dask's housekeeping, not the user's business
-                with dask.config.set({"distributed.worker.multiprocessing-method":
-                                      _start_method()}):
-                    self._cluster = LocalCluster(n_workers=self.workers or machine_cores(),
-                                                 threads_per_worker=1, processes=True,
-                                                 dashboard_address=":0",
-                                                 silence_logs=logging.ERROR)
+                self._cluster = LocalCluster(n_workers=self.workers or machine_cores(),
+                                             threads_per_worker=1, processes=True,
+                                             dashboard_address=":0",
+                                             silence_logs=logging.ERROR)
             self._client = Client(self.scheduler or self._cluster)
         except Exception as exc:        # noqa: BLE001 - raised where the client is asked for
             self._failure = exc
@@ -176,45 +173,6 @@ class Workers:
             self._closing.join()
             self._closing = None
         self._close()
-
-
-#: the modules a sample needs, imported once by the server the local cluster's workers are
-#: forked from, so that no worker imports them in its first sample (tests/test_sweep_run.py
-#: checks that a sample of each contact kind imports nothing more from them)
-WARM_MODULES = ("distributed", "pint", "fcl", "threadpoolctl", "scipy.integrate",
-                "scipy.interpolate", "scipy.ndimage", "scipy.optimize", "scipy.sparse",
-                *(f"toothcontact.{name}" for name in (
-                    "case", "sweep.run", "memory", "gearset", "mesh", "shaft",
-                    "contact.cycle", "contact.loaded", "contact.ellipse", "contact.local",
-                    "contact.search", "contact.line", "contact.flash", "contact.kinematics",
-                    "surfaces.modified", "surfaces.outline", "surfaces.spline",
-                    "surfaces.wheel", "surfaces.worm", "rating.root", "rating.life",
-                    "analytic.ehl", "analytic.lubricant", "analytic.mesh_losses",
-                    "analyses.spur", "analyses.spline", "analyses.worm", "analyses.imported",
-                    "analyses.worm_efficiency", "analyses.rating", "analyses.lubrication")))
-
-
-def _start_method() -> str:
-    """How the local cluster's worker processes start: forked from a forkserver that has
-    imported WARM_MODULES where the platform has one (Linux, macOS), else spawned (a new
-    interpreter each, importing what its first sample needs, all of them at once). The
-    server imports once, before the first worker is ready (3.1-3.8 s after the start here
-    against 1.4-2.0 s spawned); its workers then start warm. On two cores, two workers: a
-    4-sample sweep of the bundled spur case 16.5-17.1 s against 17.9-18.5 s spawned; one
-    worker, one sample: 10.7-10.9 s against 10.2-10.8 s. A worker that a nanny restarts
-    later (one that died) is spawned, as is Dask's default."""
-    import multiprocessing
-
-    if "forkserver" not in multiprocessing.get_all_start_methods():
-        return "spawn"
-    import dask
-    from distributed.utils import get_mp_context
-
-    with dask.config.set({"distributed.worker.multiprocessing-method": "forkserver"}):
-        context = get_mp_context()   # distributed's own preload set first, then ours over it
-    # (no effect once the server runs: it already holds them, from an earlier sweep)
-    context.set_forkserver_preload(list(WARM_MODULES))
-    return "forkserver"
 
 
 def run(samples: list[Sample], folder: Path | None, out: Path, workers: Workers, *,
