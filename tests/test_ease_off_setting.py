@@ -39,8 +39,8 @@ def test_a_sweep_sample_leaves_the_ease_off_unless_its_case_asks(monkeypatch):
         return real(case)
 
     monkeypatch.setattr(analyses, "analyse", analyse)
-    plain, _ = sample_record(0, {}, with_analysis(), None)
-    asked, _ = sample_record(1, {}, with_analysis(ease_off=True), None)
+    plain, _ = sample_record(0, {}, parse_case(with_analysis()))
+    asked, _ = sample_record(1, {}, parse_case(with_analysis(ease_off=True)))
     assert seen == [False, True]
     assert plain["status"] == asked["status"] == "ok"
     assert {k: v for k, v in plain.items() if k != "sample"} == {

@@ -6,14 +6,17 @@ refused before anything runs."""
 from __future__ import annotations
 
 import json
+import tomllib
 
 import numpy as np
 import pyarrow.parquet as pq
 import pytest
 from typer.testing import CliRunner
 
-from toothcontact import runner
+from toothcontact import analyses, runner
+from toothcontact.case import CaseError, parse_case
 from toothcontact.cli import app
+from toothcontact.runner import bundled_cases_dir
 from toothcontact.sweep.run import sample_record
 from toothcontact.sweep.statistics import wilson
 
@@ -86,11 +89,45 @@ def test_a_resumed_sweep_computes_only_what_its_checkpoints_lack(two_workers, tm
             == pq.read_table(folder / "out" / "samples.parquet").to_pylist())
 
 
-def test_a_sample_that_fails_is_recorded_with_its_error():
+def test_a_sample_that_fails_is_recorded_with_its_error(monkeypatch):
     """A sample whose analysis fails keeps its number and says why; nothing is raised."""
-    record, rows = sample_record(7, {"load.tangential_load": "0.001 N"},
-                                 {"kind": "spur", "teeth": [20, 60]}, None, positions=True)
-    assert record["sample"] == 7 and record["status"].startswith("CaseError") and rows == []
+    def analyse(case):
+        raise CaseError("misalignment / load: no contact could be found")
+
+    monkeypatch.setattr(analyses, "analyse", analyse)
+    case = parse_case(tomllib.loads((bundled_cases_dir() / "spur_crowned_20_60.toml")
+                                    .read_text()))
+    record, rows = sample_record(7, {"load.tangential_load": "8000 N"}, case, positions=True)
+    assert record["sample"] == 7 and rows == []
+    assert record["status"] == "CaseError: misalignment / load: no contact could be found"
+    assert record["input:load.tangential_load"] == case.load.tangential_load == 8000.0
+
+
+def test_a_worker_analyses_the_planned_case_without_parsing_it(two_workers, tmp_path,
+                                                              fresh_python):
+    """The sweep parses each sample where it plans them; a worker receives the parsed case
+    and analyses it as it is: it never imports the units' library (pint and its registry,
+    0.5-0.8 s of a worker's first sample)."""
+    import pickle
+
+    from toothcontact.runner import load_sweep
+    from toothcontact.sweep.sampling import plan
+
+    _, path, _ = two_workers
+    spec, base, base_path = load_sweep(path)
+    sample = plan(spec, base, base_path.parent)[1]
+    (tmp_path / "sample.pickle").write_bytes(pickle.dumps(sample))
+    code = f"""
+import json, pickle, sys
+from toothcontact.sweep.run import sample_record
+sample = pickle.loads(open({str(tmp_path / "sample.pickle")!r}, "rb").read())
+record, _ = sample_record(sample.sample, sample.inputs, sample.case)
+print(json.dumps([record["status"], "pint" in sys.modules, record["max_p_max_MPa"]]))
+"""
+    status, pint, peak = json.loads(fresh_python(code))
+    assert status == "ok" and pint is False
+    table = pq.read_table(two_workers[0] / "out" / "samples.parquet").to_pylist()
+    assert peak == table[1]["max_p_max_MPa"]
 
 
 def test_a_bad_sweep_is_refused_before_anything_runs(tmp_path):
@@ -179,7 +216,6 @@ def test_positions_on_request_hold_every_samples_rows(two_workers, tmp_path):
     import shutil
 
     from toothcontact.analyses import analyse
-    from toothcontact.case import parse_case
     from toothcontact.runner import load_sweep
     from toothcontact.sweep.sampling import plan
 
@@ -192,7 +228,7 @@ def test_positions_on_request_hold_every_samples_rows(two_workers, tmp_path):
     rows = pq.read_table(out / "positions.parquet").to_pylist()
     spec, base, base_path = load_sweep(path)
     first = plan(spec, base, base_path.parent)[0]
-    own = analyse(parse_case(first.raw)).sections["positions"]
+    own = analyse(first.case).sections["positions"]
     assert [r["sample"] for r in rows].count(0) == len(own)
     assert sorted({r["sample"] for r in rows}) == [0, 1, 2, 3]
     assert all(r["rigid_pattern_area_mm2"] > 0 for r in rows if r["rigid_contact"])

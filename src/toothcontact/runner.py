@@ -229,7 +229,7 @@ def run_sweep(path: str | Path, out_dir: str | Path | None = None, *,
                      design=design_of(np.full(len(spec.optimise.variables), corner)))
             # what the objective and constraints name, against the figures the base design
             # reports (one analysis, here, before any output is written)
-            record, _ = sweep_run.sample_record(0, {}, base, str(base_path.parent))
+            record, _ = sweep_run.sample_record(0, {}, schema.load_case(base_path)[0])
             if record["status"] == "ok":
                 check_statistics(spec.optimise, record, f"{path}: optimise")
         total = [len(samples)]
@@ -244,7 +244,7 @@ def run_sweep(path: str | Path, out_dir: str | Path | None = None, *,
                    for t in spec.tolerance if t.iso1328_class is not None}
 
         def sweep_into(todo, folder, keep_positions):
-            rows = sweep_run.run(todo, base_path.parent, folder, pool, resume=resume,
+            rows = sweep_run.run(todo, folder, pool, resume=resume,
                                  positions=keep_positions, on_done=on_done)
             return rows, statistics.summarise(rows, inputs, grid, spec.sampling == "saltelli")
 

@@ -24,9 +24,10 @@ from .sampling import Sample
 RETRIES = 2
 
 
-def sample_record(number: int, inputs: dict, raw: dict, folder: str | None,
-                  positions: bool = False) -> tuple[dict, list[dict]]:
-    """One sample analysed (on a worker, its positions one after the other on the worker's
+def sample_record(number: int, inputs: dict, case, positions: bool = False
+                  ) -> tuple[dict, list[dict]]:
+    """One sample's case (parsed where the sweep planned it: a worker neither parses nor
+    imports the units' library) analysed (on a worker, its positions one after the other on the worker's
     thread: a Dask worker's process may not fork, and threads gain nothing, see
     toothcontact.parallel): its record, `sample`, each varied input (the case's value in
     core units, or its text), `status` ("ok" or the error) and the summary's figures (the
@@ -36,7 +37,6 @@ def sample_record(number: int, inputs: dict, raw: dict, folder: str | None,
     only where its `ease_off` is); and, if `positions`, the result's rows per mesh position
     and pair (their table cells, with `sample`), else []."""
     from ..analyses import analyse
-    from ..case import parse_case
     from ..memory import keep_freed_memory
     from ..parallel import workers
 
@@ -44,8 +44,6 @@ def sample_record(number: int, inputs: dict, raw: dict, folder: str | None,
     record: dict = {"sample": number}
     rows: list[dict] = []
     try:
-        case = parse_case(raw, source=f"sample {number}",
-                          base=None if folder is None else Path(folder))
         for field in inputs:
             record[f"input:{field}"] = _value(case, field)
         if getattr(case, "analysis", None) is not None:
@@ -175,7 +173,7 @@ class Workers:
         self._close()
 
 
-def run(samples: list[Sample], folder: Path | None, out: Path, workers: Workers, *,
+def run(samples: list[Sample], out: Path, workers: Workers, *,
         resume: bool = False, positions: bool = False,
         on_done: Callable[[dict], None] | None = None) -> list[dict]:
     """Analyse on `workers` the samples not yet done in `out` (all of them unless
@@ -190,8 +188,7 @@ def run(samples: list[Sample], folder: Path | None, out: Path, workers: Workers,
         shares = {s.sample: s.time_share for s in todo}
         futures = workers.client.map(
             sample_record, [s.sample for s in todo], [s.inputs for s in todo],
-            [s.raw for s in todo], [None if folder is None else str(folder)] * len(todo),
-            [positions] * len(todo), retries=RETRIES,
+            [s.case for s in todo], [positions] * len(todo), retries=RETRIES,
             pure=False)
         for future in as_completed(futures):
             record, rows = future.result()

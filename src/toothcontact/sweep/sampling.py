@@ -19,18 +19,19 @@ from pathlib import Path
 
 import numpy as np
 
-from ..case import CaseError, parse_case
+from ..case import CaseError, CaseInfo, parse_case
 from .spec import SweepSpec, Tolerance, Vary
 
 
 @dataclass(frozen=True)
 class Sample:
-    """One sample: its number (from 0), the varied inputs as set (field -> text) and the
-    case table that results."""
+    """One sample: its number (from 0), the varied inputs as set (field -> text), the case
+    table that results and that table parsed (case.CaseInfo: what a worker analyses)."""
 
     sample: int
     inputs: dict
     raw: dict
+    case: CaseInfo
     time_share: float | None = None
 
 
@@ -59,12 +60,12 @@ def plan(spec: SweepSpec, base: dict, folder: Path | None = None, source: str = 
             number = len(out)
             raw = _with(fixed, inputs)
             try:
-                parse_case(raw, source=f"{source}: sample {number}", base=folder)
+                case = parse_case(raw, source=f"{source}: sample {number}", base=folder)
             except CaseError as exc:
                 raise CaseError(f"{exc} (set by the sweep: "
                                 + ", ".join(f"{k} = {v!r}" for k, v in inputs.items())
                                 + ")") from None
-            out.append(Sample(number, inputs, raw, share))
+            out.append(Sample(number, inputs, raw, case, share))
     return out
 
 
