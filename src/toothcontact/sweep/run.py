@@ -16,6 +16,7 @@ import time
 from collections.abc import Callable
 from pathlib import Path
 
+from ..case import CaseInfo
 from . import store
 from .sampling import Sample
 
@@ -24,18 +25,19 @@ from .sampling import Sample
 RETRIES = 2
 
 
-def sample_record(number: int, inputs: dict, case, positions: bool = False
+def sample_record(number: int, inputs: dict, case: CaseInfo, positions: bool = False
                   ) -> tuple[dict, list[dict]]:
-    """One sample's case (parsed where the sweep planned it: a worker neither parses nor
-    imports the units' library) analysed (on a worker, its positions one after the other on the worker's
-    thread: a Dask worker's process may not fork, and threads gain nothing, see
-    toothcontact.parallel): its record, `sample`, each varied input (the case's value in
-    core units, or its text), `status` ("ok" or the error) and the summary's figures (the
-    case's `summary` under its own names; numbers, flags and texts; no positions check, the
-    stresses below the contacts only where the case's `[analysis] subsurface` is true, the
-    rigid patterns only where its `rigid_patterns` is or the rows are kept, the ease-off
-    only where its `ease_off` is); and, if `positions`, the result's rows per mesh position
-    and pair (their table cells, with `sample`), else []."""
+    """One sample's case, as the sweep parsed it when planning (a worker neither parses
+    nor imports the units' library), analysed on a worker (its positions one after the
+    other on the worker's thread: a Dask worker's process may not fork, and threads gain
+    nothing, see toothcontact.parallel): its record, `sample`, each varied input (the
+    case's value in core units, or its text), `status` ("ok" or the error) and the
+    summary's figures (the case's `summary` under its own names; numbers, flags and
+    texts; no positions check, the stresses below the contacts only where the case's
+    `[analysis] subsurface` is true, the rigid patterns only where its `rigid_patterns`
+    is or the rows are kept, the ease-off only where its `ease_off` is); and, if
+    `positions`, the result's rows per mesh position and pair (their table cells, with
+    `sample`), else []."""
     from ..analyses import analyse
     from ..memory import keep_freed_memory
     from ..parallel import workers
