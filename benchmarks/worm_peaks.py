@@ -2,7 +2,7 @@
 1-4 starts, m_n 1-2.5 mm, lead 3-20 deg, 25-60 wheel teeth of bronze, 5-60 N·m, the hob the
 worm itself), run by the CLI at its default settings here and at a named commit in the same
 run: per design the largest loaded pressure (bem_max_p_max_MPa), the largest on the active
-flanks (max_flank_p_max_MPa), the rigid Hertz peak (max_p_max_MPa) they are read against,
+flanks (flank_pressure_max_MPa), the rigid Hertz peak (max_p_max_MPa) they are read against,
 the contacts that failed and the wall time. A loaded peak tens of times the Hertz one is a
 model artifact (before 0985342: false gap dips beside the wheel's face ends).
 
@@ -23,7 +23,7 @@ from pathlib import Path
 
 from timing import ROOT, checked_out, source_path
 
-KEYS = ("bem_max_p_max_MPa", "max_flank_p_max_MPa", "max_p_max_MPa", "bem_failed_contacts")
+KEYS = ("bem_max_p_max_MPa", "flank_pressure_max_MPa", "max_p_max_MPa", "bem_failed_contacts")
 
 
 def designs(count: int, seed: int) -> list[str]:
@@ -105,7 +105,7 @@ def _print_row(k: int, text: str, row: dict, against: str) -> None:
     cells = []
     for label in (against, "this tree"):
         r = row[label]
-        cells.append(f"{r.get('bem_max_p_max_MPa') or 0:8.0f} {r.get('max_flank_p_max_MPa') or 0:7.0f} "
+        cells.append(f"{r.get('bem_max_p_max_MPa') or 0:8.0f} {r.get('flank_pressure_max_MPa') or 0:7.0f} "
                      f"{r.get('max_p_max_MPa') or 0:6.0f} {r.get('bem_failed_contacts') or 0:2} "
                      f"{r['wall_s']:5.1f}")
     if k == 0:

@@ -139,42 +139,129 @@ def test_the_loaded_pairs_root_stress_is_isos_at_the_outer_point_of_single_conta
         assert 0.94 <= ratio <= 1.03, (name, summary[f"{name}_root_stress_max_MPa"], expected)
 
 
-def test_the_safety_factors_follow_iso_6336_from_the_loaded_stresses():
-    """Case-carburized pinion (σ_Hlim 1500, σ_Flim 500 MPa), through-hardened gear with
-    only σ_Hlim 900 MPa, 1e9 pinion cycles: S_H = σ_Hlim·Z_NT·Z_LvR/(p·sqrt(K_A·K_v)) per
-    member (p the largest active-flank pressure, of every contact), the
-    least the pair's; S_F = σ_Flim·2·Y_NT/(σ_F·K_A·K_v); the gear without
-    σ_Flim gets S_F null and the note says why; K_A = 1.5 lowers S_H by sqrt(1.5) and S_F
-    by 1.5 exactly; each safety is a design check against its least."""
+def hand_sigma_H(summary: dict, z1: int, z2: int, m: float, b: float, torque: float,
+                 helix: float = 0.0, shift: float = 0.0) -> float:
+    """ISO 6336-2's σ_H of the pinion of a pair shifted by +shift and -shift (so at its
+    standard centre distance), tips d + 2(1 ± shift)m, evaluated here from the standard's
+    formulae (Z_H, Z_E, Z_ε, Z_β, Z_B), with the load factors the analysis reports."""
+    alpha_n = math.radians(20.0)
+    alpha_t = math.atan(math.tan(alpha_n) / math.cos(helix))
+    beta_b = math.atan(math.tan(helix) * math.cos(alpha_t))
+    m_t = m / math.cos(helix)
+    d1, d2 = z1 * m_t, z2 * m_t
+    db1, db2 = d1 * math.cos(alpha_t), d2 * math.cos(alpha_t)
+    da1, da2 = d1 + 2 * m * (1 + shift), d2 + 2 * m * (1 - shift)
+    a = (d1 + d2) / 2
+    g = (math.sqrt(da1 ** 2 - db1 ** 2) + math.sqrt(da2 ** 2 - db2 ** 2)) / 2 - a * math.sin(alpha_t)
+    eps_a = g / (math.pi * m_t * math.cos(alpha_t))
+    eps_b = b * math.sin(helix) / (math.pi * m)
+    Z_H = math.sqrt(2 * math.cos(beta_b) / (math.cos(alpha_t) ** 2 * math.tan(alpha_t)))
+    Z_E = math.sqrt(206000.0 / (2 * math.pi * (1 - 0.3 ** 2)))
+    Z_eps = (math.sqrt(1 / eps_a) if eps_b >= 1 else
+             math.sqrt((4 - eps_a) / 3 * (1 - eps_b) + eps_b / eps_a))
+    Z_beta = 1 / math.sqrt(math.cos(helix))
+    M1 = math.tan(alpha_t) / math.sqrt(
+        (math.sqrt((da1 / db1) ** 2 - 1) - 2 * math.pi / z1)
+        * (math.sqrt((da2 / db2) ** 2 - 1) - (eps_a - 1) * 2 * math.pi / z2))
+    Z_B = 1.0 if eps_b >= 1 else max(1.0, M1 - eps_b * (M1 - 1))
+    F_t = 2 * torque / d1
+    sigma_H0 = Z_H * Z_E * Z_eps * Z_beta * math.sqrt(F_t / (d1 * b) * (z2 / z1 + 1) / (z2 / z1))
+    K = summary["K_A"] * summary["K_v"] * summary["K_H_beta_rating"] * summary["K_H_alpha"]
+    return Z_B * sigma_H0 * math.sqrt(K)
+
+
+def test_the_rating_is_iso_6336s_with_the_loaded_contacts_face_load_factor():
+    """Case-carburized pinion (σ_Hlim 1500, σ_Flim 500 MPa), through-hardened gear with only
+    σ_Hlim 900 MPa, 1e9 pinion cycles, Z_L 0.95 given: σ_H is ISO 6336-2's (evaluated here
+    by hand) with the loaded contact's K_Hβ (Method A); S_H = σ_Hlim·Z_NT·Z_L/σ_H per member
+    (Z_B for the pinion, Z_D = 1 for the gear), the least the pair's; S_F the pinion's ISO
+    6336-3 σ_FG/σ_F; the gear without σ_Flim gets S_F null and says why; K_A = 1.5 lowers
+    S_H by sqrt(1.5) and S_F by 1.5 exactly; each safety is a design check; the loaded
+    contact's largest flank pressure stands beside σ_H under its own name."""
     from toothcontact.analyses import analyse
     from toothcontact.case import parse_case
 
     fields = dict(material={"treatment": "case_carburized", "sigma_Hlim": "1500 MPa",
                             "sigma_Flim": "500 MPa"},
                   gear_material={"treatment": "through_hardened", "sigma_Hlim": "900 MPa"})
-    raw = spur(**fields, rating={"pinion_cycles": 1e9, "lubrication_factor": 0.95})
+    raw = spur(**fields, rating={"pinion_cycles": 1e9, "lubricant_factor": 0.95})
     result = analyse(parse_case(raw))
     s = result.sections["summary"]
-    p = max(r["flank_p_max_MPa"] for r in result.sections["positions"]
-            if r["bem_status"] == "solved")
-    assert s["sigma_H_MPa"] == p == s["max_flank_p_max_MPa"]
+    assert s["K_H_beta_rating"] == s["K_H_beta"] and s["K_v"] == 1.0 and s["K_A"] == 1.0
+    torque = 8000.0 * 30.0                      # the pinion radius at the standard centre
+    sigma_H = hand_sigma_H(s, 20, 60, 3.0, 30.0, torque)
+    assert s["sigma_H_pinion_MPa"] == pytest.approx(sigma_H, rel=1e-6)
     Z1 = life.contact_life_factor("case_carburized", 1e9)
     Z2 = life.contact_life_factor("through_hardened", 1e9 / 3)
-    assert s["S_H_pinion"] == pytest.approx(1500 * Z1 * 0.95 / p, rel=1e-12)
-    assert s["S_H_gear"] == pytest.approx(900 * Z2 * 0.95 / p, rel=1e-12)
+    assert s["S_H_pinion"] == pytest.approx(1500 * Z1 * 0.95 / sigma_H, rel=1e-6)
+    assert s["S_H_gear"] == pytest.approx(900 * Z2 * 0.95 / s["sigma_H_gear_MPa"], rel=1e-9)
     assert s["S_H"] == min(s["S_H_pinion"], s["S_H_gear"])
+    assert s["rating_factors_given"] == ["Z_L"]
     Y1 = life.root_life_factor("case_carburized", 1e9)
-    assert s["S_F_pinion"] == pytest.approx(500 * 2 * Y1 / s["pinion_root_stress_max_MPa"],
-                                            rel=1e-12)
-    assert s["S_F_gear"] is None and "no sigma_Flim for the gear's material" in s["safety_note"]
+    strength = 500 * 2 * Y1 * s["Y_delta_rel_T_pinion"] * s["Y_R_rel_T_pinion"] * s["Y_X_pinion"]
+    assert s["S_F_pinion"] == pytest.approx(strength / s["sigma_F_pinion_MPa"], rel=1e-12)
+    figures = {f["key"]: f for f in result.sections["rating"]["figures"]}
+    assert s["S_F_gear"] is None and "no sigma_Flim" in figures["S_F_gear"]["source"]
+    assert s["flank_pressure_max_MPa"] == max(r["flank_p_max_MPa"] for r in
+                                              result.sections["positions"]
+                                              if r["bem_status"] == "solved")
+    assert s["flank_pressure_to_sigma_H"] == pytest.approx(s["flank_pressure_max_MPa"]
+                                                           / s["sigma_H_MPa"])
     names = {c.name: c for c in result.checks}
     assert names["contact safety S_H at least S_Hmin"].ok == (s["S_H"] >= 1.0)
     assert "root safety S_F of the pinion at least S_Fmin" in names
     heavier = analyse(parse_case(spur(**fields, rating={
-        "pinion_cycles": 1e9, "lubrication_factor": 0.95, "application_factor": 1.5})))
+        "pinion_cycles": 1e9, "lubricant_factor": 0.95, "application_factor": 1.5})))
     h = heavier.sections["summary"]
     assert h["S_H"] == pytest.approx(s["S_H"] / math.sqrt(1.5), rel=1e-9)
     assert h["S_F_pinion"] == pytest.approx(s["S_F_pinion"] / 1.5, rel=1e-9)
+
+
+def test_the_bundled_helical_pairs_rating_is_iso_6336_by_hand():
+    """cases/helical_offcentre_crown_tip_relief (z 23/57, m_n 2.5, β 20°, b 25 mm, x ±0.2,
+    6000 N; 680 HV case-carburized, MQ): σ_H and S_H equal ISO 6336-2 evaluated here by hand
+    with the model's K factors (K_Hβ its loaded contact's) to 1e-6; the loaded flank's
+    peak stands beside it. Coarse analysis (9 positions, no positions check, no subsurface
+    stresses): the factors, not the loaded figures, are what is checked."""
+    import tomllib
+
+    from toothcontact.analyses import analyse
+    from toothcontact.case import parse_case
+    from toothcontact.runner import bundled_cases_dir
+
+    raw = tomllib.loads((bundled_cases_dir()
+                         / "helical_offcentre_crown_tip_relief.toml").read_text())
+    raw["analysis"] = {"positions": 9, "positions_check": False, "subsurface": False,
+                       "interference": False}
+    s = analyse(parse_case(raw)).sections["summary"]
+    radius = 23 * 2.5 / math.cos(math.radians(20)) / 2
+    sigma_H = hand_sigma_H(s, 23, 57, 2.5, 25.0, 6000.0 * radius, math.radians(20), 0.2)
+    assert s["sigma_H_MPa"] == pytest.approx(sigma_H, rel=1e-6)
+    assert s["S_H"] == pytest.approx(1500.0 / sigma_H, rel=1e-6)
+    assert s["K_H_beta_rating"] == s["K_H_beta"]
+    assert 1.0 < s["flank_pressure_to_sigma_H"]
+
+
+def test_allowables_from_hardness_and_a_flank_pressure_limit():
+    """σ_Hlim and σ_Flim from a case-hardened 700 HV, MQ, 32 HRC core material (ISO 6336-5
+    rows 42 and 47: 1500 and 500 MPa); a hardness outside its rows is refused naming the
+    field; a flank_pressure_limit below the loaded flank's peak fails its own check and
+    leaves S_H alone."""
+    from toothcontact.analyses import analyse
+    from toothcontact.case import CaseError, parse_case
+
+    material = {"treatment": "case_carburized", "hardness": "700 HV", "quality": "MQ",
+                "core_hardness": "32 HRC"}
+    raw = spur(material=material, rating={"flank_pressure_limit": "500 MPa"})
+    result = analyse(parse_case(raw))
+    s = result.sections["summary"]
+    assert (s["sigma_Hlim_pinion_MPa"], s["sigma_Flim_gear_MPa"]) == (1500.0, 500.0)
+    figures = {f["key"]: f["source"] for f in result.sections["rating"]["figures"]}
+    assert figures["sigma_Flim_pinion_MPa"].startswith("ISO 6336-5:2016 Table 1 row 47")
+    names = {c.name: c for c in result.checks}
+    assert not names["loaded flank pressure at most the given limit"].ok
+    with pytest.raises(CaseError, match="material.hardness: 900 HV lies outside"):
+        analyse(parse_case(spur(material={**material, "hardness": "900 HV"})))
 
 
 @pytest.mark.parametrize("material, says", [
@@ -192,7 +279,7 @@ def test_a_bad_material_is_refused_naming_the_field(material, says):
 
 def test_a_duty_cycle_adds_each_levels_damage_on_the_s_n_curves():
     """Two levels (4000 N for 1e9 pinion cycles, 8000 N for 1e7): the level at the case's
-    own load gives the case's σ_H and root stresses exactly; each level's N_i is where the
+    own load gives the case's ISO σ_H and σ_F and local root stresses exactly; each level's N_i is where the
     S-N curve meets its stress (Z_NT(N_i)·σ_Hlim = σ_H: the round trip to 1e-9; below
     0.85 σ_Hlim, the 4000 N level's, the line from 5e7 through 1e10 continued), and D is
     Σ n_i/N_i with the gear's cycles by the ratio. The S-N curve is the life factors' line:
@@ -208,11 +295,13 @@ def test_a_duty_cycle_adds_each_levels_damage_on_the_s_n_curves():
     result = analyse(parse_case(raw))
     s, levels = result.sections["summary"], result.sections["duty_cycle"]["levels"]
     assert levels[1]["sigma_H_MPa"] == pytest.approx(s["sigma_H_MPa"], rel=1e-12)
+    assert levels[1]["sigma_F_pinion_MPa"] == pytest.approx(s["sigma_F_pinion_MPa"], rel=1e-12)
     assert levels[1]["pinion_root_stress_max_MPa"] == pytest.approx(
         s["pinion_root_stress_max_MPa"], rel=1e-12)
     damage = 0.0
+    strength = 1500.0 * s["Z_L"] * s["Z_v"] * s["Z_R"] * s["Z_W"] * s["Z_X"]
     for level in levels:
-        factor = level["sigma_H_MPa"] / 1500.0
+        factor = level["sigma_H_pinion_MPa"] / strength
         N = life.contact_cycles("case_carburized", factor)
         if factor >= 0.85:
             assert life.contact_life_factor("case_carburized", N) == pytest.approx(factor,
@@ -223,7 +312,7 @@ def test_a_duty_cycle_adds_each_levels_damage_on_the_s_n_curves():
         damage += level["pinion_cycles"] / N
     assert s["miner_sum_flank_pinion"] == pytest.approx(damage, rel=1e-12)
     gear = sum(level["pinion_cycles"] / 3 / life.contact_cycles(
-        "case_carburized", level["sigma_H_MPa"] / 1500.0) for level in levels)
+        "case_carburized", level["sigma_H_gear_MPa"] / strength) for level in levels)
     assert s["miner_sum_flank_gear"] == pytest.approx(gear, rel=1e-12)
     assert life.contact_cycles("case_carburized", 0.910) == pytest.approx(1.08e9, rel=0.01)
     assert any(c.name == "duty cycle: Miner's sum of the pinion's flank at most 1"

@@ -124,6 +124,6 @@ def test_numbers_keep_the_digits_that_mean_something():
     assert number([]) == "none" and number(["pinion_tip", "gear_tip"]) == "pinion_tip, gear_tip"
     assert label("mesh_stiffness_N_per_mm_um") == "mesh stiffness c_γα [N/(mm·µm)]"
     assert label("line_load_N_per_mm") == "line load [N/mm]"
-    assert label("K_H_beta") == "face load factor K_Hβ (over the mesh cycle)"
+    assert label("K_H_beta") == "face load factor K_Hβ of the loaded contact (ISO 6336-1 Method A)"
     assert label("roll_deg", "worm") == "worm roll [deg]"
     assert label("contact_radius_pinion_mm", "worm") == "contact radius on the worm [mm]"

@@ -9,7 +9,8 @@ import math
 import numpy as np
 import pytest
 
-from toothcontact.analytic.stiffness import face_load_factor, foundation_compliance, mesh_stiffness
+from toothcontact.analytic.stiffness import foundation_compliance, mesh_stiffness
+from toothcontact.rating.load_factors import face_load_factor
 from toothcontact.contact.compliance import FaceCoupling, FaceLoad, ToothCompliance, cantilever
 from toothcontact.surfaces.involute import CylindricalGear
 

@@ -126,21 +126,59 @@ TREATMENT_NAMES = ("structural", "through_hardened", "case_carburized", "inducti
 CAST_IRONS = ("nodular_cast_iron", "malleable_cast_iron", "grey_cast_iron")
 
 
+def hardness_on(*scales: str):
+    """A hardness field: text with its scale, e.g. '650 HV' (units.parse_hardness), kept as
+    (number, scale)."""
+    def convert(value: Any) -> tuple[float, str]:
+        if isinstance(value, tuple):
+            return value
+        return units.parse_hardness(value, scales)
+
+    return Annotated[tuple[float, str], BeforeValidator(convert)]
+
+
+#: the quality grades of ISO 6336-5 (the demands on the material and its heat treatment)
+QUALITY_GRADES = ("ML", "MQ", "ME")
+
+
 class GearMaterial(Model):
-    """A gear's material: E and ν (steel's where not given, unless a cast iron), and for
-    its safety factors the heat treatment (the life factors' group) and the allowable
-    stress numbers of ISO 6336-5: σ_Hlim (contact) and σ_Flim (root, the nominal stress
-    number of the unnotched reference; ISO 6336-3 multiplies it by Y_ST = 2)."""
+    """A gear's material: E and ν (steel's where not given, unless a cast iron), the density
+    (ISO 6336-1's dynamic factor), and for its safety factors the heat treatment (the life
+    factors' group) and the allowable stress numbers of ISO 6336-5: σ_Hlim (contact) and
+    σ_Flim (root, the nominal stress number of the unnotched reference; ISO 6336-3 multiplies
+    it by Y_ST = 2), given, or from the surface hardness and quality grade by ISO 6336-5
+    Table 1 (rating.allowables)."""
 
     E: Modulus | None = Field(None, description="Young's modulus, e.g. '206 GPa' (default "
                                                 "steel's)")
     nu: Poisson | None = Field(None, description="Poisson's ratio (default 0.3)")
+    density: quantity("density", positive=True) | None = Field(
+        None, description="e.g. '7830 kg/m^3' (default: steel's 7830, a cast iron's 7200): "
+                          "the gears' masses in ISO 6336-1's dynamic factor")
     treatment: Literal[TREATMENT_NAMES] | None = Field(
-        None, description="heat treatment: the group of ISO 6336's life factors")
+        None, description="heat treatment: the group of ISO 6336's life factors and of "
+                          "ISO 6336-5's allowable stress numbers")
     sigma_Hlim: Modulus | None = Field(None, description="ISO 6336-5 contact stress number, "
                                                          "e.g. '1500 MPa'")
     sigma_Flim: Modulus | None = Field(None, description="ISO 6336-5 bending stress number, "
                                                          "e.g. '500 MPa'")
+    hardness: hardness_on("HV", "HBW") | None = Field(
+        None, description="surface hardness, e.g. '680 HV' or '260 HBW': with quality, "
+                          "sigma_Hlim and sigma_Flim from ISO 6336-5 Table 1 (a given one "
+                          "overrides)")
+    quality: Literal[QUALITY_GRADES] | None = Field(
+        None, description="ISO 6336-5 material quality grade: ML, MQ or ME")
+    cast: bool = Field(False, description="a cast steel (structural or through-hardened): "
+                                          "Table 1's cast rows")
+    alloy: bool | None = Field(None, description="a through-hardened steel: an alloy "
+                                                 "(true) or a carbon (false) steel")
+    core_hardness: hardness_on("HRC") | None = Field(
+        None, description="a case-carburized tooth's core hardness, e.g. '32 HRC': 30 HRC "
+                          "or more takes Table 1's MQ root value 500 MPa, else 425")
+    yield_strength: Modulus | None = Field(
+        None, description="0.2 % proof stress (through-hardened steels, pearlitic cast "
+                          "irons) or yield stress (structural steels): ISO 6336-3's notch "
+                          "sensitivity Y_δrelT")
     thermal_contact_coefficient: ThermalCoefficient | None = Field(
         None, description=THERMAL_DESCRIPTION)
 
@@ -157,31 +195,106 @@ class GearMaterial(Model):
         if self.E is None or self.nu is None:
             raise ValueError(f"E / nu: give both for a {self.treatment.replace('_', ' ')} "
                              "(steel's are the default only for steels)")
-        if (self.sigma_Hlim is not None or self.sigma_Flim is not None) \
-                and self.treatment is None:
-            raise ValueError("treatment: give the heat treatment with sigma_Hlim / "
-                             f"sigma_Flim (one of {', '.join(TREATMENT_NAMES)}): it sets "
-                             "the life factors")
+        rated = [name for name in ("sigma_Hlim", "sigma_Flim", "hardness")
+                 if getattr(self, name) is not None]
+        if rated and self.treatment is None:
+            raise ValueError(f"treatment: give the heat treatment with {' / '.join(rated)} "
+                             f"(one of {', '.join(TREATMENT_NAMES)}): it sets the life factors "
+                             "and ISO 6336-5's rows")
+        if (self.hardness is None) != (self.quality is None):
+            given, missing = (("hardness", "quality") if self.quality is None
+                              else ("quality", "hardness"))
+            raise ValueError(f"{missing}: give it with {given} (ISO 6336-5 Table 1 rates a "
+                             "material by its surface hardness and quality grade ML, MQ or ME)")
+        if self.cast and self.treatment not in ("structural", "through_hardened"):
+            raise ValueError(f"cast: ISO 6336-5 has cast rows for structural and through-"
+                             f"hardened steels only, not {self.treatment}")
+        if self.alloy is not None and self.treatment != "through_hardened":
+            raise ValueError("alloy: only a through-hardened steel is rated as alloy or carbon")
+        if (self.hardness is not None and self.treatment == "through_hardened"
+                and self.alloy is None):
+            raise ValueError("alloy: say whether the through-hardened steel is an alloy (true) "
+                             "or a carbon steel (false): ISO 6336-5 rates them apart")
+        if self.core_hardness is not None and self.treatment != "case_carburized":
+            raise ValueError("core_hardness: only a case-carburized tooth's core is rated")
         return self
 
 
-class RatingSpec(Model):
-    """What ISO 6336 adds to the loaded contact for the safety factors: the load factors
-    the analysis does not model (K_A, K_v: the stresses scale as σ_H·sqrt(K_A·K_v) and
-    σ_F·K_A·K_v), the lubrication factors' product Z_L·Z_v·Z_R, the load cycles of the
-    pinion (the gear's follow by the ratio), whether limited pitting is accepted, and the
-    least safety factors."""
+#: a load factor of ISO 6336-1 given instead of computed: at least 1 (ISO's load factors
+#: raise the nominal load), at most 20
+LoadFactor = Annotated[float, Field(ge=1.0, le=20.0, description="a load factor in [1, 20]")]
+#: a strength factor of ISO 6336-2/-3 given instead of computed (Z_L, Y_X, ...): in (0, 3]
+StrengthFactor = Annotated[float, Field(gt=0.0, le=3.0,
+                                        description="an influence factor in (0, 3]")]
+#: the factors a [rating] may give, by field: (the result key, ISO's symbol)
+GIVEN_FACTORS = {
+    "application_factor": ("K_A", "K_A"), "dynamic_factor": ("K_v", "K_v"),
+    "face_load_factor": ("K_H_beta_rating", "K_Hβ"), "transverse_load_factor": ("K_H_alpha", "K_Hα"),
+    "root_face_load_factor": ("K_F_beta", "K_Fβ"),
+    "root_transverse_load_factor": ("K_F_alpha", "K_Fα"),
+    "lubricant_factor": ("Z_L", "Z_L"), "velocity_factor": ("Z_v", "Z_v"),
+    "roughness_factor": ("Z_R", "Z_R"), "work_hardening_factor": ("Z_W", "Z_W"),
+    "size_factor": ("Z_X", "Z_X"), "notch_sensitivity_factor": ("Y_delta_rel_T", "Y_δrelT"),
+    "root_surface_factor": ("Y_R_rel_T", "Y_RrelT"), "root_size_factor": ("Y_X", "Y_X")}
 
-    application_factor: Factor = Field(1.0, description="K_A")
-    dynamic_factor: Factor = Field(1.0, description="K_v")
-    lubrication_factor: Factor = Field(1.0, description="Z_L·Z_v·Z_R (ISO 6336-2)")
+
+class RatingSpec(Model):
+    """What ISO 6336 needs beyond the loaded contact for the ratings: the accuracy grade,
+    the load cycles (or the life at the case's speed), whether limited pitting is accepted,
+    the least safety factors, and any influence factor known from measurement or a more
+    exact method (ISO allows it), by its name in words; a factor not given is computed
+    (ISO 6336-1/-2/-3 Method B; K_Hβ from the loaded contact) or, where the case lacks what
+    it needs, taken as 1 and listed among the rating's assumptions."""
+
+    application_factor: LoadFactor = Field(1.0, description="K_A (default 1: uniform driver "
+                                                            "and driven machine)")
+    dynamic_factor: LoadFactor | None = Field(None, description="K_v (default: ISO 6336-1 "
+                                                                "Method B)")
+    face_load_factor: LoadFactor | None = Field(
+        None, description="K_Hβ (default: the loaded contact's, ISO 6336-1 Method A)")
+    transverse_load_factor: LoadFactor | None = Field(
+        None, description="K_Hα (default: ISO 6336-1 Method B)")
+    root_face_load_factor: LoadFactor | None = Field(
+        None, description="K_Fβ (default: K_Hβ^N_F, ISO 6336-1)")
+    root_transverse_load_factor: LoadFactor | None = Field(
+        None, description="K_Fα (default: ISO 6336-1 Method B)")
+    lubricant_factor: StrengthFactor | None = Field(None, description="Z_L (default: ISO "
+                                                                      "6336-2 from the oil)")
+    velocity_factor: StrengthFactor | None = Field(None, description="Z_v (default: ISO "
+                                                                     "6336-2 from the speed)")
+    roughness_factor: StrengthFactor | None = Field(
+        None, description="Z_R (default: ISO 6336-2 from the flanks' roughness)")
+    work_hardening_factor: StrengthFactor | None = Field(None, description="Z_W (default 1)")
+    size_factor: StrengthFactor | None = Field(None, description="Z_X (default 1)")
+    notch_sensitivity_factor: StrengthFactor | None = Field(
+        None, description="Y_δrelT (default: ISO 6336-3 from the material)")
+    root_surface_factor: StrengthFactor | None = Field(
+        None, description="Y_RrelT (default: ISO 6336-3 from the root roughness)")
+    root_size_factor: StrengthFactor | None = Field(
+        None, description="Y_X (default: ISO 6336-3 from the module)")
+    accuracy_grade: Annotated[int, Field(ge=1, le=11)] | None = Field(
+        None, description="ISO 1328-1:2013 flank tolerance class 1-11 of both members: the "
+                          "pitch and profile deviations of K_v, K_Hα and K_Hβ's Method C "
+                          "(default: none, deviations taken as zero)")
     pinion_cycles: Annotated[float, Field(ge=1.0)] | None = Field(
-        None, description="load cycles of each pinion tooth, e.g. 1e9 (default: the "
-                          "endurance limit, Z_NT = Y_NT = 1)")
+        None, description="load cycles of each pinion tooth, e.g. 1e9 (default: from life "
+                          "and the speed, else the endurance limit, Z_NT = Y_NT = 1)")
+    life: quantity("time", positive=True) | None = Field(
+        None, description="required life at the case's speed, e.g. '20000 h': the load "
+                          "cycles N_L = 60·n·L_h")
     limited_pitting: bool = Field(False, description="some pitting accepted (ISO 6336-2 "
                                                      "Table 2's second steel line)")
     S_Hmin: Factor = Field(1.0, description="least contact safety factor")
     S_Fmin: Factor = Field(1.0, description="least root safety factor")
+    flank_pressure_limit: Modulus | None = Field(
+        None, description="a limit on the loaded contact's largest flank pressure, checked "
+                          "beside ISO's S_H (off by default)")
+
+    @model_validator(mode="after")
+    def _cycles_once(self):
+        if self.pinion_cycles is not None and self.life is not None:
+            raise ValueError("pinion_cycles / life: give the load cycles or the life, not both")
+        return self
 
 
 #: a flank's arithmetic mean roughness Ra (mm), given with [operation]
@@ -652,6 +765,10 @@ class Member(Model):
     end_chamfer: EndChamferSpec | None = None
     shaft: ShaftSpec | None = None
     roughness_Ra: Roughness | None = ROUGHNESS_FIELD
+    root_roughness_Rz: Roughness | None = Field(
+        None, description="the tooth root's mean peak-to-valley roughness Rz, e.g. '10 um' "
+                          "(ISO 6336-3's Y_RrelT; default: Y_RrelT = 1, the reference test "
+                          "gear's Rz of about 10 um)")
 
     @model_validator(mode="after")
     def _one_measurement(self):
@@ -808,6 +925,9 @@ class SpurCase(GearPairGeometry):
         lubricated_pair(self, {"pinion": (self.pinion, self.material),
                                "gear": (self.gear, self.gear_material or self.material)},
                         friction_needed=False)
+        if self.rating.life is not None and self.operation is None:
+            raise ValueError("rating.life: the load cycles follow from the life and the "
+                             "speed: give [operation] pinion_speed, or rating.pinion_cycles")
         return self
 
     @model_validator(mode="after")

@@ -847,7 +847,7 @@ def figures_for(result: dict, out_dir: str | Path) -> list[Path]:
 #: tornado's and the response curves'), with their axis labels
 SWEEP_FIGURES = {
     "bem_max_p_max_MPa": "largest loaded pressure (MPa)",
-    "max_flank_p_max_MPa": "largest active-flank pressure (MPa)",
+    "flank_pressure_max_MPa": "largest active-flank pressure (MPa)",
     "max_p_max_MPa": "largest Hertz pressure (MPa)",
     "max_edge_pressure_MPa": "largest edge pressure (MPa)",
     "loaded_transmission_error_peak_to_peak_um": "loaded TE peak to peak (µm)",

@@ -30,7 +30,7 @@ LABELS = {
     "roll_deg": "pinion roll", "pair": "tooth pair", "p_max_MPa": "Hertz peak pressure",
     "max_p_max_MPa": "largest Hertz pressure (equal split)",
     "bem_max_p_max_MPa": "largest loaded pressure", "bem_p_max_MPa": "loaded peak pressure",
-    "max_flank_p_max_MPa": "largest loaded pressure on the active flank",
+    "flank_pressure_max_MPa": "largest loaded pressure on the active flank",
     "flank_p_max_MPa": "active-flank peak pressure",
     "bem_load_N": "loaded share", "bem_area_mm2": "loaded contact area",
     "bem_approach_mm": "loaded approach", "bem_status": "loaded solution",
@@ -67,7 +67,9 @@ LABELS = {
     "load_share": "share of the position's load",
     "te_harmonics_um": "loaded TE harmonics (mesh orders 1, 2, ...)",
     "unloaded_te_harmonics_um": "unloaded TE harmonics (mesh orders 1, 2, ...)",
-    "sigma_H_MPa": "contact stress σ_H (with K_A·K_v)",
+    "sigma_H_MPa": "contact stress σ_H (ISO 6336-2)",
+    "flank_pressure_at": "largest loaded flank pressure at",
+    "flank_pressure_to_sigma_H": "largest loaded flank pressure over ISO's σ_H",
     "subsurface_shear_depth_mm": "its depth",
     "sliding_velocity_m_per_s": "sliding speed |v1 − v2|",
     "sum_velocity_m_per_s": "sum speed |v1 + v2|",
@@ -91,9 +93,8 @@ LABELS = {
     "I": "AGMA geometry factor I", "Cp_sqrt_MPa": "elastic coefficient Cp",
     "K_D_mm": "K_D", "rho1_mm": "profile radius rho1", "rho2_mm": "profile radius rho2",
     "rho1_lpstc_mm": "pinion profile radius at the LPSTC",
-    "K_H_beta": "face load factor K_Hβ (over the mesh cycle)",
+    "K_H_beta": "face load factor K_Hβ of the loaded contact (ISO 6336-1 Method A)",
     "K_H_beta_instantaneous": "K_Hβ at the worst instant",
-    "iso_K_H_beta_linear": "K_Hβ by ISO 6336-1 (the slope alone)",
     "mesh_stiffness_N_per_mm_um": "mesh stiffness c_γα",
     "iso_mesh_stiffness_N_per_mm_um": "mesh stiffness c_γα by ISO 6336-1",
     "single_stiffness_N_per_mm_um": "single-pair stiffness c'",
@@ -259,8 +260,13 @@ def view(document: dict) -> ReportView:
     for key in ("load_sharing", "transmission_error_note", "edge_pressure_note"):
         if summary.get(key):
             tool.append(summary[key])
-    tables = [t for key, value in document.items() if key not in META | CHARTS
-              for t in _tables(key, value, document["kind"])]
+    rating = document.get("rating") if isinstance(document.get("rating"), dict) else {}
+    rated = {f["key"] for f in rating.get("figures", [])}
+    tables = [t for key, value in document.items() if key not in META | CHARTS | {"rating"}
+              for t in _tables(key, {k: v for k, v in value.items() if k not in rated}
+                               if key == "summary" else value, document["kind"])]
+    if rating:
+        tables.insert(0, rating_table(rating))
     stages = [(name, stage.get("reason", "")) for name, stage in
               (document.get("stages") or {}).items() if stage.get("status") == "failed"]
     return ReportView(
@@ -270,7 +276,8 @@ def view(document: dict) -> ReportView:
         key_results=key_results(document),
         design_checks=[c for c in checks if c.kind == "design"],
         other_checks=[c for c in checks if c.kind != "design"],
-        assumptions=[str(a) for a in document.get("assumptions") or []], tool_notes=tool,
+        assumptions=[str(a) for a in document.get("assumptions") or []]
+        + [f"rating: {a}" for a in rating.get("assumptions", [])], tool_notes=tool,
         inputs="\n".join(toml_lines(document.get("inputs") or {})), tables=tables,
         stages=stages, provenance=provenance(document))
 
@@ -286,6 +293,16 @@ def provenance(document: dict) -> list[tuple[str, str]]:
     given = document.get("provenance") or {}
     return ([("toothcontact", str(document.get("toothcontact_version", "")))]
             + [(name, str(given[key])) for name, key in PROVENANCE if given.get(key)])
+
+
+def rating_table(rating: dict) -> Table:
+    """ISO 6336's rating as one table: each figure's symbol, value and source, the factors
+    the case gave named so."""
+    rows = [[f["symbol"], number(f["value"]), f["source"]] for f in rating["figures"]]
+    given = rating.get("factors_given") or []
+    return Table("ISO 6336 rating", ["figure", "value", "source"], rows, [False, True, False],
+                 note=rating.get("note", "") + ("; given in the case: " + ", ".join(given)
+                                                 if given else ""))
 
 
 def _is_note(key: str) -> bool:
@@ -333,17 +350,17 @@ def key_results(document: dict) -> list[KeyResult]:
         driven = "wheel" if document["kind"] == "worm" else "gear"
         out += _contact_figures(summary, document.get("positions") or [], driven)
     if summary and summary.get("K_H_beta") is not None:
-        out.append(KeyResult("face load factor K_Hβ", number(summary["K_H_beta"]),
-                             "largest line load over the mean W/b over the cycle"
-                             + (f"; ISO 6336-1 for the slope alone "
-                                f"{number(summary['iso_K_H_beta_linear'])}"
-                                if summary.get("iso_K_H_beta_linear") is not None else "")))
+        out.append(KeyResult("face load factor K_Hβ (loaded contact)", number(summary["K_H_beta"]),
+                             "ISO 6336-1 Method A: the cycle's largest over mean line load; "
+                             f"worst instant {number(summary.get('K_H_beta_instantaneous'))}"
+                             + (f"; ISO's Method C {number(summary['K_H_beta_iso_C'])}"
+                                if summary.get("K_H_beta_iso_C") is not None else "")))
     if summary and summary.get("mesh_stiffness_N_per_mm_um") is not None:
         out.append(KeyResult("mesh stiffness c_γα", f"{number(summary['mesh_stiffness_N_per_mm_um'])}"
-                             " N/(mm·µm)", f"ISO 6336-1 {number(summary['iso_mesh_stiffness_N_per_mm_um'])}"
+                             " N/(mm·µm)", f"ISO 6336-1 {number(summary.get('iso_mesh_stiffness_N_per_mm_um'))}"
                              + (f"; single pair {number(summary['single_stiffness_N_per_mm_um'])}"
                                 if summary.get("single_stiffness_N_per_mm_um") is not None else "")
-                             + f"; ISO c' {number(summary['iso_single_stiffness_N_per_mm_um'])}"))
+                             + f"; ISO c' {number(summary.get('iso_single_stiffness_N_per_mm_um'))}"))
     mesh = document.get("mesh") or {}
     if "normal_backlash_mm" in mesh:
         out.append(KeyResult("normal backlash", f"{number(mesh['normal_backlash_mm'] * 1e3)} µm",
@@ -444,16 +461,7 @@ def _contact_figures(summary: dict, rows: list[dict], driven: str) -> list[KeyRe
                 f"{number(summary[f'{name}_root_stress_max_MPa'])} MPa",
                 f"at {summary[f'{name}_root_stress_at']} (ISO 6336-3's section and Y_S, "
                 "each contact's own line load)"))
-    if "S_H" in summary:
-        shown = {"S_H": ("contact safety S_H", "σ_Hlim given"),
-                 "S_F_pinion": ("root safety S_F (pinion)", "σ_Flim given"),
-                 "S_F_gear": ("root safety S_F (gear)", "σ_Flim given")}
-        for key, (label_, needs) in shown.items():
-            value = summary.get(key)
-            out.append(KeyResult(label_, "—" if value is None else number(value),
-                                 f"not computed: no {needs}" if value is None else
-                                 "against ISO 6336's allowable with the life factors",
-                                 value is not None and value < 1.0))
+    out.extend(_rating_results(summary))
     sums = {k: v for k, v in summary.items() if k.startswith("miner_sum_") and v is not None}
     if sums:
         worst = max(sums, key=sums.get)
@@ -484,6 +492,41 @@ def _contact_figures(summary: dict, rows: list[dict], driven: str) -> list[KeyRe
             f"({check['bem_max_p_max_change_percent']:+.1f} %)",
             f"{check['doubled_positions']} positions: the case's {check['positions']} and one "
             "midway between each two", not check["converged"]))
+    return out
+
+
+def _rating_results(summary: dict) -> list[KeyResult]:
+    """ISO 6336's safety factors, and the loaded contact's largest flank pressure beside ISO's
+    σ_H, where the case was rated."""
+    if "sigma_H0_MPa" not in summary:
+        return []
+    out = []
+    S_H = summary.get("S_H")
+    permissible = " / ".join(number(summary[f"sigma_HP_{m}_MPa"]) for m in ("pinion", "gear")
+                             if summary.get(f"sigma_HP_{m}_MPa") is not None)
+    out.append(KeyResult("contact safety S_H (ISO 6336-2)", "—" if S_H is None else number(S_H),
+                         "not computed: no σ_Hlim, nor hardness and quality" if S_H is None else
+                         f"σ_H {number(summary['sigma_H_MPa'])} MPa (σ_H0 "
+                         f"{number(summary['sigma_H0_MPa'])}, K_Hβ "
+                         f"{number(summary['K_H_beta_rating'])}) against σ_HP {permissible} MPa",
+                         S_H is not None and S_H < 1.0))
+    for name in ("pinion", "gear"):
+        S_F, stress = summary.get(f"S_F_{name}"), summary.get(f"sigma_F_{name}_MPa")
+        if stress is None:
+            continue
+        out.append(KeyResult(f"root safety S_F of the {name} (ISO 6336-3)",
+                             "—" if S_F is None else number(S_F),
+                             f"σ_F {number(stress)} MPa"
+                             + ("; not computed: no σ_Flim, nor hardness and quality"
+                                if S_F is None else
+                                f" against σ_FP {number(summary[f'sigma_FP_{name}_MPa'])} MPa"),
+                             S_F is not None and S_F < 1.0))
+    if summary.get("flank_pressure_max_MPa") is not None:
+        ratio = summary.get("flank_pressure_to_sigma_H")
+        out.append(KeyResult("largest loaded flank pressure (local)",
+                             f"{number(summary['flank_pressure_max_MPa'])} MPa",
+                             f"at {summary.get('flank_pressure_at')}"
+                             + (f"; {number(ratio)} × ISO's σ_H" if ratio else "")))
     return out
 
 

@@ -4,8 +4,8 @@ Case files carry quantities as text with units ("1.44 in", "3600 lbf", "-50 degC
 module is the only place that knows about units: it turns such text into a float in the
 core unit of its kind, and says clearly when the text is not a quantity of that kind.
 
-Core units: mm, N, MPa, N*mm, N/mm, rad, 1/mm, mm^2/s, degC, rpm, kg/m^3, 1/MPa,
-W·s^0.5/(m²·K).
+Core units: mm, N, MPa, N*mm, N/mm, rad, 1/mm, mm^2/s, degC, rpm, kg/m^3, 1/MPa, h,
+W·s^0.5/(m²·K). Hardness is a number on a named scale (HV, HBW, HRC): parse_hardness.
 """
 
 from __future__ import annotations
@@ -59,6 +59,7 @@ KINDS: dict[str, Kind] = {
              largest=1e5, smallest=1e-3),
         Kind("pressure_viscosity", "1/MPa", "1/[pressure]", "'1.8e-8 1/Pa' or '18 1/GPa'",
              largest=1.0, smallest=1e-6),
+        Kind("time", "hour", "[time]", "'20000 h' or '2.3 year'", largest=1e7, smallest=1e-6),
         Kind("thermal_contact_coefficient", "W*s**0.5/(m**2*K)",
              "[mass]/[time]**2.5/[temperature]", "'12.7 kW*s^0.5/(m^2*K)'", largest=1e6,
              smallest=1.0),
@@ -125,6 +126,28 @@ def parse(text: str | float | int, kind: str) -> float:
         raise UnitError(f"{text!r} does not say what turns: give rpm, revolution/second or "
                         "rad/s (Hz and 1/s could mean either turns or radians)")
     return float(ureg.Quantity(magnitude, unit).to(spec.core_unit).magnitude)
+
+
+#: the hardness scales a case may name, and what each is
+HARDNESS_SCALES = {"HV": "Vickers", "HBW": "Brinell", "HRC": "Rockwell C"}
+_HARDNESS = re.compile(r"^\s*(\d+\.?\d*|\.\d+)\s*([A-Za-z]+)\s*$")
+
+
+def parse_hardness(text, scales: tuple[str, ...] = ("HV", "HBW")) -> tuple[float, str]:
+    """A hardness as (number, scale), e.g. '650 HV' -> (650.0, 'HV'), on one of `scales`
+    (HARDNESS_SCALES' keys; a bare number or another scale is refused: scales do not
+    convert into each other exactly)."""
+    allowed = " or ".join(f"{s} ({HARDNESS_SCALES[s]})" for s in scales)
+    match = _HARDNESS.match(text) if isinstance(text, str) else None
+    if not match:
+        raise UnitError(f"{text!r} is not a hardness; expected a number and its scale, "
+                        f"{allowed}, e.g. '{'650' if scales[0] == 'HV' else '32'} {scales[0]}'")
+    value, scale = float(match.group(1)), match.group(2).upper()
+    if scale not in scales:
+        raise UnitError(f"{text!r}: the scale {match.group(2)!r} is not {allowed}")
+    if not value > 0:
+        raise UnitError(f"{text!r} must be greater than zero")
+    return value, scale
 
 
 def show(value: float, kind: str) -> str:

@@ -212,7 +212,7 @@ def loaded_sections(cycle, C_E: float, grid: int, teeth, bending: str,
     worst = next(r for r in candidates if r["edge_pressure_MPa"] >= (1 - 1e-3) * highest)
     summary.update(
         bem_max_p_max_MPa=max(r["bem_p_max_MPa"] for r in answered),
-        max_flank_p_max_MPa=max(r["flank_p_max_MPa"] for r in answered),
+        flank_pressure_max_MPa=max(r["flank_p_max_MPa"] for r in answered),
         max_edge_pressure_MPa=max(r["edge_pressure_MPa"] for r in answered),
         max_edge_load_fraction=max(r["edge_load_fraction"] for r in answered),
         edge_loaded_contacts=len(edged),

@@ -1,7 +1,7 @@
 """What a cylindrical gear pair's loaded contact decides: the tooth root stress of every
-contact (rating.root, from its line load along the face and its height) and the safety
-factors against the materials' allowable stress numbers (ISO 6336-2 and -3, the life
-factors of rating.life)."""
+contact (rating.root, from its line load along the face and its height), ISO 6336's pitting
+and bending ratings with the loaded contact's face load factor (rating.iso6336), and a duty
+cycle's damage sums."""
 
 from __future__ import annotations
 
@@ -16,8 +16,6 @@ ROOT_STRIPS = 40
 #: what a duty cycle's level reports of its lubricated contact (None without [operation])
 LUBRICATED_LEVEL_KEYS = ("lambda_min", "flash_temperature_max_K", "contact_temperature_max_degC",
                          "mesh_power_loss_W", "mesh_efficiency")
-#: ISO 6336-3's stress correction factor of the reference test gear (σ_FE = σ_Flim·Y_ST)
-Y_ST = 2.0
 
 
 def root_sections(case, pair, result: Result) -> None:
@@ -79,105 +77,205 @@ def _largest_root_stress(contact, member: int, gear, model) -> float:
     return float(model.stress(line_load[on], moment[on] / line_load[on]).max())
 
 
-def safety_sections(case, pair, result: Result) -> None:
-    """S_H (the least of the members'), S_H_pinion, S_H_gear, S_F_pinion and S_F_gear in
-    the summary, with the permissible stresses and life factors; None with the reason in
-    safety_note where a member's allowable is not given; a design check of each against
-    its least (case.rating)."""
-    from ..rating.life import contact_life_factor, root_life_factor
+#: a gear's density where its material gives none (kg/m³): steel's, a cast iron's
+DENSITY = {"steel": 7830.0, "cast_iron": 7200.0}
+
+
+def rated_pair(case, pair):
+    """The pair as ISO 6336 rates it (rating.iso6336.RatedPair) and the assumptions made to
+    build it (densities not given); raises CaseError naming the field where a material's
+    hardness has no ISO 6336-5 row."""
+    from ..case import CAST_IRONS, CaseError
+    from ..rating.iso6336 import RatedMember, RatedPair
+
+    assumptions, members = [], {}
+    cycles = _pinion_cycles(case)
+    for name, gear, field in (("pinion", pair.pinion, "material"),
+                              ("gear", pair.gear, "gear_material" if case.gear_material
+                               else "material")):
+        material = getattr(case, field)
+        try:
+            allowables = {stress: _allowable(material, stress) for stress in ("contact", "bending")}
+        except ValueError as exc:
+            raise CaseError(f"{field}.{exc}") from None
+        density = material.density
+        if density is None:
+            kind = "cast_iron" if material.treatment in CAST_IRONS else "steel"
+            density = DENSITY[kind]
+            assumptions.append(f"{name}'s density {density:g} kg/m³ ({kind.replace('_', ' ')}"
+                               f"; the dynamic factor's masses)")
+        spec = getattr(case, name)
+        members[name] = RatedMember(
+            gear, material.E, material.nu, density * 1e-9, material.treatment,
+            allowables["contact"], allowables["bending"],
+            None if spec.roughness_Ra is None else 1e3 * spec.roughness_Ra,
+            None if spec.root_roughness_Rz is None else 1e3 * spec.root_roughness_Rz,
+            material.yield_strength,
+            0.0 if spec.tip_relief is None else 1e3 * spec.tip_relief.amount,
+            None if cycles is None else cycles * (1.0 if name == "pinion"
+                                                  else pair.pinion.teeth / pair.gear.teeth))
+    return RatedPair(members["pinion"], members["gear"], pair.center_distance,
+                     pair.working_pressure_angle, pair.transverse_mesh().contact_ratio
+                     ), assumptions
+
+
+def _allowable(material, stress: str):
+    """A material's σ_Hlim ("contact") or σ_Flim ("bending"): given, from its hardness and
+    quality by ISO 6336-5 Table 1, or None."""
+    from ..rating.allowables import allowable
+    from ..rating.iso6336 import Allowable
+
+    given = material.sigma_Hlim if stress == "contact" else material.sigma_Flim
+    if given is not None:
+        return Allowable(given, "given")
+    if material.hardness is None:
+        return None
+    found = allowable(stress, material.treatment, *material.hardness, material.quality,
+                      cast=material.cast, alloy=material.alloy,
+                      core_hrc=None if material.core_hardness is None
+                      else material.core_hardness[0])
+    return Allowable(found.value, found.source)
+
+
+def _pinion_cycles(case) -> float | None:
+    """The pinion teeth's load cycles: given, or its life at the case's speed (60·n·L_h)."""
+    if case.rating.life is not None:
+        return 60.0 * case.operation.pinion_speed * case.rating.life
+    return case.rating.pinion_cycles
+
+
+def _duty(case, pair):
+    """ISO's view of how the pair runs (rating.iso6336.Duty): the pinion's torque and speed,
+    the oil, the accuracy grade, the mesh misalignment f_ma = |slope|·b and the deflection
+    f_sh, the largest less the least of the pinion's deflection over the face (the case's
+    and the shafts'), µm."""
+    from ..rating.iso6336 import Duty
+
+    width = min(pair.pinion.face_width, pair.gear.face_width)
+    torque = (case.load.torque if case.load.torque is not None
+              else case.load.tangential_load * pair.operating_pitch_radius)
+    deflection = 0.0
+    if pair.pinion_deflection is not None:
+        drop = pair.pinion_deflection.drop(np.linspace(-0.5 * width, 0.5 * width, 41), width)
+        deflection = 1e3 * float(np.ptp(drop))
+    r = case.rating
+    return Duty(torque, None if case.operation is None else case.operation.pinion_speed,
+                None if case.lubricant is None else case.lubricant.viscosity_40,
+                r.accuracy_grade, 1e3 * abs(case.misalignment.slope) * width, deflection,
+                r.limited_pitting, r.S_Hmin, r.S_Fmin)
+
+
+def _given_factors(rating) -> dict[str, float]:
+    """The factors a [rating] gives, by result key (case.GIVEN_FACTORS)."""
+    from ..case import GIVEN_FACTORS
+
+    return {GIVEN_FACTORS[name][0]: getattr(rating, name) for name in GIVEN_FACTORS
+            if name in rating.model_fields_set and getattr(rating, name) is not None}
+
+
+def iso_rating_sections(case, pair, result: Result) -> None:
+    """ISO 6336's ratings of the pair (rating.iso6336, Method B with the loaded contact's
+    K_Hβ, Method A) into the summary, every factor a key; the `rating` section (each
+    figure's symbol, value and source, the factors given, the assumptions); the loaded
+    contact's largest flank pressure beside ISO's σ_H; a design check of S_H and of each
+    S_F against their least, and of the flank pressure against flank_pressure_limit where
+    given."""
+    from ..case import GIVEN_FACTORS
+    from ..rating.iso6336 import ContactFigures, rate
 
     summary = result.sections["summary"]
-    solved = [r for r in result.sections.get("positions", []) if r.get("bem_status") == "solved"]
-    if not solved:
-        return
-    # σ_H: the largest active-flank pressure (flank_p_max leaves out the strips at the
-    # edges and the tip roundings, whose pressure has its own check) of every contact: an
-    # edge-loaded one's flank carries its load too (leaving those out judged an unrelieved
-    # helical pair, its every loaded contact on a gear tip's corner, by a 39 MPa contact)
-    top = max(solved, key=lambda r: r["flank_p_max_MPa"])
-    rating = case.rating
-    load_factor = rating.application_factor * rating.dynamic_factor
-    z1, z2 = case.teeth
-    cycles = {"pinion": rating.pinion_cycles,
-              "gear": None if rating.pinion_cycles is None
-              else rating.pinion_cycles * z1 / abs(z2)}
-    materials = {"pinion": case.material, "gear": case.gear_material or case.material}
-    sigma_H = top["flank_p_max_MPa"] * math.sqrt(load_factor)
-    notes, contact = [], {}
-    for name, material in materials.items():
-        n = cycles[name]
-        if material.sigma_Hlim is None:
-            summary[f"S_H_{name}"] = None
-            notes.append(f"no sigma_Hlim for the {name}'s material: no S_H")
-        else:
-            Z_NT = 1.0 if n is None else contact_life_factor(material.treatment, n,
-                                                              rating.limited_pitting)
-            permissible = material.sigma_Hlim * Z_NT * rating.lubrication_factor
-            contact[name] = permissible / sigma_H
-            summary.update({f"Z_NT_{name}": Z_NT, f"sigma_HP_{name}_MPa": permissible,
-                            f"S_H_{name}": contact[name]})
-        stress = summary.get(f"{name}_root_stress_max_MPa")
-        if material.sigma_Flim is None or stress is None:
-            summary[f"S_F_{name}"] = None
-            notes.append(f"no sigma_Flim for the {name}'s material: no S_F" if stress is not None
-                         else f"no root stress for the {name}: no S_F")
-            continue
-        Y_NT = 1.0 if n is None else root_life_factor(material.treatment, n)
-        permissible = material.sigma_Flim * Y_ST * Y_NT
-        summary.update({f"Y_NT_{name}": Y_NT, f"sigma_FP_{name}_MPa": permissible,
-                        f"S_F_{name}": permissible / (stress * load_factor) if stress > 0
-                        else None})
-    summary["S_H"] = min(contact.values()) if contact else None
-    summary["sigma_H_MPa"] = sigma_H
-    summary["sigma_H_at"] = (f"roll {top['roll_deg']:.2f} deg pair {top['pair']}"
-                             + (", an edge-loaded contact" if top["edge_loaded"] else ""))
-    summary["safety_note"] = (
-        "S_H = σ_Hlim·Z_NT·(Z_L·Z_v·Z_R) / σ_H, σ_H the largest loaded pressure on the active "
-        "flank, more than 0.1 mm inside its edges and off the tip roundings (an edge's "
-        "pressure has its own check), times "
-        "sqrt(K_A·K_v) (ISO 6336-2; Z_W = Z_X = 1); S_F = σ_Flim·Y_ST·Y_NT / "
-        "(σ_F·K_A·K_v), σ_F the largest root stress (ISO 6336-3; Y_ST = 2, Y_δrelT = Y_RrelT = "
-        "Y_X = 1); life factors for "
-        + ("the endurance limit (no load cycles given)" if cycles["pinion"] is None else
-           f"{cycles['pinion']:.3g} pinion and {cycles['gear']:.3g} gear load cycles")
-        + (f"; K_A·K_v = {load_factor:g}" if load_factor != 1.0 else "")
-        + ("; " + "; ".join(notes) if notes else ""))
-    if contact:
+    loaded = summary.get("K_H_beta") is not None
+    iso_pair, assumptions = rated_pair(case, pair)
+    given = _given_factors(case.rating)
+    rating = rate(iso_pair, _duty(case, pair), given, ContactFigures(
+        summary.get("K_H_beta"), summary.get("mesh_stiffness_N_per_mm_um")) if loaded
+        else ContactFigures())
+    rules = case.rating
+    assumptions = list(assumptions) + list(rating.assumptions)
+    for name, least in (("S_Hmin", rules.S_Hmin), ("S_Fmin", rules.S_Fmin)):
+        if name not in rules.model_fields_set:
+            assumptions.append(f"{name} = {least:g} (not given)")
+    symbols = {key: symbol for key, symbol in GIVEN_FACTORS.values()}
+    summary.update(rating.values())
+    summary["rating_factors_given"] = [symbols[key] for key in given]
+    _flank_pressure(summary, result)
+    result.sections["rating"] = {
+        "figures": [{"key": f.key, "symbol": f.symbol, "value": f.value, "source": f.source}
+                    for f in rating.figures],
+        "factors_given": summary["rating_factors_given"], "assumptions": assumptions,
+        "note": "ISO 6336-1/-2/-3:2006 Method B with ISO 6336-5's allowables; K_Hβ the "
+                "loaded contact's (ISO 6336-1 Method A) where it was solved, K_Hα ISO's "
+                "Method B on the loaded contact's mesh stiffness (its flanks are evenly "
+                "spaced: the pitch deviation K_Hα stands for comes from accuracy_grade); "
+                "the loaded contact's own largest flank pressure (flank_pressure_max_MPa) "
+                "and root stresses (*_root_stress_max_MPa) are local figures beside them, "
+                "not ISO's σ_H and σ_F"}
+    if summary.get("S_H") is not None:
         result.checks.append(Check(
-            "contact safety S_H at least S_Hmin", summary["S_H"] >= rating.S_Hmin,
-            f"S_H {summary['S_H']:.3f} (σ_H {sigma_H:.0f} MPa against σ_HP "
-            + " / ".join(f"{summary[f'sigma_HP_{m}_MPa']:.0f}" for m in contact)
-            + f" MPa), least {rating.S_Hmin:g}"))
-    for name in materials:
+            "contact safety S_H at least S_Hmin", summary["S_H"] >= rules.S_Hmin,
+            f"S_H {summary['S_H']:.3f} (ISO 6336-2: σ_H {summary['sigma_H_MPa']:.0f} MPa "
+            "against σ_HP " + " / ".join(
+                f"{summary[f'sigma_HP_{m}_MPa']:.0f}" for m in ("pinion", "gear")
+                if summary.get(f"sigma_HP_{m}_MPa") is not None)
+            + f" MPa), least {rules.S_Hmin:g}"))
+    for name in ("pinion", "gear"):
         S_F = summary.get(f"S_F_{name}")
         if S_F is not None:
             result.checks.append(Check(
-                f"root safety S_F of the {name} at least S_Fmin", S_F >= rating.S_Fmin,
-                f"S_F {S_F:.3f} (σ_F {summary[f'{name}_root_stress_max_MPa']:.0f} MPa at "
-                f"{summary[f'{name}_root_stress_at']}, σ_FP "
-                f"{summary[f'sigma_FP_{name}_MPa']:.0f} MPa), least {rating.S_Fmin:g}"))
+                f"root safety S_F of the {name} at least S_Fmin", S_F >= rules.S_Fmin,
+                f"S_F {S_F:.3f} (ISO 6336-3: σ_F {summary[f'sigma_F_{name}_MPa']:.0f} MPa, "
+                f"σ_FP {summary[f'sigma_FP_{name}_MPa']:.0f} MPa), least {rules.S_Fmin:g}"))
+    limit = rules.flank_pressure_limit
+    if limit is not None and summary.get("flank_pressure_max_MPa") is not None:
+        result.checks.append(Check(
+            "loaded flank pressure at most the given limit",
+            summary["flank_pressure_max_MPa"] <= limit,
+            f"{summary['flank_pressure_max_MPa']:.0f} MPa at {summary['flank_pressure_at']}, "
+            f"limit {limit:.0f} MPa (rating.flank_pressure_limit; a local figure, not ISO's "
+            "S_H)"))
+
+
+def _flank_pressure(summary: dict, result: Result) -> None:
+    """Where the loaded contact's largest flank pressure is (flank_pressure_at) and its ratio
+    to ISO's σ_H (flank_pressure_to_sigma_H)."""
+    rows = [r for r in result.sections.get("positions", []) if r.get("bem_status") == "solved"]
+    if not rows:
+        summary.update(flank_pressure_at=None, flank_pressure_to_sigma_H=None)
+        return
+    top = max(rows, key=lambda r: r["flank_p_max_MPa"])
+    summary["flank_pressure_at"] = (f"roll {top['roll_deg']:.2f} deg pair {top['pair']}"
+                                    + (", an edge-loaded contact" if top["edge_loaded"] else ""))
+    sigma_H = summary.get("sigma_H_MPa")
+    summary["flank_pressure_to_sigma_H"] = (summary["flank_pressure_max_MPa"] / sigma_H
+                                            if sigma_H else None)
 
 
 def duty_cycle_sections(case, result: Result, run_level) -> None:
     """A `[[load.spectrum]]`'s levels, each analysed (`run_level(level_case, scratch)` runs
     the contact, the loaded contact and the ratings into a scratch Result; no positions
     check, no subsurface stresses): the `duty_cycle` section with each level's load, cycles,
-    σ_H, root stresses and transmission error (peak to peak and harmonics), and Miner's sums
-    D = Σ n_i/N_i of the flanks and the roots against the S-N curves of the life factors
-    (ISO 6336-6: Z_NT's and Y_NT's lines, continued past 10¹⁰ cycles with their last slope:
-    Miner's elementary rule); the summary's `miner_sum_*` and a design check each (D <= 1)."""
+    ISO's σ_H and σ_F (with the level's own K_v, K_Hβ, K_Hα), the loaded contact's local
+    pressures and root stresses and its transmission error (peak to peak and harmonics), and
+    Miner's sums D = Σ n_i/N_i of the flanks and the roots against the S-N curves of the
+    life factors (ISO 6336-6: Z_NT's and Y_NT's lines, continued past 10¹⁰ cycles with their
+    last slope: Miner's elementary rule); the summary's `miner_sum_*` and a design check
+    each (D <= 1)."""
     from ..case import LoadSpec
     from ..rating.life import contact_cycles, root_cycles
 
     levels = case.load.spectrum
     if not levels:
         return
-    rating = case.rating
-    load_factor = rating.application_factor * rating.dynamic_factor
     quiet = case.analysis.model_copy(update={"positions_check": False, "subsurface": False,
                                              "ease_off": False})
     z1, z2 = case.teeth
     materials = {"pinion": case.material, "gear": case.gear_material or case.material}
+    level_keys = ("sigma_H_MPa", "sigma_H_pinion_MPa", "sigma_H_gear_MPa",
+                  "sigma_F_pinion_MPa", "sigma_F_gear_MPa", "K_v", "K_H_beta_rating",
+                  "flank_pressure_max_MPa", "pinion_root_stress_max_MPa",
+                  "gear_root_stress_max_MPa", "bem_max_p_max_MPa",
+                  "loaded_transmission_error_peak_to_peak_um", "te_harmonics_um",
+                  *LUBRICATED_LEVEL_KEYS)
     rows = []
     for level in levels:
         scratch = Result()
@@ -187,33 +285,31 @@ def duty_cycle_sections(case, result: Result, run_level) -> None:
             "analysis": quiet}), scratch)
         s = scratch.sections["summary"]
         rows.append({"tangential_load_N": s["tangential_load_N"], "pinion_cycles": level.cycles,
-                     "sigma_H_MPa": s.get("sigma_H_MPa"),
-                     "pinion_root_stress_max_MPa": s.get("pinion_root_stress_max_MPa"),
-                     "gear_root_stress_max_MPa": s.get("gear_root_stress_max_MPa"),
-                     "bem_max_p_max_MPa": s.get("bem_max_p_max_MPa"),
-                     "loaded_transmission_error_peak_to_peak_um":
-                         s.get("loaded_transmission_error_peak_to_peak_um"),
-                     "te_harmonics_um": s.get("te_harmonics_um"),
-                     **{key: s.get(key) for key in LUBRICATED_LEVEL_KEYS}})
+                     **{key: s.get(key) for key in level_keys}})
     section = {"levels": rows}
     summary = result.sections["summary"]
+
+    def product(*keys: str) -> float | None:
+        values = [summary.get(key) for key in keys]
+        return None if None in values else math.prod(values)
+
     for name, material in materials.items():
         share = 1.0 if name == "pinion" else z1 / abs(z2)
-        for kind, allowable, stress_key, cycles_of in (
-                ("flank", material.sigma_Hlim, "sigma_H_MPa",
-                 lambda f: contact_cycles(material.treatment, f, rating.limited_pitting)),
-                ("root", None if material.sigma_Flim is None else Y_ST * material.sigma_Flim,
-                 f"{name}_root_stress_max_MPa",
-                 lambda f: root_cycles(material.treatment, f))):
+        strengths = {
+            "flank": (f"sigma_H_{name}_MPa", product(f"sigma_Hlim_{name}_MPa", "Z_L", "Z_v",
+                                                     "Z_R", "Z_W", "Z_X"),
+                      lambda f: contact_cycles(material.treatment, f,
+                                               case.rating.limited_pitting)),
+            "root": (f"sigma_F_{name}_MPa", product(f"sigma_Flim_{name}_MPa", "Y_ST",
+                                                    f"Y_delta_rel_T_{name}",
+                                                    f"Y_R_rel_T_{name}", f"Y_X_{name}"),
+                     lambda f: root_cycles(material.treatment, f))}
+        for kind, (stress_key, strength, cycles_of) in strengths.items():
             key = f"miner_sum_{kind}_{name}"
-            if allowable is None or any(r[stress_key] is None for r in rows):
+            if strength is None or any(r[stress_key] is None for r in rows):
                 summary[key] = None
                 continue
-            scale = math.sqrt(load_factor) if kind == "flank" else load_factor
-            damage = sum(r["pinion_cycles"] * share
-                         / cycles_of(r[stress_key] * scale
-                                     / (allowable * (rating.lubrication_factor
-                                                     if kind == "flank" else 1.0)))
+            damage = sum(r["pinion_cycles"] * share / cycles_of(r[stress_key] / strength)
                          for r in rows)
             summary[key] = damage
             result.checks.append(Check(
@@ -222,8 +318,9 @@ def duty_cycle_sections(case, result: Result, run_level) -> None:
     section["note"] = (
         "each level analysed as the case at that load (no positions check, no subsurface "
         "stresses); miner_sum_* = Σ n_i/N_i, n_i the level's load cycles of the member "
-        "(the gear's by the ratio), N_i where the S-N curve of ISO 6336-6 (σ_Hlim·Z_NT·Z_L·Z_v·"
-        "Z_R, resp. σ_Flim·Y_ST·Y_NT, over N) meets the level's σ_H·sqrt(K_A·K_v), resp. "
-        "σ_F·K_A·K_v; past 10¹⁰ cycles the curves go on with their last slope (Miner's "
-        "elementary rule), above the static strength N_i is the static limit's cycles")
+        "(the gear's by the ratio), N_i where the S-N curve of ISO 6336-6 (σ_Hlim·Z_NT·Z_L·"
+        "Z_v·Z_R·Z_W·Z_X, resp. σ_Flim·Y_ST·Y_NT·Y_δrelT·Y_RrelT·Y_X, over N) meets the "
+        "level's ISO σ_H, resp. σ_F; past 10¹⁰ cycles the curves go on with their last slope "
+        "(Miner's elementary rule), above the static strength N_i is the static limit's "
+        "cycles")
     result.sections["duty_cycle"] = section

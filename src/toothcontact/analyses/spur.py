@@ -11,7 +11,7 @@ import numpy as np
 
 from .. import case as schema
 from ..analytic import hertz
-from ..analytic.stiffness import face_load_factor, mesh_stiffness, single_stiffness
+from ..analytic.stiffness import single_stiffness
 from ..case import CaseError
 from . import contact, lubrication, rating
 from .result import Check, Result
@@ -98,6 +98,7 @@ def spur_geometry_case(case: schema.SpurCase) -> Result:
                                min(clearance.values()) >= 0.0,
                                ", ".join(f"{name} tip {c:.3f} mm" for name, c in clearance.items())))
     if case.load is not None:
+        rating.rated_pair(case, pair)      # a material without ISO 6336-5 row fails first
         _spur_contact(case, pair, result)
         rating.duty_cycle_sections(
             case, result, lambda level, scratch: _spur_contact(level, gearset.gear_pair(level),
@@ -144,7 +145,7 @@ def _spur_contact(case: schema.SpurCase, pair, result: Result) -> None:
     contact.subsurface_sections(result, case.analysis.subsurface,
                                 (case.material.nu, gear_material.nu))
     rating.root_sections(case, pair, result)
-    rating.safety_sections(case, pair, result)
+    rating.iso_rating_sections(case, pair, result)
     if case.operation is not None:
         lubrication.lubrication_sections(case, lubrication.spur_running(case, pair), mesh,
                                          result)
@@ -196,7 +197,7 @@ def _contact_pass(case: schema.SpurCase, pair, result: Result):
     mesh, cycle = _loaded_pass(case, pair, result)
     if pair.shafts:
         _shaft_sections(pair, result)
-    _load_distribution(case, pair, result)
+    _load_distribution(pair, result)
     if case.analysis.interference:
         _spur_interference(mesh, pair, cycle, result)
     return mesh
@@ -256,9 +257,10 @@ def _loaded_reach(pair, normal_load: float, E_pinion: float, E_gear: float) -> f
     F_n·cos²β_b/(b·c')."""
     from ..analytic.stiffness import E_STEEL
 
-    c = single_stiffness(pair.pinion.teeth, -pair.gear.teeth if pair.gear.internal
-                         else pair.gear.teeth, pair.pinion.profile_shift,
-                         pair.gear.profile_shift, pair.pinion.helix_angle)
+    p = pair.pinion
+    c = single_stiffness(p.teeth, -pair.gear.teeth if pair.gear.internal else pair.gear.teeth,
+                         p.profile_shift, pair.gear.profile_shift, p.helix_angle,
+                         p.pressure_angle, p.dedendum)
     c *= 2.0 * E_pinion * E_gear / (E_pinion + E_gear) / E_STEEL
     width = min(pair.pinion.face_width, pair.gear.face_width)
     approach_um = normal_load * math.cos(pair.pinion.base_helix_angle) ** 2 / (width * c)
@@ -379,24 +381,23 @@ def _pinion_side(frame, pinion, points: np.ndarray) -> np.ndarray:
 FACE_STRIPS = 20
 
 
-def _load_distribution(case: schema.SpurCase, pair, result: Result) -> None:
+def _load_distribution(pair, result: Result) -> None:
     """The mesh's load along the face from the loaded contacts (their line loads, all pairs
     of a position summed on one face grid of the pinion) and what follows from it, beside
     ISO 6336-1's figures for the same pair:
     - load_distribution: face_mm, and per position roll_deg, line_load_N_per_mm, K_H_beta
       (that position's largest line load over W/b), and mean_line_load_N_per_mm (the
       line load averaged over the mesh cycle's positions);
-    - summary: K_H_beta, ISO 6336-1's face load factor: the largest over the face of the
-      line load averaged over the mesh cycle, over the mean W/b (b the common face width);
-      the contact lines' sweep across the face within the cycle, which ISO assigns to
-      K_H_alpha, averages out; K_H_beta_instantaneous, the largest over the cycle of a
-      position's largest line load over W/b, beside it;
+    - summary: K_H_beta, ISO 6336-1's face load factor by Method A: the largest over the
+      face of the line load averaged over the mesh cycle, over the mean W/b (b the common
+      face width); the contact lines' sweep across the face within the cycle, which ISO
+      assigns to K_H_alpha, averages out; K_H_beta_instantaneous, the largest over the cycle
+      of a position's largest line load over W/b, beside it;
       mesh_stiffness_N_per_mm_um, the mean over the cycle of W/(D - s_min)/b·cos²β_b (D the
       position's loaded approach, s_min its least unloaded separation; the cos²β_b makes it
-      ISO's transverse force over transverse deflection), the model's counterpart of c_γα; single_stiffness_N_per_mm_um, the largest of it at positions
-      with one loaded pair (c'); the ISO values c' and c_γα (Method B) and ISO's K_H_beta
-      for the case's slope over the face with the model's stiffness (Method C, linear mesh
-      misalignment: no crown, no running-in) beside them.
+      ISO's transverse force over transverse deflection), the model's counterpart of c_γα;
+      single_stiffness_N_per_mm_um, the largest of it at positions with one loaded pair
+      (c'). ISO's c', c_γα and Method C's K_Hβ are the rating's (rating.iso6336).
     Nothing is added when no position was solved (or the loaded contact was not asked for)."""
     cycle, loaded = result.cycle, result.loaded
     if loaded is None:
@@ -448,29 +449,16 @@ def _load_distribution(case: schema.SpurCase, pair, result: Result) -> None:
                 "at each position; mean_line_load_N_per_mm their mean over the cycle; "
                 "mesh_stiffness_N_per_mm_um the position's secant mesh stiffness (see the "
                 "summary's stiffness_note)"}
-    summary = result.sections["summary"]
-    iso_single = single_stiffness(pair.pinion.teeth, -pair.gear.teeth if pair.gear.internal
-                                  else pair.gear.teeth, pair.pinion.profile_shift,
-                                  pair.gear.profile_shift, case.helix_angle)
-    iso_mesh = mesh_stiffness(iso_single, pair.transverse_mesh().contact_ratio)
-    model_mesh = float(np.mean(stiffness)) if stiffness else None
-    slope = (case.misalignment.slope + summary.get("shaft_bending_slope_rad", 0.0)
-             + summary.get("shaft_torsion_slope_rad", 0.0))
-    summary.update(
+    result.sections["summary"].update(
         K_H_beta=float(mean_line.max() / (np.mean(loads) / width)),
         K_H_beta_instantaneous=max(factors),
-        mesh_stiffness_N_per_mm_um=model_mesh,
+        mesh_stiffness_N_per_mm_um=float(np.mean(stiffness)) if stiffness else None,
         single_stiffness_N_per_mm_um=max(single) if single else None,
-        iso_single_stiffness_N_per_mm_um=iso_single,
-        iso_mesh_stiffness_N_per_mm_um=iso_mesh,
-        iso_K_H_beta_linear=(face_load_factor(abs(slope) * width * 1e3,
-                                              0.85 * model_mesh,
-                                              summary["tangential_load_N"] / width)
-                             if model_mesh else None),
         stiffness_note="mesh_stiffness_N_per_mm_um is the model's mean secant stiffness over "
                        "the cycle per mm of face (ISO's c_γα counterpart), "
                        "single_stiffness_N_per_mm_um its largest with one pair in contact "
-                       "(c'); iso_* are ISO 6336-1 Method B for solid blanks; "
-                       "iso_K_H_beta_linear is ISO 6336-1 Method C for the case's slope (plus "
-                       "the shafts' slopes) as a linear mesh misalignment over b with c_γβ = "
-                       "0.85 of the model's mesh stiffness, and ignores crowns and running-in")
+                       "(c'); iso_* are ISO 6336-1 Method B for solid blanks; K_H_beta is "
+                       "ISO 6336-1 Method A (the cycle's largest over mean line load), "
+                       "K_H_beta_instantaneous the worst single position's, K_H_beta_iso_C "
+                       "ISO's Method C for the case's misalignment and deflection with ISO's "
+                       "own c_γβ (the rating's section)")

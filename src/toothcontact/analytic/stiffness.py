@@ -1,16 +1,19 @@
-"""Tooth stiffness of a spur or helical pair: ISO 6336-1's single and mesh stiffness and
-its face load factor K_Hβ (the references the tooth-compliance model is checked against),
+"""Tooth stiffness of a spur or helical pair: ISO 6336-1's single and mesh stiffness (the
+references the tooth-compliance model is checked against, and what ISO's load factors take),
 and the gear body's compliance under a tooth (Sainsot et al. 2004) that model uses.
 
-ISO 6336-1:2006 §9 (Method B, solid gears): the theoretical single stiffness of a tooth
-pair is c'_th = 1/q' with the flexibility q' = C1 + C2/zn1 + C3/zn2 + C4·x1 + C5·x1/zn1
-+ C6·x2 + C7·x2/zn2 + C8·x1² + C9·x2² (mm·µm/N; Table 9: C1..C9 below; zn the virtual
-tooth numbers, negative for an internal gear); the single stiffness is
-c' = c'_th · C_M · C_R · C_B · cos β with C_M = 0.8 (the standard's correction of the
-theoretical value), C_R = 1 (solid gear blanks) and C_B = 1 (basic rack per ISO 53:
-h_fP = 1.25 m, h_aP = 1.0 m). Units: N/(mm·µm) per mm of face; the pair's stiffness is
-c'·b (N/µm). For other materials ISO scales c' by E/E_st (§9.2, E = 2E1E2/(E1+E2),
-E_st = 206 000 N/mm²).
+ISO 6336-1:2006 §9 (Method B): the theoretical single stiffness of a tooth pair is
+c'_th = 1/q' with the flexibility q' = C1 + C2/zn1 + C3/zn2 + C4·x1 + C5·x1/zn1 + C6·x2 +
+C7·x2/zn2 + C8·x1² + C9·x2² (mm·µm/N; Table 9: C1..C9 below; zn the virtual tooth numbers
+z/(cos²β_b·cos β), negative for an internal gear: ISO/TR 6336-30 Example 1 evaluates its
+c'_th = 17.85584 so, z/cos³β would give 0.16 % more); the single stiffness is
+c' = c'_th·C_M·C_R·C_B·cos β with C_M = 0.8 (the standard's correction of the theoretical
+value), C_R = 1 (solid gear blanks, as the tooth compliance model assumes) and the basic rack
+factor C_B = [1 + 0.5·(1.2 - h_fP/m_n)]·[1 - 0.02·(20° - α_n)] (1 for h_fP = 1.2 m_n; 0.975
+for ISO 53 profile A's 1.25; the TR's 0.9 for profile D's 1.4), times (F_t·K_A/b / 100)^0.25
+where that line load is below 100 N/mm. Units: N/(mm·µm) per mm of face; the pair's
+stiffness is c'·b (N/µm). For other materials ISO scales c' by E/E_st (§9.2,
+E = 2E1E2/(E1+E2), E_st = 206 000 N/mm²).
 """
 
 from __future__ import annotations
@@ -21,37 +24,36 @@ import numpy as np
 
 #: ISO 6336-1:2006 Table 9, constants of the flexibility q'
 C = (0.04723, 0.15551, 0.25791, -0.00635, -0.11654, -0.00193, -0.24188, 0.00529, 0.00182)
-#: ISO 6336-1:2006 §9.3.2: the correction factor of the theoretical single stiffness
-C_M = 0.8
+#: ISO 6336-1:2006 §9.3.2: the correction factor of the theoretical single stiffness, and
+#: the rim factor of a solid gear blank
+C_M, C_R = 0.8, 1.0
 #: ISO 6336-1:2006 §9.2: the steel modulus (MPa) c' is given for
 E_STEEL = 206000.0
 
 
 def single_stiffness(z1: int, z2: int, x1: float = 0.0, x2: float = 0.0,
-                     helix_angle: float = 0.0) -> float:
-    """Single stiffness c' (N/(mm·µm)) of a solid spur/helical pair with the ISO 53 rack:
-    teeth z1, z2 (z2 negative for a ring gear), profile shifts x1, x2, helix angle (rad)."""
-    zn1 = z1 / math.cos(helix_angle) ** 3
-    zn2 = z2 / math.cos(helix_angle) ** 3
+                     helix_angle: float = 0.0, pressure_angle: float = math.radians(20.0),
+                     dedendum: float = 1.2, line_load: float | None = None) -> float:
+    """Single stiffness c' (N/(mm·µm)) of a solid spur/helical pair (see the module): teeth
+    z1, z2 (z2 negative for a ring gear), profile shifts x1, x2, helix angle and normal
+    pressure angle (rad) of the basic rack, its dedendum h_fP/m_n and the line load
+    F_t·K_A/b (N/mm; None: at least 100)."""
+    transverse = math.atan(math.tan(pressure_angle) / math.cos(helix_angle))
+    base_helix = math.atan(math.tan(helix_angle) * math.cos(transverse))
+    virtual = math.cos(base_helix) ** 2 * math.cos(helix_angle)
+    zn1, zn2 = z1 / virtual, z2 / virtual
     c1, c2, c3, c4, c5, c6, c7, c8, c9 = C
     q = (c1 + c2 / zn1 + c3 / zn2 + c4 * x1 + c5 * x1 / zn1 + c6 * x2 + c7 * x2 / zn2
          + c8 * x1 ** 2 + c9 * x2 ** 2)
-    return C_M / q * math.cos(helix_angle)
+    C_B = (1.0 + 0.5 * (1.2 - dedendum)) * (1.0 - 0.02 * (20.0 - math.degrees(pressure_angle)))
+    low_load = 1.0 if line_load is None or line_load >= 100.0 else (line_load / 100.0) ** 0.25
+    return C_M / q * C_R * C_B * math.cos(helix_angle) * low_load
 
 
 def mesh_stiffness(single: float, contact_ratio: float) -> float:
     """Mesh stiffness c_γα (N/(mm·µm)) from the single stiffness c' and the transverse
     contact ratio ε_α: ISO 6336-1:2006 §9.3.3, c_γα = c'·(0.75·ε_α + 0.25)."""
     return single * (0.75 * contact_ratio + 0.25)
-
-
-def face_load_factor(misalignment_um: float, stiffness: float, line_load: float) -> float:
-    """K_Hβ of ISO 6336-1:2006 §7.6 (Method C, a linear mesh misalignment) for the effective
-    mesh misalignment F_βy (µm) over the face, the mesh stiffness c_γβ (N/(mm·µm)) and the
-    mean line load F_m/b (N/mm): 1 + F_βy·c_γβ/(2·F_m/b) while that is at most 2 (the load
-    spreads over the whole face), sqrt(2·F_βy·c_γβ/(F_m/b)) beyond (it covers part of it)."""
-    ratio = misalignment_um * stiffness / line_load
-    return 1.0 + 0.5 * ratio if ratio <= 2.0 else math.sqrt(2.0 * ratio)
 
 
 #: Sainsot, Velex & Duverger (2004), Table 1, as reprinted by Chaari et al. (2009) Table 1:

@@ -127,6 +127,17 @@ def helix_factor(gear: CylindricalGear, overlap_ratio: float) -> float:
     return 1.0 - min(overlap_ratio, 1.0) * beta / 120.0
 
 
+def load_arm(virtual: CylindricalGear, section: CriticalSection, roll):
+    """(h_F, cos α_F) (mm, -) of a unit load on a spur gear's flank at roll lengths (mm along
+    its line of action from the base tangency point), along the flank's normal: the height
+    above the critical section at which the load's line crosses the tooth's centre line,
+    and the cosine of its angle to the section (ISO 6336-3's h_F and α_F)."""
+    point, direction = _involute_point(virtual, np.hypot(virtual.base_radius, roll))
+    along = -point[:, 1] / direction[:, 1]
+    crossing = point[:, 0] + along * direction[:, 0]
+    return crossing - section.x, np.abs(direction[:, 1])
+
+
 def root_stress(gear: CylindricalGear, form_radius: float, overlap_ratio: float = 0.0,
                 points: int = 60) -> RootStress:
     """The member's root stress per unit line load for loads between its form circle
@@ -140,11 +151,7 @@ def root_stress(gear: CylindricalGear, form_radius: float, overlap_ratio: float 
                 - np.sqrt(np.maximum(radii ** 2 - gear.base_radius ** 2, 0.0))) / cos_beta_b
     rb_n = virtual.base_radius
     roll = np.maximum(math.sqrt(virtual.tip_radius ** 2 - rb_n ** 2) - from_tip, 1e-9)
-    point, direction = _involute_point(virtual, np.hypot(rb_n, roll))
-    along = -point[:, 1] / direction[:, 1]
-    crossing = point[:, 0] + along * direction[:, 0]
-    h_F = crossing - section.x
-    cos_alpha = np.abs(direction[:, 1])
+    h_F, cos_alpha = load_arm(virtual, section, roll)
     Y_S = stress_correction(section.s_Fn, h_F, section.rho_F)
     factors = 6.0 * h_F * cos_alpha * Y_S / section.s_Fn ** 2 * cos_beta_b
     return RootStress(section, radii, factors, helix_factor(gear, overlap_ratio))
