@@ -18,7 +18,7 @@ META = {"case", "kind", "title", "source", "assumptions", "toothcontact_version"
 CHARTS = {"crown_chart", "anti_rattle_curve"}
 
 #: key suffix -> unit shown in a label (longest first)
-UNITS = [("_N_per_mm_um", "N/(mm·µm)"), ("_N_per_mm", "N/mm"), ("_sqrt_MPa", "√MPa"),
+UNITS = [("_N_per_mm_um", "N/(mm·µm)"), ("_N_per_mm", "N/mm"), ("_m_per_s", "m/s"), ("_sqrt_MPa", "√MPa"),
          ("_mm2_s", "mm²/s"), ("_per_mm", "1/mm"), ("_mm2", "mm²"), ("_urad", "µrad"),
          ("_MPa", "MPa"), ("_Nm", "N·m"), ("_deg", "deg"), ("_rad", "rad"), ("_mm", "mm"),
          ("_um", "µm"), ("_N", "N"), ("_C", "°C"), ("_m_per_s", "m/s"), ("_degC", "°C"),
@@ -298,9 +298,14 @@ def provenance(document: dict) -> list[tuple[str, str]]:
 def rating_table(rating: dict) -> Table:
     """ISO 6336's rating as one table: each figure's symbol, value and source, the factors
     the case gave named so."""
-    rows = [[f["symbol"], number(f["value"]), f["source"]] for f in rating["figures"]]
+    def unit(key: str) -> str:
+        return next((u for suffix, u in UNITS if key.endswith(suffix)), "")
+
+    rows = [[f["symbol"], number(f["value"]), unit(f["key"]), f["source"]]
+            for f in rating["figures"]]
     given = rating.get("factors_given") or []
-    return Table("ISO 6336 rating", ["figure", "value", "source"], rows, [False, True, False],
+    return Table("ISO 6336 rating", ["figure", "value", "unit", "source"], rows,
+                 [False, True, False, False],
                  note=rating.get("note", "") + ("; given in the case: " + ", ".join(given)
                                                  if given else ""))
 
