@@ -18,7 +18,8 @@ def complete_run(out: Path) -> dict:
     report.md a Markdown document. Returns result.json's document."""
     document = strict_json((out / "result.json").read_text())
     assert document["kind"] and document["source"]
-    assert all(c["kind"] in ("design", "source", "method", "solver") for c in document["checks"])
+    assert all(c["kind"] in ("design", "source", "method", "solver", "rigid")
+               for c in document["checks"])
     page = (out / "report.html").read_text()     # the report opens with its key results
     assert page.index('id="key-results"') < page.index('id="design-checks"')
     assert (out / "report.md").read_text().startswith("# ")

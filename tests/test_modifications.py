@@ -114,18 +114,39 @@ def test_a_helix_slope_of_the_misalignments_gap_restores_the_aligned_contact():
     assert doubled["K_H_beta"] > tilted["K_H_beta"] + 0.1
 
 
+def test_a_linear_relief_start_is_blended_with_its_slope():
+    """modify.relief_ramp: the blend joins none and the line with their values and slopes
+    (C1: the drop's first derivative continuous, so the loaded pressure at a relief's start
+    converges with the grid); outside the blend it is the line, at the relief's end the
+    amount; a blend of 0 is the kink; a parabolic relief has none."""
+    from toothcontact.modify import relief_ramp
+
+    h = 0.1
+    xs = np.linspace(-0.3, 1.0, 1301)
+    ys = relief_ramp(xs, "linear", 2 * h)
+    slope = np.gradient(ys, xs)
+    # the slope grows by at most the blend's curvature 1/(2h) per step (a kink: 0.5)
+    assert np.max(np.abs(np.diff(slope))) <= 1.01 * (xs[1] - xs[0]) / (2 * h)
+    assert ys[xs <= -h] == pytest.approx(0.0) and ys[-1] == pytest.approx(1.0)
+    assert np.allclose(ys[xs >= h], xs[xs >= h])
+    assert relief_ramp(np.array([0.0, 0.05]), "linear", 0.0) == pytest.approx([0.0, 0.05])
+    assert relief_ramp(np.array([-0.05, 0.5]), "parabolic", 2 * h) == pytest.approx([0.0, 0.25])
+
+
 def test_a_root_relief_removes_its_amount_at_the_form_circle_and_nothing_above_its_start():
     """The root relief's drop: its amount at the form circle, linear (or parabolic) to its
-    start, none from there to the tip; the case refuses a start off the flank or above the
-    tip relief's start, naming the field."""
+    start, none from there to the tip but for the start's blend (0.2 of its length by
+    default: amount·0.2/8 at the start itself, none 0.1 of the length past it); the case
+    refuses a start off the flank or above the tip relief's start, naming the field."""
     raw = spur({"root_relief": {"amount": "15 um", "start_diameter": "58 mm"}})
     pair = gearset.gear_pair(parse_case(raw))
     flank = gearset.working_flank(pair.pinion, pair.pinion_modifications, 1)
     start = pair.pinion_modifications.root_relief.start
-    s = np.array([flank.base.form_roll, 0.5 * (flank.base.form_roll + start), start, start + 1.0,
-                  flank.base.tip_roll - 2.0])
+    length = start - flank.base.form_roll
+    s = np.array([flank.base.form_roll, 0.5 * (flank.base.form_roll + start), start,
+                  start + 0.1 * length, flank.base.tip_roll - 2.0])
     drop = pair.pinion_modifications.root_relief.drop(s, flank.base.form_roll)
-    assert drop == pytest.approx([0.015, 0.0075, 0.0, 0.0, 0.0], abs=1e-12)
+    assert drop == pytest.approx([0.015, 0.0075, 0.015 * 0.2 / 8, 0.0, 0.0], abs=1e-12)
     for pinion, says in (
             ({"root_relief": {"amount": "15 um", "start_diameter": "40 mm"}},
              "pinion.root_relief.start_diameter: 40 mm must lie between the base diameter"),

@@ -205,7 +205,7 @@ def test_pressure_map_from_the_loaded_contact(aligned):
 def test_pictures_of_a_contact_case_are_written_whole(aligned, tmp_path):
     case, result = aligned
     result = SimpleNamespace(cycle=result.cycle, loaded=synthetic_loaded(result.cycle),
-                             parts=result.parts)
+                             parts=result.parts, sections=result.sections)
     written = render.pictures_for(result, case, tmp_path, name="test", exaggerate=20.0)
     assert [p.name for p in written] == ["pattern_head_on.png", "pattern_perspective.png",
                                          "pair.png", "pressure.png"]
@@ -335,7 +335,8 @@ def test_without_the_ease_off_only_the_pair_is_drawn(aligned, tmp_path):
 
     case, result = aligned
     result = SimpleNamespace(cycle=dataclasses.replace(result.cycle, ease_off=None),
-                             loaded=synthetic_loaded(result.cycle), parts=result.parts)
+                             loaded=synthetic_loaded(result.cycle), parts=result.parts,
+                             sections=result.sections)
     written = render.pictures_for(result, case, tmp_path, name="test")
     assert [p.name for p in written] == ["pair.png"]
     assert sorted(p.name for p in tmp_path.iterdir()) == ["pair.png"]

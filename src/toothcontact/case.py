@@ -533,6 +533,10 @@ class ReliefSpec(Model):
                     "'0 um' for none (a sweep's baseline)")
     start_diameter: Length = Field(description="diameter where the relief begins")
     shape: Literal["linear", "parabolic"] = "linear"
+    blend: quantity("length", low=0.0) | None = Field(
+        None, description="a linear relief's start blended over this length of the profile "
+                          "(roll length), e.g. '0.5 mm'; default 0.2 of the relief's length; "
+                          "'0 mm' for a sharp kink")
 
 
 class TipEdgeSpec(Model):
@@ -706,6 +710,9 @@ class EndReliefSpec(Model):
     amount: Length = Field(description="drop at each face end, e.g. '8 um'")
     length: Length = Field(description="length from each end, e.g. '3 mm'")
     shape: Literal["linear", "parabolic"] = "linear"
+    blend: quantity("length", low=0.0) | None = Field(
+        None, description="a linear relief's starts blended over this length of the face, "
+                          "e.g. '1 mm'; default 0.2 of `length`; '0 mm' for a sharp kink")
 
 
 class ShaftSpec(Model):

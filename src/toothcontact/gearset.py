@@ -16,9 +16,9 @@ import numpy as np
 from .analytic.spur_mesh import SpurMesh
 from .case import (CrownSpec, EndChamferSpec, Member, SplineCase, SpurCase, TipEdgeSpec,
                    WormCase)
-from .modify import (Deflection, EndChamfer, EndRelief, FlankModifications, HelixSlope,
-                     LeadCrown, ProfileCrown, ProfileSlope, RootRelief, TipEdge, TipRelief,
-                     Topography, Twist)
+from .modify import (RELIEF_BLEND, Deflection, EndChamfer, EndRelief, FlankModifications,
+                     HelixSlope, LeadCrown, ProfileCrown, ProfileSlope, RootRelief, TipEdge,
+                     TipRelief, Topography, Twist)
 from .surfaces.involute import CylindricalGear, inv
 from .surfaces.spline import InvoluteSpline
 from .surfaces.wheel import BlankError, WormWheelFlank
@@ -493,6 +493,15 @@ def modifications(member: Member, gear: CylindricalGear, name: str) -> FlankModi
         """The roll length (mm) at a diameter of the flank."""
         return float(gear.base_radius * gear.roll_angle(0.5 * diameter))
 
+    def blend(relief, length: float | None = None) -> float:
+        """A relief's blend as a share of its length (mm; `length` for a root relief, the
+        start's distance to the form circle): the case's, else RELIEF_BLEND."""
+        if relief.blend is None:
+            return RELIEF_BLEND
+        if length is None:
+            length = abs(roll(2.0 * gear.tip_radius) - roll(relief.start_diameter))
+        return relief.blend / length
+
     return FlankModifications(
         tip_edge=tip_edge(member.tip_edge, gear, f"{name}.tip_edge"),
         lead_crown=None if crown is None else LeadCrown(crown.radius, crown.height, crown.shape,
@@ -500,9 +509,11 @@ def modifications(member: Member, gear: CylindricalGear, name: str) -> FlankModi
         profile_crown=None if member.profile_crown is None else ProfileCrown(
             member.profile_crown.height, member.profile_crown.shape),
         tip_relief=None if tip is None else TipRelief(tip.amount, roll(tip.start_diameter),
-                                                      tip.shape),
-        root_relief=None if root is None else RootRelief(root.amount, roll(root.start_diameter),
-                                                         root.shape),
+                                                      tip.shape, blend(tip)),
+        root_relief=None if root is None else RootRelief(
+            root.amount, roll(root.start_diameter), root.shape,
+            blend(root, None if root.blend is None else abs(
+                roll(root.start_diameter) - _form_roll(gear)))),
         helix_slope=None if member.helix_slope is None else HelixSlope(member.helix_slope.amount),
         profile_slope=None if member.profile_slope is None else ProfileSlope(
             member.profile_slope.amount),
@@ -511,8 +522,18 @@ def modifications(member: Member, gear: CylindricalGear, name: str) -> FlankModi
                     if member.k_chart is not None
                     else topography(member.topography, gear, f"{name}.topography")),
         end_relief=None if member.end_relief is None else EndRelief(
-            member.end_relief.amount, member.end_relief.length, member.end_relief.shape),
+            member.end_relief.amount, member.end_relief.length, member.end_relief.shape,
+            RELIEF_BLEND if member.end_relief.blend is None
+            else member.end_relief.blend / member.end_relief.length),
         end_chamfer=end_chamfer(member.end_chamfer, gear, f"{name}.end_chamfer"))
+
+
+def _form_roll(gear: CylindricalGear) -> float:
+    """The roll length (mm) of a member's generated form circle."""
+    from .surfaces.generation import generate_ring_side, generate_side
+
+    form = (generate_ring_side(gear) if gear.internal else generate_side(gear)).form_radius
+    return float(gear.base_radius * gear.roll_angle(form))
 
 
 def _rolls(diameters, gear: CylindricalGear, field: str) -> list[float]:

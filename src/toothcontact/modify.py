@@ -78,41 +78,63 @@ class ProfileCrown:
                          crown_radius_from_height(self.height, half, self.shape), self.shape)
 
 
+#: a linear relief's start is blended over this share of its length by default (a
+#: ground relief's transition; a kink would make the loaded pressure there singular)
+RELIEF_BLEND = 0.2
+
+
+def relief_ramp(x, shape: str, blend: float = 0.0):
+    """A relief's drop over its amount at x, the distance from its start over its length
+    (0 before the start, 1 at its end): linear x or parabolic x², none before the start. A
+    linear ramp's start is blended over `blend` of the length, centred on the start: the
+    parabola (x + h)²/(4h), h = blend/2, joins none and the line with their slopes (C1), so
+    the drop at the relief's end is the amount as given. Jet-friendly."""
+    if shape != "linear":
+        return where(value(x) > 0, x * x, 0.0 * x)
+    h = 0.5 * min(blend, 1.0)
+    if h <= 0.0:
+        return where(value(x) > 0, x, 0.0 * x)
+    return where(value(x) >= h, x,
+                 where(value(x) > -h, (x + h) * (x + h) / (4.0 * h), 0.0 * x))
+
+
 @dataclass(frozen=True)
 class TipRelief:
     """Tip relief of `amount` at the tip, starting at roll length `start` (mm) and growing
-    linearly or parabolically toward the tip."""
+    linearly or parabolically toward the tip, a linear one's start blended over `blend` of
+    its length (relief_ramp)."""
 
     amount: float
     start: float
     shape: str = "linear"
+    blend: float = RELIEF_BLEND
 
     def drop(self, s, s_tip: float):
         length = s_tip - self.start
         if abs(length) < 1e-12:
             raise ValueError("tip relief starts at the tip")
         x = (s - self.start) / length
-        ramp = x if self.shape == "linear" else x * x
-        return where(value(x) > 0, self.amount * ramp, 0.0)
+        return self.amount * relief_ramp(x, self.shape, self.blend)
 
 
 @dataclass(frozen=True)
 class RootRelief:
     """Root relief of `amount` at the form circle (the active profile's root end), starting
     at roll length `start` (mm) and growing linearly or parabolically toward the form
-    circle: the tip relief's counterpart."""
+    circle, a linear one's start blended over `blend` of its length: the tip relief's
+    counterpart."""
 
     amount: float
     start: float
     shape: str = "linear"
+    blend: float = RELIEF_BLEND
 
     def drop(self, s, s_form: float):
         length = self.start - s_form
         if abs(length) < 1e-12:
             raise ValueError("root relief starts at the form circle")
         x = (self.start - s) / length
-        ramp = x if self.shape == "linear" else x * x
-        return where(value(x) > 0, self.amount * ramp, 0.0)
+        return self.amount * relief_ramp(x, self.shape, self.blend)
 
 
 @dataclass(frozen=True)
@@ -377,19 +399,20 @@ class EndChamfer:
 
 @dataclass(frozen=True)
 class EndRelief:
-    """End relief of `amount` at both face ends over `length` (mm) from each end."""
+    """End relief of `amount` at both face ends over `length` (mm) from each end, a linear
+    one's starts blended over `blend` of its length (relief_ramp)."""
 
     amount: float
     length: float
     shape: str = "linear"
+    blend: float = RELIEF_BLEND
 
     def drop(self, w, face_width: float):
         if not 0 < self.length <= 0.5 * face_width:
             raise ValueError("end relief length must lie in (0, half the face width]")
         inner = 0.5 * face_width - self.length
         x = (where(value(w) > 0, w, -w) - inner) / self.length
-        ramp = x if self.shape == "linear" else x * x
-        return where(value(x) > 0, self.amount * ramp, 0.0)
+        return self.amount * relief_ramp(x, self.shape, self.blend)
 
 
 @dataclass(frozen=True)

@@ -226,8 +226,8 @@ def _winds(flank) -> bool:
 
 
 def ellipse_outlines(cycle, member: str = "pinion", samples: int = 97) -> np.ndarray:
-    """Each row's Hertz ellipse (semi-axis a along cycle.axis_angle from e1, b across; for a
-    contact line its part in contact, about its centre) carried onto the member's tooth-0 flank along
+    """Each row's Hertz ellipse (semi-axis a along cycle.axis_angle from e1, b across; a
+    contact line as its part in contact, about its centre) carried onto the member's tooth-0 flank along
     the common normal: (K, samples, 3) in that member's own frame. The rays march out from
     the contact point, each starting where the last one landed, so that the outline follows
     this part of the flank (as contact.ellipse does); beyond the flank's edges the outline
@@ -239,7 +239,8 @@ def ellipse_outlines(cycle, member: str = "pinion", samples: int = 97) -> np.nda
     frames = getattr(cycle, f"{member}_frames")
     planes = cycle.planes
     a = np.array([r["a_mm"] for r in cycle.rows])
-    b = np.array([r["b_mm"] for r in cycle.rows])
+    # a contact line is drawn as the line (its width is the Hertz band's, a hair)
+    b = np.array([0.0 if r["contact_model"] == "line" else r["b_mm"] for r in cycle.rows])
     theta = np.linspace(0.0, 2.0 * np.pi, samples)
     da = planes.direction(np.asarray(cycle.axis_angle, float))
     db = np.cross(planes.normal, da)
@@ -823,8 +824,11 @@ def pattern_scene(result, case=None, name: str = "", view: str = "head-on",
                      clim=(0.0, approach_um), above_color=NO_PAINT, nan_color=NO_PAINT,
                      scalar_bar_args=bar, interpolate_before_map=True, **_surface_props())
 
-    # the flank's edges; red along the stretch that each crossing ellipse cuts
-    crossed = edge_contacts(cycle.rows, row_name(case, member))
+    # the flank's edges; red along the stretch that each crossing ellipse cuts, where the
+    # rigid pattern decides (without a loaded contact; its verdicts decide where solved)
+    summary = result.sections.get("summary") or {}
+    loaded = summary.get("loaded_contacts") is not None
+    crossed = {} if loaded else edge_contacts(cycle.rows, row_name(case, member))
     edges = _patch_boundary(patch)
     outlines = ellipse_outlines(cycle, member)
     for edge, line in edges.items():
@@ -832,15 +836,19 @@ def pattern_scene(result, case=None, name: str = "", view: str = "head-on",
             continue
         lifted = warp(_lift(flank, line, lift))
         plotter.add_mesh(pv.lines_from_points(lifted), color=INK, line_width=2, lighting=False)
-        cut = [lifted[i0:i1 + 1] for i0, i1 in _cut_stretches(cycle.rows, row_name(case, member), edge, line,
-                                                               outlines, 0.01 * span)]
+        cut = [] if loaded else [
+            lifted[i0:i1 + 1] for i0, i1 in _cut_stretches(
+                cycle.rows, row_name(case, member), edge, line, outlines, 0.01 * span)]
         mesh = _polylines(pv, cut)
         if mesh is not None:
             plotter.add_mesh(mesh, color=WARNING, line_width=7, lighting=False)
     _edge_labels(plotter, edges, centre, 0.035 * span, set(crossed), warp)
 
-    # the ellipses: every edge contact's, and of the others every n-th (at most MAX_OUTLINES)
-    edge_rows = np.array([bool(r["edge_contact"]) for r in cycle.rows])
+    # the ellipses: every flagged contact's (the loaded contact's edge-loaded ones where it
+    # was solved, else the rigid pattern's edge contacts), and of the others every n-th (at
+    # most MAX_OUTLINES)
+    edge_rows = np.array([bool(r.get("edge_loaded")) if loaded else bool(r["edge_contact"])
+                          for r in cycle.rows])
     near = _near_patch(patch, outlines) & np.array([r.get("rigid_contact", True)
                                                     for r in cycle.rows])
     plain, cut = np.flatnonzero(~edge_rows & near), np.flatnonzero(edge_rows & near)
@@ -848,7 +856,7 @@ def pattern_scene(result, case=None, name: str = "", view: str = "head-on",
     outlined, cut_outlined = np.zeros(len(cycle.rows), bool), np.zeros(len(cycle.rows), bool)
     outlined[plain[::every]] = True
     cut_outlined[cut[::every]] = True
-    if len(cut):      # the deepest cut is always drawn
+    if len(cut) and not loaded:      # the deepest cut is always drawn
         cut_outlined[min(cut, key=lambda k: cycle.rows[k]["edge_margin_mm"] or 0.0)] = True
     for rows, color, width, opacity in ((outlined, OUTLINE, 1.0, 0.6),
                                         (cut_outlined, WARNING, 2.0, 1.0)):
@@ -865,22 +873,35 @@ def pattern_scene(result, case=None, name: str = "", view: str = "head-on",
             + ("looking at it head-on" if view == "head-on" else "perspective"))
     legend = [f"paint: the flank's least separation from the {mate} over the mesh cycle "
               f"({positions} positions)",
-              (f"outlines: the Hertz ellipse of each of the {touching} contacts"
-               if every == 1 else f"outlines: the Hertz ellipse of every {_ordinal(every)} of "
-               f"the {touching} contacts (edge contacts in red, the deepest cut always)")]
+              (f"outlines: the Hertz ellipse (a contact line: the line) of each of the "
+               f"{touching} contacts" if every == 1 else
+               f"outlines: the Hertz ellipse (a contact line: the line) of every "
+               f"{_ordinal(every)} of the {touching} contacts")
+              + (" (red: edge-loaded under load)" if loaded else
+                 " (red: edge contacts, the deepest cut always)")]
     if patch.cropped:
         legend.append("the part of the flank near the pattern")
     if stretch > 1.05:
         legend.append(f"NOTE: the profile direction is drawn {stretch:.1f} times its scale "
                       "(a long, shallow flank)")
     warnings = []
+    if loaded and summary.get("edge_loaded_contacts"):
+        of = f"of {summary['loaded_contacts']} contacts carrying load"
+        if summary.get("end_loaded_contacts"):
+            warnings.append(f"END LOADING (red): {summary['end_loaded_contacts']} {of}, end "
+                            f"load ratio up to {summary['max_end_load_ratio']:.2f}")
+        if summary.get("corner_contacts"):
+            warnings.append(f"CORNER CONTACT (red): {summary['corner_contacts']} {of}, up to "
+                            f"{summary['corner_contact_pressure_max_MPa']:.0f} MPa at "
+                            f"{summary['corner_contact_at']}")
     if crossed:
         prefix = row_name(case, member) + "_"
         cutting = sum(any(k.startswith(prefix) and m is not None and m < 0
                           for k, m in (r.get("edge_margins_mm") or {}).items()) for r in cycle.rows)
         warnings.append(f"EDGE CONTACT (red): {cutting} contacts cross the "
                         + ", ".join(f"{e.replace('_', ' ')} ({m:+.3f} mm)" for e, m in crossed.items()))
-    other = edge_contacts(cycle.rows, row_name(case, "gear" if member == "pinion" else "pinion"))
+    other = {} if loaded else edge_contacts(
+        cycle.rows, row_name(case, "gear" if member == "pinion" else "pinion"))
     if other:
         warnings.append(f"and the {mate}'s " + ", ".join(
             f"{e.replace('_', ' ')} ({m:+.3f} mm)" for e, m in other.items()))

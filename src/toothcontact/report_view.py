@@ -37,8 +37,10 @@ LABELS = {
     "bem_reason": "why not solved", "bem_iterations": "solver iterations",
     "bem_relative_error": "solver residual", "bem_grid": "solver grid",
     "bem_raw_peak_MPa": "largest cell pressure (not a design value)",
-    "a_mm": "semi-axis a", "b_mm": "semi-axis b", "A_per_mm": "curvature sum A",
-    "B_per_mm": "curvature sum B", "A_analytic_per_mm": "A from the flank curvatures",
+    "a_mm": "semi-axis a", "b_mm": "semi-axis b",
+    "A_per_mm": "gap coefficient A (half the relative curvature)",
+    "B_per_mm": "gap coefficient B (half the relative curvature)",
+    "A_analytic_per_mm": "A from the flank curvatures",
     "B_analytic_per_mm": "B from the flank curvatures", "fit_rms_mm": "gap fit rms",
     "transmission_error_urad": "transmission error (unloaded)",
     "loaded_transmission_error_urad": "transmission error (loaded)",
@@ -104,6 +106,11 @@ LABELS = {
     "largest share of a contact's load at an edge", "max_end_load_ratio":
     "largest end load ratio", "edge_loaded_contacts": "edge-loaded contacts",
     "end_loaded_contacts": "end-loaded contacts", "edge_load_fraction": "share of the load at the edge",
+    "loaded_contacts": "contacts carrying load", "corner_contacts": "corner contacts",
+    "corner_contact": "corner contact", "corner_pressure_MPa": "corner contact's pressure",
+    "corner_load_N": "corner contact's load", "corner_at": "corner contact at",
+    "edge_contacts": "rigid patterns on an edge", "line_contacts": "rigid line patterns",
+    "area_contacts": "rigid area patterns",
     "agma_stress_MPa": "AGMA contact stress", "contact_radius_worm_mm": "contact radius on the worm",
     "self_locking": "self-locking", "eta_kim_aligned": "efficiency (misalignment model, aligned)",
     "mu": "friction coefficient μ", "mu_aligned": "friction coefficient μ (aligned)",
@@ -426,11 +433,18 @@ def _contact_figures(summary: dict, rows: list[dict], driven: str) -> list[KeyRe
         out.append(KeyResult("largest loaded contact pressure",
                              f"{number(summary['bem_max_p_max_MPa'])} MPa", where,
                              bool(top.get("edge_loaded"))))
-        loaded = summary.get("edge_loaded_contacts")
-        if loaded is not None:
-            out.append(KeyResult("edge-loaded contacts", f"{loaded} of {len(solved)}",
-                                 "a face end loaded above its mean load per mm, or a tip, "
-                                 "root or form edge pressed harder than the flank", loaded > 0))
+        if summary.get("loaded_contacts") is not None:
+            of = f" of {summary['loaded_contacts']}"
+            ends, corners = summary["end_loaded_contacts"], summary["corner_contacts"]
+            out.append(KeyResult("end-loaded contacts", f"{ends}{of}",
+                                 "a face end loaded above the contact's mean load per mm; "
+                                 f"largest end load ratio {number(summary['max_end_load_ratio'])}",
+                                 ends > 0))
+            out.append(KeyResult("corner contacts", f"{corners}{of}",
+                                 "a tip, root or form edge pressed harder than the flank"
+                                 + (f": {number(summary['corner_contact_pressure_max_MPa'])} "
+                                    f"MPa at {summary['corner_contact_at']}" if corners else ""),
+                                 corners > 0))
     elif summary.get("max_p_max_MPa") is not None:
         out.append(KeyResult("largest Hertz pressure", f"{number(summary['max_p_max_MPa'])} MPa",
                              "equal load split, no loaded solution"))
@@ -690,7 +704,8 @@ def _sweep_key_results(stats: dict) -> list[KeyResult]:
             out.append(KeyResult(f"{label(key)}, P95", number(q["P95"]),
                                  f"P50 {number(q['P50'])}, P99 {number(q['P99'])}"))
     for flag, what in (("edge_loading", "edge loading (any flank edge)"),
-                       ("end_loading", "loading at a face end")):
+                       ("end_loading", "loading at a face end"),
+                       ("corner_contact", "a corner contact (tip, root or form edge)")):
         edge = stats.get(flag)
         if edge and edge.get("probability") is not None:
             low, high = edge["interval_95"]

@@ -156,11 +156,11 @@ def loaded_sections(cycle, C_E: float, grid: int, teeth, bending: str,
     """The loaded contact of every row (contact.loaded): bem_* and edge keys on each row
     (bem_status "solved", "unloaded" or "failed" with bem_reason: a position the solver
     cannot answer says so in its own rows and the others keep theirs), their worst in the
-    summary, and the checks that every contact was solved and none is edge-loaded."""
+    summary, and the checks that every contact was solved, none end-loaded and none a
+    corner contact (_edge_verdicts)."""
     if not grid:
         return
-    from ..contact.loaded import (EDGE_PRESSURE_RATIO, EDGE_STRIP, END_LOAD_RATIO,
-                                 edge_breaks, loaded_cycle, unsolved)
+    from ..contact.loaded import loaded_cycle, unsolved
 
     rows = cycle.rows
     start = time.perf_counter()
@@ -201,51 +201,87 @@ def loaded_sections(cycle, C_E: float, grid: int, teeth, bending: str,
     answered = [r for r in rows if r["bem_status"] != "failed"]
     if not answered:
         return
-    edged = [r for r in answered if r["edge_loaded"]]
+    summary.update(bem_max_p_max_MPa=max(r["bem_p_max_MPa"] for r in answered),
+                   flank_pressure_max_MPa=max(r["flank_p_max_MPa"] for r in answered),
+                   max_edge_pressure_MPa=max(r["edge_pressure_MPa"] for r in answered),
+                   max_edge_load_fraction=max(r["edge_load_fraction"] for r in answered))
+    _edge_verdicts(cycle, rows, summary, result)
+    for check in result.checks:     # the loaded contact decides; the rigid margins stay figures
+        if check.name.startswith(RIGID_PATTERN_CHECK):
+            check.kind = "rigid"
+
+
+def _edge_verdicts(cycle, rows: list[dict], summary: dict, result: Result) -> None:
+    """The loaded contact's edge figures over the contacts that carry load, counted once
+    for the summary, the checks and the report: edge-loaded (either kind), end-loaded at a
+    face end (end_load_ratio above END_LOAD_RATIO; the largest ratio over the contacts
+    judged, those carrying EDGE_LEAST_SHARE of their position's load), and corner contacts
+    (a tip, root or form edge pressed harder than the flank); a design check of each
+    kind."""
+    from ..contact.loaded import (EDGE_LEAST_SHARE, EDGE_PRESSURE_RATIO, EDGE_STRIP,
+                                  END_LOAD_RATIO, edge_breaks)
+
+    carrying = [r for r in rows if r["bem_status"] == "solved"]
+    judged = [r for r in carrying if (r.get("load_share") or 0.0) >= EDGE_LEAST_SHARE]
+    ends = [r for r in carrying if r["end_loaded"]]
+    corners = [r for r in carrying if r["corner_contact"]]
     breaks = edge_breaks(cycle)
     rounded = ({f"{member}_tip" for member in breaks.roundings}
                | {f"{member}_end_{end}" for member in breaks.chamfers for end in "AB"})
-    candidates = edged or answered
-    highest = max(r["edge_pressure_MPa"] for r in candidates)
-    # the first of those within 0.1 % (a spline's teeth all press alike, to the pressure
-    # grid's resolution of their edges)
-    worst = next(r for r in candidates if r["edge_pressure_MPa"] >= (1 - 1e-3) * highest)
+    worst_end = max(judged, key=lambda r: r["end_load_ratio"], default=None)
+    worst_corner = max(corners, key=lambda r: r["corner_pressure_MPa"], default=None)
     summary.update(
-        bem_max_p_max_MPa=max(r["bem_p_max_MPa"] for r in answered),
-        flank_pressure_max_MPa=max(r["flank_p_max_MPa"] for r in answered),
-        max_edge_pressure_MPa=max(r["edge_pressure_MPa"] for r in answered),
-        max_edge_load_fraction=max(r["edge_load_fraction"] for r in answered),
-        edge_loaded_contacts=len(edged),
-        end_loaded_contacts=sum(bool(r["end_loaded"]) for r in answered),
-        max_end_load_ratio=max(r["end_load_ratio"] for r in answered),
+        loaded_contacts=len(carrying),
+        edge_loaded_contacts=sum(bool(r["edge_loaded"]) for r in carrying),
+        end_loaded_contacts=len(ends),
+        max_end_load_ratio=0.0 if worst_end is None else worst_end["end_load_ratio"],
+        corner_contacts=len(corners),
+        corner_contact_pressure_max_MPa=(0.0 if worst_corner is None
+                                         else worst_corner["corner_pressure_MPa"]),
+        corner_contact_load_max_N=max((r["corner_load_N"] for r in corners), default=0.0),
+        corner_contact_at=(None if worst_corner is None else
+                           f"roll {worst_corner['roll_deg']:.2f} deg pair {worst_corner['pair']} "
+                           f"({worst_corner['corner_at']})"),
         edge_pressure_note=f"edge_pressure_MPa is the pressure averaged over a {EDGE_STRIP} mm "
                            "strip at a sharp edge, the largest on the rounding at a rounded tip "
-                           "(a smooth surface: Hertz on its radius), flank_p_max_MPa the "
-                           f"active flank's peak more than {EDGE_STRIP} mm inside its edges "
-                           "(a tip rounding's start among them: what a lead crown sizes), and "
-                           "bem_p_max_MPa the larger of the two: both converge as the "
-                           "grid is refined; bem_raw_peak_MPa, the largest cell pressure, grows "
-                           "without bound at a sharp edge and is not a design value; free face "
-                           "ends are quarter-spaces (mirror-pressure correction); a contact is "
-                           "end_loaded when its load per mm of face in the strip at a face end "
-                           f"exceeds {END_LOAD_RATIO:g} times its mean over its length in contact "
-                           "(end_load_ratio: what a lead crown is for), edge_loaded when "
-                           "end-loaded or when the pressure at a tip, root or form edge exceeds "
-                           f"{EDGE_PRESSURE_RATIO:g} times the contact's interior peak")
+                           "(a smooth surface: Hertz on its radius); flank_p_max_MPa the "
+                           f"active flank's peak more than {EDGE_STRIP} mm inside its edges, "
+                           "off the tip roundings and off a corner contact's whole footprint "
+                           "(the flank within its half-width of the rounding); bem_p_max_MPa "
+                           "the larger of edge and flank: both converge as the grid is "
+                           "refined; bem_raw_peak_MPa, the largest cell pressure, grows without "
+                           "bound at a sharp edge and is not a design value; free face ends "
+                           "are quarter-spaces (mirror-pressure correction). Of the contacts "
+                           "that carry load (loaded_contacts), one is end_loaded when its load "
+                           "per mm of face in the strip at a face end exceeds "
+                           f"{END_LOAD_RATIO:g} times its mean over its length in contact "
+                           "(end_load_ratio: what a lead crown is for), a corner_contact when "
+                           "a tip, root or form edge presses harder than "
+                           f"{EDGE_PRESSURE_RATIO:g} times its flank's peak (a tip entering "
+                           "mesh on its rounding: what tip relief is for; corner_pressure_MPa, "
+                           "corner_load_N on its footprint), edge_loaded when either; "
+                           f"contacts carrying under {EDGE_LEAST_SHARE:.0%} of their "
+                           "position's load are judged by neither")
+    count = f"of {len(carrying)} contacts carrying load"
     result.checks.append(Check(
-        "loaded contact: no edge load", not edged,
-        f"{len(edged)} of {len(answered)} contacts edge-loaded; highest edge pressure "
-        f"{worst['edge_pressure_MPa']:.0f} MPa "
-        + ("on the rounded edge" if worst["edge_pressure_at"] in rounded
-           else f"averaged over {EDGE_STRIP} mm")
-        + f" ({worst['edge_pressure_at']}), "
-        f"{worst['edge_pressure_MPa'] / max(worst['bem_p_max_MPa'], 1e-300):.2f} of the "
-        f"contact's peak {worst['bem_p_max_MPa']:.0f} MPa, at roll {worst['roll_deg']:.2f} deg "
-        f"pair {worst['pair']}; largest end load ratio "
-        f"{max(r['end_load_ratio'] for r in answered):.2f} (end-loaded above "
-        f"{END_LOAD_RATIO:g})"
+        "loaded contact: no end loading at the face ends", not ends,
+        f"{len(ends)} {count} end-loaded; largest end load ratio "
+        + ("0" if worst_end is None else
+           f"{worst_end['end_load_ratio']:.2f} at roll {worst_end['roll_deg']:.2f} deg pair "
+           f"{worst_end['pair']}") + f" (end-loaded above {END_LOAD_RATIO:g})"
         + ("; a lead crown, or a worm wheel cut by an oversized hob, keeps the load off the "
-           "face ends" if any(r["end_loaded"] for r in answered) else "")))
+           "face ends" if ends else "")))
+    result.checks.append(Check(
+        "loaded contact: no corner contact at a tip, root or form edge", not corners,
+        f"{len(corners)} {count} on an edge of the profile"
+        + ("" if worst_corner is None else
+           f"; highest {worst_corner['corner_pressure_MPa']:.0f} MPa "
+           + ("on the rounded edge" if worst_corner["corner_at"] in rounded
+              else f"averaged over {EDGE_STRIP} mm")
+           + f" ({worst_corner['corner_at']}) carrying {worst_corner['corner_load_N']:.0f} N "
+           f"at roll {worst_corner['roll_deg']:.2f} deg pair {worst_corner['pair']}, the "
+           f"flank's peak there {worst_corner['flank_p_max_MPa']:.0f} MPa; tip relief removes "
+           "it (summary recommended_tip_relief where the kind gives one)")))
 
 
 #: the per-contact keys of the stresses below it (subsurface_sections)
@@ -329,6 +365,13 @@ def _reach_check(cycle, result: Result) -> None:
            "missing" if short else "")))
 
 
+#: the rigid pattern's edge checks: design checks where no loaded contact was solved, else
+#: (kind "rigid") figures beside the loaded contact's end-loading and corner verdicts (a
+#: helical contact line always reaches the face ends; a rigid ellipse's margin cannot say
+#: whether its end carries load)
+RIGID_PATTERN_CHECK = "contact pattern clear of the edges"
+
+
 def contact_sections(cycle, loads: dict, result: Result, arm: tuple[float, str]) -> None:
     """positions, summary, ease-off and the edge checks of a contact cycle: a
     contact.cycle.ContactCycle (kept whole in result.cycle for pictures and the pressure
@@ -370,12 +413,13 @@ def contact_sections(cycle, loads: dict, result: Result, arm: tuple[float, str])
                "load_sharing": LOAD_SHARING_RULE}
     for kind, label in (("face", "at the face ends (edge loading)"),
                         ("profile", "at the tip and form edges (corner contact)")):
+        label = f"{RIGID_PATTERN_CHECK} {label}"
         candidates = [(v, k, r["roll_deg"]) for r in rows for k, v in r["edge_margins_mm"].items()
                       if ("end_" in k) == (kind == "face")]
         if not candidates:
             continue
         margin, edge, roll = min(candidates)
         summary[f"worst_{kind}_edge_margin_mm"], summary[f"worst_{kind}_edge"] = margin, edge
-        result.checks.append(Check(f"contact pattern clear of the edges {label}", margin >= 0,
+        result.checks.append(Check(label, margin >= 0,
                                    f"worst margin {margin:.3f} mm ({edge}) at roll {roll:.2f} deg"))
     result.sections["summary"] = summary

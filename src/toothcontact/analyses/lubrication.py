@@ -254,7 +254,7 @@ def _summary(case, running: LubricatedPair, result: Result, fluid, nu: float,
         + ("fixed as given" if fluid.friction is not None else
            "ISO/TR 14179-2's μ at each contact (its largest normal line load, its sum speed "
            "and relative radius, the oil's viscosity, the mean Ra, X_L)")
-        + "; film: Dowson-Higginson's minimum and Pan-Hamrock's central film of each column "
+        + "; film: Dowson-Higginson's minimum and Dowson-Toyoda's central film of each column "
         "of a contact line or of an ellipse longer than "
         f"{POINT_FILM_ELLIPTICITY:g} times its width (its own load per mm and entraining "
         "speed), Hamrock-Dowson's for a shorter ellipse, isothermal, the oil at the oil "

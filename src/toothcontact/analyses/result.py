@@ -13,7 +13,8 @@ class Check:
     source's own printed numbers agree with each other (a misprint is the source's, not the
     design's); "method": a self-check of the method (two routes to the same number);
     "solver": whether a solver answered everywhere (a failed one leaves the results
-    incomplete: its rows say why, and the run exits with 4)."""
+    incomplete: its rows say why, and the run exits with 4); "rigid": the rigid pattern's
+    edge margins where the loaded contact's verdicts decide (shown, not flagged)."""
 
     name: str
     ok: bool

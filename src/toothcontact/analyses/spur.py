@@ -31,6 +31,18 @@ def spur_geometry_case(case: schema.SpurCase) -> Result:
                            "transverse plane (ISO 21771); on a helical flank the normal "
                            "displacement is that amount times cos(beta_b)"], parts=pair)
     result.notes.append(_tip_edge_note(case, pair))
+    blended = [f"{name}.{kind}" for name in ("pinion", "gear") for kind in
+               ("tip_relief", "root_relief", "end_relief")
+               if getattr(getattr(case, name), kind) is not None
+               and getattr(getattr(case, name), kind).shape == "linear"
+               and getattr(getattr(case, name), kind).blend is None]
+    if blended:
+        from ..modify import RELIEF_BLEND
+
+        result.notes.append(f"relief starts: {', '.join(blended)} blended over "
+                            f"{RELIEF_BLEND:g} of the relief's length (the default; a ground "
+                            "relief's transition: a kink's loaded pressure would not converge; "
+                            "field blend)")
     for name, gear, mods in (("pinion", pair.pinion, pair.pinion_modifications),
                              ("gear", pair.gear, pair.gear_modifications)):
         section = {"teeth": gear.teeth, "internal": gear.internal,
@@ -164,6 +176,58 @@ def _spur_contact(case: schema.SpurCase, pair, result: Result) -> None:
         f"{1e3 * SHAFT_TOLERANCE:g} µm)"))
 
 
+#: the recommended tip relief's amount over the mesh's largest loaded approach: the relief
+#: must clear the deflected tip with some to spare, as the relieved mesh shares its load
+#: over fewer pairs near the tips and deflects a little more
+RELIEF_MARGIN = 1.2
+
+
+def _recommended_tip_relief(pair, result: Result) -> None:
+    """summary recommended_tip_relief: per member of an external pair, the linear tip relief
+    that keeps its tip off the mate under this load (Sigg's long relief, as ISO/TR 6336-30
+    and ISO 6336-1's C_a take it: the amount the loaded teeth deflect, here the mesh's
+    largest loaded approach D - s over the cycle along the contact normal (D a position's
+    common approach, s its least unloaded separation) times RELIEF_MARGIN, transverse (over
+    cos β_b); starting where the double contact at that tip begins: the pinion's at its
+    highest point of single contact D = A + p_b, the gear's at the pinion's lowest, B =
+    E - p_b), and the case lines that apply it."""
+    rows, loaded = result.cycle.rows, result.loaded
+    if loaded is None or pair.internal:
+        return
+    closing = []
+    for roll in {r["roll_deg"] for r in rows}:
+        ks = [k for k, r in enumerate(rows) if r["roll_deg"] == roll]
+        solved = [k for k in ks if loaded[k] is not None]
+        if solved:
+            lead = max(solved, key=lambda k: loaded[k].solution.load_N)
+            closing.append(loaded[lead].solution.approach_mm
+                           - min(rows[k]["separation_mm"] for k in ks))
+    if not closing:
+        return
+    amount = RELIEF_MARGIN * max(closing) / math.cos(pair.pinion.base_helix_angle)
+    mesh = pair.transverse_mesh()
+    path = pair.center_distance * math.sin(pair.working_pressure_angle)
+    starts = {"pinion": math.hypot(pair.pinion.base_radius,
+                                   mesh.start_of_contact + mesh.base_pitch),
+              "gear": math.hypot(pair.gear.base_radius,
+                                 path - (mesh.end_of_contact - mesh.base_pitch))}
+    relief = {name: {"amount_um": round(1e3 * amount, 1),
+                     "start_diameter_mm": round(2.0 * radius, 3)}
+              for name, radius in starts.items()}
+    summary = result.sections["summary"]
+    summary["recommended_tip_relief"] = relief
+    summary["recommended_tip_relief_case"] = "\n".join(
+        f"[{name}.tip_relief]\namount = \"{r['amount_um']:g} um\"\n"
+        f"start_diameter = \"{r['start_diameter_mm']:g} mm\"\nshape = \"linear\""
+        for name, r in relief.items())
+    summary["recommended_tip_relief_note"] = (
+        "linear tip relief that keeps each tip off its mate under this load: the amount the "
+        f"loaded mesh deflects (its largest approach over the cycle, {1e3 * max(closing):.1f} "
+        f"µm along the contact normal) times {RELIEF_MARGIN:g}, transverse; from where the "
+        "double contact at that tip begins (Sigg's long relief: the pinion's highest and "
+        "lowest points of single contact); the blend at its start as the case's default")
+
+
 def _tip_edge_note(case: schema.SpurCase, pair) -> str:
     """The tip edges and end chamfers as analysed: each member's rounding or chamfer, and
     where it is the default."""
@@ -198,6 +262,7 @@ def _contact_pass(case: schema.SpurCase, pair, result: Result):
     if pair.shafts:
         _shaft_sections(pair, result)
     _load_distribution(pair, result)
+    _recommended_tip_relief(pair, result)
     if case.analysis.interference:
         _spur_interference(mesh, pair, cycle, result)
     return mesh

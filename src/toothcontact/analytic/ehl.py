@@ -6,8 +6,10 @@ with u the mean entraining speed (u1 + u2)/2 across the contact, R_x the relativ
 of curvature along it, E' = 2/((1 - ν1²)/E1 + (1 - ν2²)/E2).
 
 * Line contact: minimum film H_min = 2.65·U^0.70·G^0.54·W^-0.13 (Dowson & Higginson,
-  Elasto-Hydrodynamic Lubrication, SI ed. 1977); central film H_c = 2.922·W^-0.166·U^0.692·
-  G^0.470 (Pan & Hamrock, ASME J. Tribol. 111 (1989) 246-251).
+  Elasto-Hydrodynamic Lubrication, SI ed. 1977) and central film H_c = 3.06·U^0.69·G^0.56·
+  W^-0.10 (Dowson & Toyoda, Proc. 5th Leeds-Lyon Symposium, 1979): one family, H_min about
+  0.75 of H_c at gear conditions (Pan & Hamrock's central film, paired with it before, came
+  out equal to or below Dowson-Higginson's minimum).
 * Elliptical contact: H_c = 2.69·U^0.67·G^0.53·W^-0.067·(1 - 0.61·exp(-0.73·k)) and
   H_min = 3.63·U^0.68·G^0.49·W^-0.073·(1 - exp(-0.68·k)), k = 1.0339·(R_y/R_x)^0.636
   (Hamrock & Dowson, ASME J. Lubr. Technol. 99 (1977) 264-276).
@@ -47,7 +49,7 @@ def line_film(eta: float, u: float, R_mm: float, w: float, E_reduced: float,
     U, G = _groups(eta, u, R_mm, E_reduced, alpha)
     W = w / (E_reduced * R_mm)
     R_um = R_mm * 1e3
-    return Film(2.922 * W ** -0.166 * U ** 0.692 * G ** 0.470 * R_um,
+    return Film(3.06 * U ** 0.69 * G ** 0.56 * W ** -0.10 * R_um,
                 2.65 * U ** 0.70 * G ** 0.54 * W ** -0.13 * R_um)
 
 

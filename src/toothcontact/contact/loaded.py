@@ -98,8 +98,8 @@ GAP_TOLERANCE, COARSE_TOLERANCE = 1e-5, 1e-3
 #: carries them as None, with bem_status "unloaded" (the other pairs of its position carry
 #: the load) or "failed" and the reason in bem_reason
 RESULT_KEYS = ("bem_status", "bem_load_N", "bem_p_max_MPa", "flank_p_max_MPa", "edge_loaded",
-               "end_loaded",
-               "end_load_ratio", "bem_area_mm2",
+               "end_loaded", "corner_contact", "corner_pressure_MPa", "corner_load_N",
+               "corner_at", "end_load_ratio", "bem_area_mm2",
                "bem_approach_mm", "bem_grid", "edge_pressure_MPa", "edge_load_fraction",
                "edge_pressure_at", "edge_strip_mm", "bem_raw_peak_MPa", "bem_iterations",
                "bem_relative_error", "bem_reason")
@@ -113,6 +113,7 @@ def unsolved(status: str, reason: str | None = None) -> dict:
         row.update(bem_load_N=0.0, bem_p_max_MPa=0.0, flank_p_max_MPa=0.0, bem_area_mm2=0.0,
                    edge_pressure_MPa=0.0,
                    edge_load_fraction=0.0, edge_loaded=False, end_loaded=False,
+                   corner_contact=False, corner_pressure_MPa=0.0, corner_load_N=0.0,
                    end_load_ratio=0.0)
     return {**row, "bem_status": status, "bem_reason": reason}
 
@@ -172,18 +173,29 @@ def summarise(field: GapField, s: ContactSolution, position_load: float | None =
     name, worst = next(((n, e) for n, e in named if e.edge_pressure_MPa >= (1 - 1e-3) * highest),
                        ("none", None))
     edge_pressure = worst.edge_pressure_MPa if worst is not None and worst.load_N > 0 else 0.0
-    interior = _interior_peak(field, s, on_break.values())
-    end_ratio = max((end_load_ratio(field, s, member, end, breaks.chamfers.get(member))
-                     for member in ("pinion", "gear") for end in "AB"), default=0.0)
-    profile = [n for n, e in named if not is_face_end(n) and e.load_N > 0
+    footprints = corner_footprints(field, s, tip_roundings(field, breaks.roundings))
+    interior = _interior_peak(field, s, list(on_break.values()) + list(footprints.values()))
+    end_ratio = max((end_load_ratio(
+        field, s, member, end, breaks.chamfers.get(member),
+        None if member not in breaks.faces else (position_load or s.load_N) / breaks.faces[member])
+        for member in ("pinion", "gear") for end in "AB"), default=0.0)
+    profile = [(n, e) for n, e in named if not is_face_end(n) and e.load_N > 0
                and e.edge_pressure_MPa > EDGE_PRESSURE_RATIO * interior]
     judged = s.load_N >= EDGE_LEAST_SHARE * (position_load or s.load_N)
     end_loaded = bool(judged and end_ratio > END_LOAD_RATIO)
     profile = profile if judged else []
+    corner, corner_edge = max(profile, key=lambda item: item[1].edge_pressure_MPa,
+                              default=("none", None))
+    corner_load = (0.0 if corner_edge is None else
+                   float(s.pressure_MPa[footprints[corner]].sum()) * s.dx_mm * s.dy_mm
+                   if corner in footprints else corner_edge.load_N)
     return {"bem_status": "solved", "bem_load_N": s.load_N,
             "bem_p_max_MPa": max(interior, edge_pressure), "flank_p_max_MPa": interior,
             "edge_loaded": bool(profile) or end_loaded,
-            "end_loaded": end_loaded, "end_load_ratio": float(end_ratio),
+            "end_loaded": end_loaded, "corner_contact": bool(profile),
+            "corner_pressure_MPa": 0.0 if corner_edge is None else corner_edge.edge_pressure_MPa,
+            "corner_load_N": corner_load, "corner_at": corner,
+            "end_load_ratio": float(end_ratio),
             "bem_area_mm2": s.area_mm2, "bem_approach_mm": s.approach_mm,
             "bem_grid": list(s.pressure_MPa.shape),
             "edge_pressure_MPa": edge_pressure,
@@ -191,6 +203,32 @@ def summarise(field: GapField, s: ContactSolution, position_load: float | None =
             "edge_pressure_at": name, "edge_strip_mm": EDGE_STRIP,
             "bem_raw_peak_MPa": s.peak_pressure_MPa, "bem_iterations": s.iterations,
             "bem_relative_error": s.relative_error, "bem_reason": None}
+
+
+def corner_footprints(field: GapField, s: ContactSolution, roundings: dict[str, np.ndarray]
+                      ) -> dict[str, np.ndarray]:
+    """Each loaded tip rounding's footprint ("gear_tip" -> bool mask): the rounding and the
+    contact's cells within twice its band width of it (its loaded width across its longer
+    axis, the median over its lines; at least EDGE_STRIP): a corner contact on the rounding
+    presses the involute beside it over its own width, a pair entering mesh early along a
+    band next to the rounding (premature contact off the path of contact, issue 51); the
+    flank's own pressure lies beyond."""
+    from scipy.ndimage import distance_transform_edt
+
+    out = {}
+    loaded = field.material & (s.pressure_MPa > 0.0)
+    if not loaded.any():
+        return out
+    across = 1 if loaded.shape[0] >= loaded.shape[1] else 0
+    counts = loaded.sum(axis=across)
+    band = float(np.median(counts[counts > 0])) * field.spacing[across]
+    for name, on in roundings.items():
+        if not (on & loaded).any():
+            continue
+        near = distance_transform_edt(~on, sampling=field.spacing) <= max(2.0 * band,
+                                                                           EDGE_STRIP)
+        out[name] = field.material & (on | (near & loaded))
+    return out
 
 
 def tip_roundings(field: GapField, roundings: dict[str, tuple[float, float]]
@@ -240,18 +278,23 @@ class EdgeBreaks:
     roundings: dict = dataclasses.field(default_factory=dict)
     chamfers: dict = dataclasses.field(default_factory=dict)
     kinks: dict = dataclasses.field(default_factory=dict)
+    #: member -> its face width (mm): a face end's load per mm is judged against its
+    #: position's load spread over it
+    faces: dict = dataclasses.field(default_factory=dict)
 
 
 def edge_breaks(cycle) -> EdgeBreaks:
     """The tip roundings (or chamfers) and end chamfers of a cycle's members (those
     without one left out)."""
-    roundings, chamfers, kinks = {}, {}, {}
+    roundings, chamfers, kinks, faces = {}, {}, {}, {}
     for member in ("pinion", "gear"):
         flank = getattr(cycle, member)
+        gear = getattr(getattr(flank, "base", flank), "gear", None)
+        if isinstance(getattr(gear, "face_width", None), float):
+            faces[member] = gear.face_width
         modifications = getattr(flank, "modifications", None)
         if modifications is None:
             continue
-        gear = flank.base.gear
         edge = modifications.tip_edge
         if edge is not None:
             toward = 1.0 if flank.base.tip_roll >= edge.start else -1.0
@@ -260,7 +303,7 @@ def edge_breaks(cycle) -> EdgeBreaks:
             chamfers[member] = modifications.end_chamfer.start(gear.face_width)
         kinks[member] = (np.sort(np.array(modifications.profile_breaks)) / gear.base_radius,
                          np.array(modifications.lead_breaks(gear.face_width)))
-    return EdgeBreaks(roundings, chamfers, kinks)
+    return EdgeBreaks(roundings, chamfers, kinks, faces)
 
 
 def chamfered_ends(field: GapField, chamfers: dict[str, float], before: float = 0.0
@@ -274,11 +317,12 @@ def chamfered_ends(field: GapField, chamfers: dict[str, float], before: float = 
 
 
 def end_load_ratio(field: GapField, s: ContactSolution, member: str, end: str,
-                   chamfer: float | None = None) -> float:
+                   chamfer: float | None = None, mean: float | None = None) -> float:
     """A face end's load ratio (END_LOAD_RATIO): the load per mm of face in the last
-    EDGE_STRIP of the member's flank before its end `end` ("A" or "B") over the contact's
-    mean load per mm of face over its extent in contact; 0 where the end is not in the
-    field. With a `chamfer` (where its rounded edge starts, mm from mid-face either way) the
+    EDGE_STRIP of the member's flank before its end `end` ("A" or "B") over `mean` (N per
+    mm of face: its position's load over the face width, the share the end would carry of
+    an even spread), or without one over the contact's mean load per mm of face over its
+    extent in contact; 0 where the end is not in the field. With a `chamfer` (where its rounded edge starts, mm from mid-face either way) the
     strip is the last EDGE_STRIP before that start, and the stretch of the contact beyond
     it, on the rounded edge (the stretch its loaded cells cover wholly: within a cell, where
     the contact ends is not known), is added to the strip's width.
@@ -336,7 +380,7 @@ def end_load_ratio(field: GapField, s: ContactSolution, member: str, end: str,
     if width <= 0.0:
         return 0.0
     load = float((s.pressure_MPa[near] * strip).sum()) * dx * dy
-    return (load / width) / (s.load_N / max(extent, EDGE_STRIP))
+    return (load / width) / (mean or s.load_N / max(extent, EDGE_STRIP))
 
 
 def _face_distance(within: np.ndarray, cells: tuple[np.ndarray, np.ndarray],
@@ -387,9 +431,10 @@ def _edge_name(field: GapField, edge: EdgeLoad) -> str:
 
 def _interior_peak(field: GapField, s: ContactSolution, roundings=()) -> float:
     """The largest pressure (MPa) on the active flank more than EDGE_STRIP inside its edges:
-    those of the material and the tip roundings' starts (`roundings`: bool masks of the
-    cells on them). With the edge pressures, the peak that converges as the grid is refined
-    (the pressure in a cell at a sharp edge does not)."""
+    those of the material and of the cells left out (`roundings`: bool masks of the tip
+    roundings, the chamfers' edges and the corner contacts' footprints). With the edge
+    pressures, the peak that converges as the grid is refined (the pressure in a cell at a
+    sharp edge does not)."""
     active = field.material.copy()
     for on in roundings:
         active &= ~on

@@ -24,11 +24,12 @@ PERCENTILES = (5, 50, 95, 99)
 #: the normal quantile of the two-sided 95 % interval
 Z95 = 1.959963984540054
 #: per loading flag, the summary's counts that raise it, the first a sample reports: the
-#: loaded contact's edge-loaded contacts at any flank edge (tip, root, face end) or at a
-#: face end, else the rigid analysis's contacts a face end cuts; a sample is edge- (end-)
-#: loaded where the count is above zero
+#: loaded contact's edge-loaded contacts at any flank edge (tip, root, face end), at a face
+#: end, or its corner contacts (a tip, root or form edge), else the rigid analysis's
+#: contacts a face end cuts; a sample is so loaded where the count is above zero
 FLAGS = {"edge_loading": ("edge_loaded_contacts", "edge_contacts"),
-         "end_loading": ("end_loaded_contacts", "edge_contacts")}
+         "end_loading": ("end_loaded_contacts", "edge_contacts"),
+         "corner_contact": ("corner_contacts",)}
 
 
 def summarise(rows: list[dict], inputs: list[str], grid: list[str] = (),
