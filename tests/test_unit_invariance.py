@@ -45,7 +45,8 @@ LOADED = ("bem_", "flank_p_max", "edge_pressure", "edge_load", "end_load",
           "mesh_stiffness", "single_stiffness", "line_load", "mean_line_load", "load_share",
           "te_harmonics", "subsurface_", "root_stress", "pinion_root_stress",
           "gear_root_stress", "sigma_H", "sigma_F", "S_H", "S_F", "K_F_beta", "K_H_alpha",
-          "K_F_alpha", "flank_pressure", "miner_sum", "friction_coefficient",
+          "K_F_alpha", "flank_pressure", "corner_", "recommended_tip_relief", "miner_sum",
+          "friction_coefficient",
           "film_thickness", "lambda", "flash_temperature", "contact_temperature", "power_loss",
           "mesh_power_loss", "mesh_efficiency", "bulk_temperature", "S_B", "S_lambda")
 #: an edge pressure averages its strip's cells, each taken all or nothing at the edge:
