@@ -191,7 +191,7 @@ def small_identical_hob_set():
     the fields' samples, fields)."""
     from toothcontact.case import parse_case
     from toothcontact.contact.field import LOADED_FAR, contact_samples, pattern_semi_axes
-    from toothcontact.contact.loaded import CELL, _Pair, field_reach
+    from toothcontact.contact.loaded import CELL, _Pair, curved_lines, field_reach
 
     parts = gearset.worm_set(parse_case(tomllib.loads(SMALL_IDENTICAL_HOB_SET)))
     cycle = parallel_cycle(WormMesh(parts.wheel["left"], WormMisalignment()), parts.worm["left"],
@@ -202,7 +202,7 @@ def small_identical_hob_set():
     reach = field_reach(cycle, rows)
     patterns = pattern_semi_axes(cycle, rows)
     samples = contact_samples(cycle, rows, _Pair.MARGIN, np.minimum(patterns, reach[:, None]),
-                              far=LOADED_FAR, along_pattern=True)
+                              far=LOADED_FAR, along_pattern=True, fit=curved_lines(cycle))
     fields = [s.field(128, CELL, snap=True) for s in samples]
     return cycle, rows, reach, patterns, samples, fields
 

@@ -998,6 +998,9 @@ class WormSpec(Model):
                                               "wheel angle for ZK, e.g. '20 deg'")
     length: Length = Field(description="threaded length, e.g. '30 mm'")
     grinding_wheel_diameter: Length = Field(250.0, description="ZK only")
+    tip_edge: TipEdgeSpec | None = Field(
+        None, description="the thread's tip edges as made: a rounding (radius) or a rounded "
+                          "chamfer; none given: rounded by 0.1 normal modules")
     roughness_Ra: Roughness | None = ROUGHNESS_FIELD
 
     @model_validator(mode="after")
@@ -1036,6 +1039,13 @@ class WheelSpec(Model):
         None, description="pitch diameter of an oversized hob with the worm's lead; "
                           "default: the worm's (line contact)")
     align_hob_thread: bool = Field(False, description="tilt an oversized hob to the worm's thread")
+    tip_edge: TipEdgeSpec | None = Field(
+        None, description="the teeth's tip edges on the throat as made: a rounding (radius) "
+                          "or a rounded chamfer; none given: rounded by 0.1 normal modules")
+    rim_chamfer: EndChamferSpec | None = Field(
+        None, description="a chamfer where the teeth's flanks meet the rim's faces (length "
+                          "along the face, angle, the rounding of its edge); none given: flush "
+                          "faces")
     roughness_Ra: Roughness | None = ROUGHNESS_FIELD
 
 

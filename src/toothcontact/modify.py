@@ -20,7 +20,7 @@ from .surfaces.jet import Jet, value, where
 SHAPES = ("circular", "parabolic")
 
 
-def _arc_drop(offset, radius: float, shape: str):
+def arc_drop(offset, radius: float, shape: str):
     """Drop of a crown of `radius` at `offset` from its centre: circular R - sqrt(R² - d²),
     evaluated as d²/(R + sqrt((R - d)(R + d))) (no cancellation for a large R), parabolic
     d²/(2R); both have curvature 1/R at the centre."""
@@ -62,7 +62,7 @@ class LeadCrown:
         return crown_radius_from_height(self.height, 0.5 * face_width, self.shape)
 
     def drop(self, w, face_width: float):
-        return _arc_drop(w - self.center, self.radius_for(face_width), self.shape)
+        return arc_drop(w - self.center, self.radius_for(face_width), self.shape)
 
 
 @dataclass(frozen=True)
@@ -74,7 +74,7 @@ class ProfileCrown:
 
     def drop(self, s, s_start: float, s_end: float):
         half = 0.5 * abs(s_end - s_start)
-        return _arc_drop(s - 0.5 * (s_start + s_end),
+        return arc_drop(s - 0.5 * (s_start + s_end),
                          crown_radius_from_height(self.height, half, self.shape), self.shape)
 
 
@@ -254,7 +254,7 @@ def k_chart_grid(profile_face, profile_roll, profile, lead_roll, lead_face, lead
     return grid, float(np.max(np.abs(by_profile - by_lead.T)))
 
 
-def _broken_edge_drop(run, radius: float, angle: float, bend: float = 0.0):
+def broken_edge_drop(run, radius: float, angle: float, bend: float = 0.0):
     """The drop (mm) of an edge broken by a chamfer at `angle` (rad) to the surface, its
     start rounded by `radius` (mm, the curvature the drop adds), at `run` (mm, >= 0) past
     where the rounding starts: the circle until its slope reaches tan(angle), then the
@@ -262,7 +262,7 @@ def _broken_edge_drop(run, radius: float, angle: float, bend: float = 0.0):
     back, so that the chamfer is straight in space). C1, exact for jets."""
     turn_run = radius * math.sin(angle)
     on_circle = value(run) < turn_run
-    circle = _arc_drop(where(on_circle, run, 0.0 * run + turn_run), radius, "circular")
+    circle = arc_drop(where(on_circle, run, 0.0 * run + turn_run), radius, "circular")
     past = where(on_circle, 0.0 * run, run - turn_run)
     return circle + math.tan(angle) * past + 0.5 * bend * past * past
 
@@ -352,10 +352,10 @@ class TipEdge:
             # twice in the arc σ), away from the circle's centre on an external gear
             sin2 = math.sin(self.angle) ** 2
             bend = (1.0 if self.internal else -1.0) * (1.0 + sin2) / ((1.0 - sin2) * self.start)
-            return _broken_edge_drop(arc, radius, self.angle, bend)
+            return broken_edge_drop(arc, radius, self.angle, bend)
         arc_tip = toward * (s_tip**2 - self.start**2) / (2.0 * self.base_radius)
         past = value(arc) > arc_tip
-        circle = _arc_drop(where(past, 0.0 * s + arc_tip, arc), radius, "circular")
+        circle = arc_drop(where(past, 0.0 * s + arc_tip, arc), radius, "circular")
         root = math.sqrt(radius**2 - arc_tip**2)
         run = arc - arc_tip
         continued = (radius - root + arc_tip / root * run
@@ -393,7 +393,7 @@ class EndChamfer:
                              "of the face")
         run = where(value(w) > 0, w, -w) - start
         inside = value(run) > 0.0
-        return where(inside, _broken_edge_drop(where(inside, run, 0.0 * run), self.radius,
+        return where(inside, broken_edge_drop(where(inside, run, 0.0 * run), self.radius,
                                                self.angle), 0.0 * w)
 
 

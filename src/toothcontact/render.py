@@ -369,7 +369,7 @@ def _join(parts: list[np.ndarray]) -> np.ndarray:
 
 def _wheel_tooth_outline(minus_flank, plus_flank, z: float, nu: int) -> np.ndarray:
     """Outline of tooth 0 of a worm wheel in the plane z2 = z (as cad.wheel builds it)."""
-    u = np.linspace(0.0, 1.0, nu)
+    u = minus_flank.profile_parameters(nu)      # the other's break starts as near
     v = np.full_like(u, z)
     minus = _flank_points(minus_flank, u, v)       # tip -> root
     plus = _flank_points(plus_flank, u, v)
@@ -471,14 +471,12 @@ def wheel_body(pv, left, right, teeth, nu: int = 21, sections: int = 21) -> dict
 def worm_body(pv, left, right, n: int = 11, turn_points: int = 181):
     """The whole worm: its axial section (both flank profiles, tip and root lines) screwed
     about the axis (every flank is a helicoid), cut by the end planes and closed by them."""
-    rf, ra = left.domain[0]
-    r = np.linspace(rf, ra, n)
-    zl, zr = left.axial_profile(r), right.axial_profile(r)
+    (rl, zl), (rr, zr) = left.axial_section(n), right.axial_section(n)
     if zl[0] > zr[0]:
-        zl, zr = zr, zl
+        (rl, zl), (rr, zr) = (rr, zr), (rl, zl)
     px, p, length = left.axial_pitch, left.screw_parameter, left.length
     lead = abs(2.0 * math.pi * p)
-    one = np.concatenate([np.column_stack([r, zl]), np.column_stack([r[::-1], zr[::-1]])])
+    one = np.concatenate([np.column_stack([rl, zl]), np.column_stack([rr[::-1], zr[::-1]])])
     k0 = int(math.floor((-0.5 * length - lead) / px)) - 1
     k1 = int(math.ceil((0.5 * length + lead) / px)) + 1
     profile = np.concatenate([one + [0.0, k * px] for k in range(k0, k1 + 1)])  # (m, 2): r, z

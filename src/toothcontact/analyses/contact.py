@@ -218,8 +218,7 @@ def _edge_verdicts(cycle, rows: list[dict], summary: dict, result: Result) -> No
     judged, those carrying EDGE_LEAST_SHARE of their position's load), and corner contacts
     (a tip, root or form edge pressed harder than the flank); a design check of each
     kind."""
-    from ..contact.loaded import (EDGE_LEAST_SHARE, EDGE_PRESSURE_RATIO, EDGE_STRIP,
-                                  END_LOAD_RATIO, edge_breaks)
+    from ..contact.loaded import EDGE_LEAST_SHARE, EDGE_STRIP, END_LOAD_RATIO, edge_breaks
 
     carrying = [r for r in rows if r["bem_status"] == "solved"]
     judged = [r for r in carrying if (r.get("load_share") or 0.0) >= EDGE_LEAST_SHARE]
@@ -242,26 +241,7 @@ def _edge_verdicts(cycle, rows: list[dict], summary: dict, result: Result) -> No
         corner_contact_at=(None if worst_corner is None else
                            f"roll {worst_corner['roll_deg']:.2f} deg pair {worst_corner['pair']} "
                            f"({worst_corner['corner_at']})"),
-        edge_pressure_note=f"edge_pressure_MPa is the pressure averaged over a {EDGE_STRIP} mm "
-                           "strip at a sharp edge, the largest on the rounding at a rounded tip "
-                           "(a smooth surface: Hertz on its radius); flank_p_max_MPa the "
-                           f"active flank's peak more than {EDGE_STRIP} mm inside its edges, "
-                           "off the tip roundings and off a corner contact's whole footprint "
-                           "(the flank within its half-width of the rounding); bem_p_max_MPa "
-                           "the larger of edge and flank: both converge as the grid is "
-                           "refined; bem_raw_peak_MPa, the largest cell pressure, grows without "
-                           "bound at a sharp edge and is not a design value; free face ends "
-                           "are quarter-spaces (mirror-pressure correction). Of the contacts "
-                           "that carry load (loaded_contacts), one is end_loaded when its load "
-                           "per mm of face in the strip at a face end exceeds "
-                           f"{END_LOAD_RATIO:g} times its mean over its length in contact "
-                           "(end_load_ratio: what a lead crown is for), a corner_contact when "
-                           "a tip, root or form edge presses harder than "
-                           f"{EDGE_PRESSURE_RATIO:g} times its flank's peak (a tip entering "
-                           "mesh on its rounding: what tip relief is for; corner_pressure_MPa, "
-                           "corner_load_N on its footprint), edge_loaded when either; "
-                           f"contacts carrying under {EDGE_LEAST_SHARE:.0%} of their "
-                           "position's load are judged by neither")
+        edge_pressure_note=_edge_note(breaks.curved))
     count = f"of {len(carrying)} contacts carrying load"
     result.checks.append(Check(
         "loaded contact: no end loading at the face ends", not ends,
@@ -280,8 +260,51 @@ def _edge_verdicts(cycle, rows: list[dict], summary: dict, result: Result) -> No
               else f"averaged over {EDGE_STRIP} mm")
            + f" ({worst_corner['corner_at']}) carrying {worst_corner['corner_load_N']:.0f} N "
            f"at roll {worst_corner['roll_deg']:.2f} deg pair {worst_corner['pair']}, the "
-           f"flank's peak there {worst_corner['flank_p_max_MPa']:.0f} MPa; tip relief removes "
-           "it (summary recommended_tip_relief where the kind gives one)")))
+           f"flank's peak there {worst_corner['flank_p_max_MPa']:.0f} MPa; "
+           + ("a larger rounding or a chamfer of the tip edge, or a hob oversize that keeps "
+              "the pattern off it, relieves it" if breaks.curved else
+              "tip relief removes it (summary recommended_tip_relief where the kind gives "
+              "one)"))))
+
+
+def _edge_note(curved: bool) -> str:
+    """What the edge figures mean (the summary's edge_pressure_note); `curved`: a worm
+    set's contact lines, crossing the edges, judged by their line load."""
+    from ..contact.loaded import (CORNER_REACH, EDGE_LEAST_SHARE, EDGE_PRESSURE_RATIO,
+                                  EDGE_STRIP, END_LOAD_RATIO)
+
+    pressures = (f"edge_pressure_MPa is the pressure averaged over a {EDGE_STRIP} mm strip at "
+                 "a sharp edge, the largest on the rounding at a rounded tip (a smooth "
+                 "surface: Hertz on its radius); flank_p_max_MPa the active flank's peak more "
+                 f"than {EDGE_STRIP} mm inside its edges, off the tip roundings"
+                 + ("" if curved else " and off a corner contact's whole footprint (the "
+                    "flank within its half-width of the rounding)")
+                 + "; bem_p_max_MPa the larger of edge and flank: both converge as the grid "
+                 "is refined; bem_raw_peak_MPa, the largest cell pressure, grows without bound "
+                 "at a sharp edge and is not a design value; free face ends are "
+                 "quarter-spaces (mirror-pressure correction). ")
+    if curved:
+        verdicts = ("The contact lines curve and cross the edges: each edge is judged by the "
+                    f"line load in the {EDGE_STRIP} mm strip at it (its rounding included) "
+                    "over the line's mean, the line followed by the load's centroids "
+                    "(end_load_ratio at the face ends, edge_load_ratio at the tip, root and "
+                    "form edges). Of the contacts that carry load (loaded_contacts), one is "
+                    f"end_loaded when its end_load_ratio exceeds {END_LOAD_RATIO:g}, a "
+                    f"corner_contact when its edge_load_ratio exceeds {END_LOAD_RATIO:g} or "
+                    f"its load lies within {CORNER_REACH:g} mm of a tip, root or form edge "
+                    "alone (corner_pressure_MPa, corner_load_N at that edge), edge_loaded when "
+                    "either")
+    else:
+        verdicts = ("Of the contacts that carry load (loaded_contacts), one is end_loaded "
+                    "when its load per mm of face in the strip at a face end exceeds "
+                    f"{END_LOAD_RATIO:g} times its mean over its length in contact "
+                    "(end_load_ratio: what a lead crown is for), a corner_contact when a tip, "
+                    f"root or form edge presses harder than {EDGE_PRESSURE_RATIO:g} times its "
+                    "flank's peak (a tip entering mesh on its rounding: what tip relief is "
+                    "for; corner_pressure_MPa, corner_load_N on its footprint), edge_loaded "
+                    "when either")
+    return (pressures + verdicts + f"; contacts carrying under {EDGE_LEAST_SHARE:.0%} of their "
+            "position's load are judged by neither")
 
 
 #: the per-contact keys of the stresses below it (subsurface_sections)

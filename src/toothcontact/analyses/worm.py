@@ -47,7 +47,18 @@ def worm_geometry_case(case: schema.WormCase) -> Result:
                   "outside_diameter_mm": wheel.outside_diameter, "face_width_mm": wheel.face_width,
                   "center_distance_mm": wheel.centre_distance},
     }, notes=["the wheel flank is the exact envelope of the hob thread (equation of meshing); "
-              "the blank follows DIN 3975 guideline proportions"])
+              "the blank follows DIN 3975 guideline proportions", _edges_note(parts.edges)])
+    for member, key in (("worm", "worm_tip"), ("wheel", "wheel_tip")):
+        edge = parts.edges[key]
+        result.sections[member].update(
+            tip_edge_radius_mm=None if edge is None else edge["radius_mm"],
+            tip_chamfer_mm=None if edge is None else edge.get("chamfer_mm"),
+            tip_chamfer_angle_deg=None if edge is None else edge.get("angle_deg"))
+    rim = parts.edges["wheel_rim"]
+    result.sections["wheel"].update(
+        rim_chamfer_mm=None if rim is None else rim["chamfer_mm"],
+        rim_chamfer_angle_deg=None if rim is None else rim["angle_deg"],
+        rim_chamfer_radius_mm=None if rim is None else rim["radius_mm"])
     result.sections["hob"]["form_diameter_mm"] = 2 * hob.form_radius
     # the wheel's tip torus reaches the worm radius a - d_a2/2 (r_k) in the mid-plane, the
     # hob's radius a0 - d_a2/2 while it cuts: there the flanks must exist
@@ -71,6 +82,30 @@ def worm_geometry_case(case: schema.WormCase) -> Result:
                              lambda scratch: _worm_contact(contact.midway_case(case), parts,
                                                            scratch, 0.5))
     return result
+
+
+def _edges_note(edges: dict) -> str:
+    """The edges as analysed: each tip's rounding or chamfer, the wheel's rim faces, and
+    which are the defaults (an assumption: no standard gives a value)."""
+    from ..gearset import WORM_TIP_EDGE_MODULES
+
+    def tip(name: str) -> str:
+        edge = edges[f"{name}_tip"]
+        if edge is None:
+            return f"{name} tip sharp"
+        text = (f"{name} tip rounded {edge['radius_mm']:.3g} mm" if "chamfer_mm" not in edge
+                else f"{name} tip chamfered {edge['chamfer_mm']:.3g} mm at "
+                     f"{edge['angle_deg']:.3g} deg, its edge rounded {edge['radius_mm']:.3g} mm")
+        return text + ("" if edge["given"] else " (default)")
+
+    rim = edges["wheel_rim"]
+    return ("edges as made: " + ", ".join([tip("worm"), tip("wheel")]) + ", wheel rim faces "
+            + ("flush (free ends)" if rim is None else
+               f"chamfered {rim['chamfer_mm']:.3g} mm at {rim['angle_deg']:.3g} deg, the edge "
+               f"rounded {rim['radius_mm']:.3g} mm")
+            + f"; the default rounding, {WORM_TIP_EDGE_MODULES:g} normal modules, is this "
+            "tool's assumption: no standard fixes a value and drawings give their own "
+            "([worm.tip_edge], [wheel.tip_edge], [wheel.rim_chamfer]; '0 mm' for a sharp tip)")
 
 
 def _flankless_worm(case: schema.WormCase, worm, wheel) -> str:
@@ -176,13 +211,13 @@ def _publish_names(result: Result, names: dict[str, str]) -> None:
     for row in result.sections.get("positions", []):
         if "contact_radius_pinion_mm" in row:
             row[f"contact_radius_{names['pinion']}_mm"] = row.pop("contact_radius_pinion_mm")
-        for key in ("edge_contact_at", "edge_pressure_at"):
+        for key in ("edge_contact_at", "edge_pressure_at", "corner_at"):
             if key in row:
                 row[key] = edge(row[key])
         if isinstance(row.get("edge_margins_mm"), dict):
             row["edge_margins_mm"] = {edge(k): v for k, v in row["edge_margins_mm"].items()}
     summary = result.sections.get("summary", {})
-    for key in ("worst_face_edge", "worst_profile_edge"):
+    for key in ("worst_face_edge", "worst_profile_edge", "corner_contact_at"):
         if key in summary:
             summary[key] = edge(summary[key])
     if "ease_off" in result.sections:

@@ -80,10 +80,9 @@ def _swept_thread(left: WormFlank, right: WormFlank, n: int, z0: float, turns: i
     from OCP.TopoDS import TopoDS
 
     (r0, ra), root = left.domain[0], left.root_diameter / 2
-    r = np.linspace(r0, ra, n)
-    z_left, z_right = left.axial_profile(r), right.axial_profile(r)
-    pts_left = np.column_stack([r, 0 * r, z_left])
-    pts_right = np.column_stack([r, 0 * r, z_right])
+    (r_left, z_left), (r_right, z_right) = left.axial_section(n), right.axial_section(n)
+    pts_left = np.column_stack([r_left, 0 * r_left, z_left])
+    pts_right = np.column_stack([r_right, 0 * r_right, z_right])
     params = chord_parameters(pts_left[:, [0, 2]])
     line = lambda p, q: BRepBuilderAPI_MakeEdge(gp_Pnt(*map(float, p)), gp_Pnt(*map(float, q))).Edge()  # noqa: E731
     wire = BRepBuilderAPI_MakeWire()

@@ -168,7 +168,8 @@ LOADED_FAR = 5.0
 class FieldSamples:
     """One contact's gap solved exactly (rays.py) on the lines of a SAMPLES × SAMPLES grid
     over its box, centre ± half ((2,) mm, in the plane's axes turned by `turn`, rad): the
-    gap less the modifications and both flanks' parameters (`filled`, (5, n, n)), filled by
+    gap less the modifications, both flanks' parameters and their normals' components along
+    the plane's normal (`filled`, (7, n, n)), filled by
     smooth_fill where a line meets no flank continued from the contact (`met` False). Its
     gap fields on any cells are carried from them by splines (`field`): a field laid again
     on other cells over the same box solves no line again."""
@@ -221,27 +222,108 @@ def gap_fields(pinion: Flank, gear: Flank, pinion_frames: Frame, gear_frames: Fr
 def gap_samples(pinion: Flank, gear: Flank, pinion_frames: Frame, gear_frames: Frame,
                 planes: TangentPlanes, pinion_uv, gear_uv, half: np.ndarray,
                 centre: np.ndarray | None = None, far: float = FAR,
-                turn: np.ndarray | None = None) -> list[FieldSamples]:
+                turn: np.ndarray | None = None, fit: bool = False) -> list[FieldSamples]:
     """The gap samples of K contacts (frames and planes stacked (K,), parameters (K,)), each
     over centre[k] + [-half[k, 0], half[k, 0]] × [-half[k, 1], half[k, 1]] mm (centre (K, 2)
     in the plane from the contact point, default 0; the contact must lie inside): all of
     them in one ray solve per flank. far: the height (mm) above the plane beyond which no
     hit is taken. turn ((K,) rad): each field's axes turned from the plane's e1 toward e2
-    (its box and centre given in the turned axes)."""
-    half = np.asarray(half, float).reshape(-1, 2)
+    (its box and centre given in the turned axes).
+
+    A box whose lines miss the flanks about its contact (a pattern that runs past an edge
+    puts its middle, and so the box, off the flanks) is laid again about the contact point
+    itself, halved each time (FIT_TRIES times at most); with `fit`, a box that reaches
+    well past both flanks' material (both inside their domains, connected to the contact)
+    is laid again over that material's extent and a margin (fitted_box): the field is
+    placed and sized from the flanks' own extents, not from a pattern alone."""
+    half = np.array(half, float).reshape(-1, 2)
     turn = np.zeros(len(half)) if turn is None else np.asarray(turn, float).reshape(-1)
-    if turn.any():
-        planes = turned(planes, turn)
-    centre = np.zeros_like(half) if centre is None else np.asarray(centre, float).reshape(-1, 2)
+    centre = np.zeros_like(half) if centre is None else np.array(centre, float).reshape(-1, 2)
+    pinion_uv, gear_uv = (tuple(np.asarray(a, float) for a in uv) for uv in (pinion_uv, gear_uv))
+    out: list[FieldSamples | None] = [None] * len(half)
+    todo = np.arange(len(half))
+    for attempt in range(FIT_TRIES + 1):
+        again = {}
+        for k, found in zip(todo, _sampled(
+                pinion, gear, pinion_frames[todo], gear_frames[todo], planes_at(planes, todo),
+                tuple(a[todo] for a in pinion_uv), tuple(a[todo] for a in gear_uv),
+                half[todo], centre[todo], far, turn[todo])):
+            if found is None:                        # no line met both flanks
+                if attempt == FIT_TRIES:
+                    raise ValueError("no line of the gap field meets both flanks")
+                again[k] = (np.zeros(2), 0.5 * half[k])
+                continue
+            box = fitted_box(found) if fit and attempt == 0 else None
+            if box is None:
+                out[k] = found
+            else:
+                again[k] = box
+        if not again:
+            break
+        todo = np.array(sorted(again))
+        centre[todo] = [again[k][0] for k in todo]
+        half[todo] = [again[k][1] for k in todo]
+    return out
+
+
+#: how often a gap field's box is laid again (gap_samples): about the contact point,
+#: halved, where its lines miss the flanks
+FIT_TRIES = 4
+#: a box reaching past its flanks' material by more than this share of its half-side
+#: along an axis is fitted to the material (fitted_box)
+FIT_SLACK = 0.25
+
+
+def fitted_box(samples: FieldSamples) -> tuple[np.ndarray, np.ndarray] | None:
+    """The box (centre, half-sides (2,), mm in the field's axes) over the samples' material
+    (both flanks inside their domains, connected to the contact's) with a margin of two
+    samples and a tenth of its extent, where that is narrower than the box by more than
+    FIT_SLACK of a half-side along an axis (kept as it is along the other); None where the
+    box fits already, or holds no material."""
+    from scipy.ndimage import label
+
+    n = samples.met.shape[0]
+    inside = samples.met.copy()
+    for flank, (u, v) in ((samples.pinion, samples.filled[1:3]), (samples.gear, samples.filled[3:5])):
+        for value, (low, high) in zip((u, v), flank.domain):
+            inside &= (value >= low) & (value <= high)
+    labels, count = label(inside)
+    if not count:
+        return None
+    at = tuple(int(np.clip(np.rint((-c / h + 1.0) * 0.5 * (n - 1)), 0, n - 1))
+               for c, h in zip(samples.centre, samples.half))
+    keep = labels[at] if labels[at] else np.argmax(np.bincount(labels.ravel())[1:]) + 1
+    rows, cols = np.nonzero(labels == keep)
+    unit = np.linspace(-1.0, 1.0, n)
+    centre, half = samples.centre.copy(), samples.half.copy()
+    changed = False
+    for axis, index in enumerate((rows, cols)):
+        coordinate = samples.centre[axis] + samples.half[axis] * unit
+        spacing = 2.0 * samples.half[axis] / (n - 1)
+        low, high = coordinate[index.min()], coordinate[index.max()]
+        margin = 2.0 * spacing + 0.1 * (high - low)
+        low, high = min(low - margin, -spacing), max(high + margin, spacing)  # the contact in it
+        if 0.5 * (high - low) < (1.0 - FIT_SLACK) * samples.half[axis]:
+            centre[axis], half[axis] = 0.5 * (low + high), 0.5 * (high - low)
+            changed = True
+    return (centre, half) if changed else None
+
+
+def _sampled(pinion: Flank, gear: Flank, pinion_frames: Frame, gear_frames: Frame,
+             planes: TangentPlanes, pinion_uv, gear_uv, half: np.ndarray, centre: np.ndarray,
+             far: float, turn: np.ndarray) -> list[FieldSamples | None]:
+    """The gap samples of K contacts over their boxes (see gap_samples), None for a contact
+    whose lines meet no flank continued from it."""
+    turned_planes = turned(planes, turn) if turn.any() else planes
     unit = np.linspace(-1.0, 1.0, SAMPLES)
     U, V = (a.ravel() for a in np.meshgrid(unit, unit, indexing="ij"))
     X, Y = centre[:, :1] + half[:, :1] * U, centre[:, 1:] + half[:, 1:] * V     # (K, samples²)
-    hp = heights(pinion, pinion_frames, planes, X, Y, *pinion_uv)
-    hg = heights(gear, gear_frames, planes, X, Y, *gear_uv)
+    hp = heights(pinion, pinion_frames, turned_planes, X, Y, *pinion_uv)
+    hg = heights(gear, gear_frames, turned_planes, X, Y, *gear_uv)
     out = []
     grid = (SAMPLES, SAMPLES)
-    pinion_normals = pinion_frames.vectors_to_local(planes.normal[:, None, :])[:, 0]
-    gear_normals = gear_frames.vectors_to_local(planes.normal[:, None, :])[:, 0]
+    pinion_normals = pinion_frames.vectors_to_local(turned_planes.normal[:, None, :])[:, 0]
+    gear_normals = gear_frames.vectors_to_local(turned_planes.normal[:, None, :])[:, 0]
     for k in range(len(half)):
         reach = min(float(np.max(half[k])), far)
         spacing = 2.0 * half[k] / (SAMPLES - 1)
@@ -251,30 +333,63 @@ def gap_samples(pinion: Flank, gear: Flank, pinion_frames: Frame, gear_frames: F
         met = (_continued(_take(hp, k), pinion, pinion_normals[k], reach, grid, spacing, at)
                & _continued(_take(hg, k), gear, gear_normals[k], reach, grid, spacing, at))
         if not met.any():
-            raise ValueError("no line of the gap field meets both flanks")
+            out.append(None)
+            continue
         # the gap less the modifications, and both flanks' parameters (to place their edges
         # in the field and to put the modifications back on the lines)
         parameters = [getattr(hits, name)[k] for hits in (hp, hg) for name in ("u", "v")]
-        quantities = [(hg.s - hp.s)[k] - modification_gap(pinion, gear, *parameters)] + parameters
+        cosines = [_drop_cosine(flank, hits, k, normal) for flank, hits, normal in
+                   ((pinion, hp, pinion_normals[k]), (gear, hg, gear_normals[k]))]
+        quantities = ([(hg.s - hp.s)[k] - modification_gap(pinion, gear, *parameters, *cosines)]
+                      + parameters + cosines)
         filled = smooth_fill(np.stack([q.reshape(grid) for q in quantities]), met)
-        out.append(FieldSamples(pinion, gear, filled, met, centre[k], half[k], float(turn[k])))
+        out.append(FieldSamples(pinion, gear, filled, met, centre[k].copy(), half[k].copy(),
+                                float(turn[k])))
     return out
 
 
-def modification_gap(pinion: Flank, gear: Flank, pinion_u, pinion_v, gear_u, gear_v):
-    """The gap (mm) the flanks' modifications open at the given parameters: the material
-    each removes along its normal (a surfaces.modified.ModifiedFlank's normal_drop; 0 for
-    an unmodified flank). The splines carry the gap without it, which is smooth, and put it
-    back exactly from the interpolated parameters: a tip rounding's start or a relief's
-    (a jump in curvature or slope, often narrower than the samples' spacing) would
-    otherwise ring in the splines (a helical pair's rounded tip showed a false notch of
-    16 µm beside it, and 7 GPa on it). Along the plane's normal a drop δ along a flank's
-    normal reads δ/cos θ (θ between the two normals); taken as δ, the gap is off by
-    δ·(1/cos θ - 1): within 0.8 % of it, and 0.05 µm where it is below 10 µm, on a 30 deg
-    helical pair's rounded tips (tests/test_contact_field.py)."""
-    return sum(flank.normal_drop(u, v) for flank, u, v in
-               ((pinion, pinion_u, pinion_v), (gear, gear_u, gear_v))
+def modification_gap(pinion: Flank, gear: Flank, pinion_u, pinion_v, gear_u, gear_v,
+                     pinion_cos=1.0, gear_cos=1.0):
+    """The gap (mm) the flanks' modifications open at the given parameters, along the
+    plane's normal: the material each removes along its own normal (normal_drop: a
+    surfaces.modified.ModifiedFlank's, a surfaces.broken.BrokenEdgeFlank's; 0 for a flank
+    without) over the cosine of the angle between that normal and the plane's (`*_cos`,
+    the flanks' normals' components along it at those parameters, carried from the rays'
+    hits: a drop δ along a flank's normal reads δ/cos θ along the line). The splines carry
+    the gap without it, which is smooth, and put it back exactly from the interpolated
+    parameters: a tip rounding's start or a relief's (a jump in curvature or slope, often
+    narrower than the samples' spacing) would otherwise ring in the splines (a helical
+    pair's rounded tip showed a false notch of 16 µm beside it, and 7 GPa on it). Taken as
+    δ instead of δ/cos θ the remainder kept a kink of δ·(1/cos θ - 1): 0.8 % of δ on a 30
+    deg helical pair's rounded tips, but a worm's rounded tip, meeting a line 10-20 deg off
+    its normal far from the contact, rang in the splines by -0.1 to -0.44 µm beside the
+    rounding's start (tests/test_contact_worm.py)."""
+    return sum(flank.normal_drop(u, v) / np.maximum(np.abs(cos), LEAST_COSINE)
+               for flank, u, v, cos in ((pinion, pinion_u, pinion_v, pinion_cos),
+                                        (gear, gear_u, gear_v, gear_cos))
                if hasattr(flank, "normal_drop"))
+
+
+#: the least cosine between a flank's normal and a field's (modification_gap): a line
+#: meeting a flank more obliquely meets a fold of it, not a part a contact reaches
+LEAST_COSINE = 0.2
+
+
+def _drop_cosine(flank: Flank, hits: RayHits, k: int, normal: np.ndarray) -> np.ndarray:
+    """At the hits of contact k's lines on a flank, the component along the field plane's
+    normal (`normal`, in the flank's frame) of the normal the flank's drop is taken along
+    (its unmodified surface's: a rounding's own normal leans by the drop's slope, up to 45
+    deg at a worm's tip); the hit surface's where it has no drop there; 1 where a line met
+    nothing."""
+    out = np.nan_to_num(hits.normal[k] @ normal, nan=1.0)
+    if not hasattr(flank, "drop_normals"):
+        return out
+    u, v = hits.u[k], hits.v[k]
+    dropped = np.isfinite(u) & np.isfinite(v)
+    dropped[dropped] = flank.normal_drop(u[dropped], v[dropped]) != 0.0
+    if dropped.any():
+        out[dropped] = flank.drop_normals(u[dropped], v[dropped]) @ normal
+    return out
 
 
 #: the names of both flanks' parameters in a field, as in FieldSamples.filled after the gap
@@ -293,7 +408,7 @@ def _spline_field(samples: FieldSamples, points, modified: bool = True) -> GapFi
               for p in points)
     carried = to_fine[0] @ samples.filled @ to_fine[1].T
     exists = met[np.ix_(ix, iy)]
-    parameters = dict(zip(PARAMETERS, carried[1:]))
+    parameters = dict(zip(PARAMETERS, carried[1:5]))
     if modified:
         carried[0] += modification_gap(samples.pinion, samples.gear, *carried[1:])
     beyond, inside = {"beyond_surface": ~exists}, {}
@@ -432,7 +547,7 @@ def contact_fields(cycle, rows, shape, margin=1.3, semi_axes: np.ndarray | None 
 
 def contact_samples(cycle, rows, margin=1.3, semi_axes: np.ndarray | None = None,
                     boxes: np.ndarray | None = None, far: float = FAR,
-                    along_pattern: bool = False) -> list[FieldSamples]:
+                    along_pattern: bool = False, fit: bool = False) -> list[FieldSamples]:
     """The gap samples of the given rows of a contact cycle, each over the bounding box of
     an ellipse about the centre of its pattern along its A axis (cycle.pattern_centre: the
     contact point, or a contact line's middle; A axis along the row's axis angle; across
@@ -444,13 +559,15 @@ def contact_samples(cycle, rows, margin=1.3, semi_axes: np.ndarray | None = None
     far: see gap_samples. along_pattern: each field laid along its pattern's A axis where
     that turns from e1 by more than TURN_LEAST (field_turns; boxes are then in the turned
     axes): an oblique contact line (a helical pair's) then crosses its field's length
-    instead of its width, whose cells it can make fine across it."""
+    instead of its width, whose cells it can make fine across it. fit: boxes fitted to the
+    flanks' material (gap_samples)."""
     rows = np.atleast_1d(np.asarray(rows, int))
     turn = field_turns(cycle, rows) if along_pattern else np.zeros(len(rows))
     if boxes is not None:
         boxes = np.asarray(boxes, float).reshape(-1, 2, 2)
         half = 0.5 * (boxes[:, :, 1] - boxes[:, :, 0])
-        return _samples(cycle, rows, half, 0.5 * (boxes[:, :, 1] + boxes[:, :, 0]), far, turn)
+        return _samples(cycle, rows, half, 0.5 * (boxes[:, :, 1] + boxes[:, :, 0]), far, turn,
+                        fit)
     if semi_axes is None:
         semi_axes = pattern_semi_axes(cycle, rows)
     a, b = np.asarray(semi_axes, float).reshape(-1, 2).T
@@ -468,7 +585,7 @@ def contact_samples(cycle, rows, margin=1.3, semi_axes: np.ndarray | None = None
     # the contact point stays inside the field where its semi-axes are held below the
     # pattern's (a far field's reach)
     along = np.clip(along, -CENTRE_SHARE * a, CENTRE_SHARE * a)
-    return _samples(cycle, rows, half, along[:, None] * direction, far, turn)
+    return _samples(cycle, rows, half, along[:, None] * direction, far, turn, fit)
 
 
 #: the share of a field's semi-axis its centre may lie from the contact point
@@ -495,14 +612,14 @@ def field_turns(cycle, rows) -> np.ndarray:
 
 
 def _samples(cycle, rows: np.ndarray, half: np.ndarray, centre: np.ndarray, far: float,
-             turn: np.ndarray) -> list[FieldSamples]:
+             turn: np.ndarray, fit: bool = False) -> list[FieldSamples]:
     """The gap samples of the rows over the boxes centre ± half ((K, 2), mm, in axes turned
     by `turn`; see contact_samples)."""
     uv = {m: (np.asarray(getattr(cycle.contacts, f"{m}_u"))[rows],
               np.asarray(getattr(cycle.contacts, f"{m}_v"))[rows]) for m in ("pinion", "gear")}
     return gap_samples(cycle.pinion, cycle.gear, cycle.pinion_frames[rows],
                        cycle.gear_frames[rows], planes_at(cycle.planes, rows), uv["pinion"],
-                       uv["gear"], half, centre=centre, far=far, turn=turn)
+                       uv["gear"], half, centre=centre, far=far, turn=turn, fit=fit)
 
 
 #: a flank edge is snapped to a cell boundary where its crossings of the field's lines lie

@@ -99,7 +99,7 @@ GAP_TOLERANCE, COARSE_TOLERANCE = 1e-5, 1e-3
 #: the load) or "failed" and the reason in bem_reason
 RESULT_KEYS = ("bem_status", "bem_load_N", "bem_p_max_MPa", "flank_p_max_MPa", "edge_loaded",
                "end_loaded", "corner_contact", "corner_pressure_MPa", "corner_load_N",
-               "corner_at", "end_load_ratio", "bem_area_mm2",
+               "corner_at", "end_load_ratio", "edge_load_ratio", "bem_area_mm2",
                "bem_approach_mm", "bem_grid", "edge_pressure_MPa", "edge_load_fraction",
                "edge_pressure_at", "edge_strip_mm", "bem_raw_peak_MPa", "bem_iterations",
                "bem_relative_error", "bem_reason")
@@ -114,7 +114,7 @@ def unsolved(status: str, reason: str | None = None) -> dict:
                    edge_pressure_MPa=0.0,
                    edge_load_fraction=0.0, edge_loaded=False, end_loaded=False,
                    corner_contact=False, corner_pressure_MPa=0.0, corner_load_N=0.0,
-                   end_load_ratio=0.0)
+                   end_load_ratio=0.0, edge_load_ratio=None)
     return {**row, "bem_status": status, "bem_reason": reason}
 
 
@@ -158,6 +158,8 @@ def summarise(field: GapField, s: ContactSolution, position_load: float | None =
     roundings' starts among them: what a lead crown sizes, apart from the edges' pressures
     (a corner contact on a rounding spills past its start onto the involute)."""
     breaks = breaks or EdgeBreaks()
+    if breaks.curved:
+        return _summarise_crossed(field, s, position_load, breaks)
     on_break = {**tip_roundings(field, breaks.roundings),
                 **chamfered_ends(field, breaks.chamfers)}
     # a chamfered end's edge load: on its rounded edge and the last strip of flank before it
@@ -195,7 +197,7 @@ def summarise(field: GapField, s: ContactSolution, position_load: float | None =
             "end_loaded": end_loaded, "corner_contact": bool(profile),
             "corner_pressure_MPa": 0.0 if corner_edge is None else corner_edge.edge_pressure_MPa,
             "corner_load_N": corner_load, "corner_at": corner,
-            "end_load_ratio": float(end_ratio),
+            "end_load_ratio": float(end_ratio), "edge_load_ratio": None,
             "bem_area_mm2": s.area_mm2, "bem_approach_mm": s.approach_mm,
             "bem_grid": list(s.pressure_MPa.shape),
             "edge_pressure_MPa": edge_pressure,
@@ -203,6 +205,124 @@ def summarise(field: GapField, s: ContactSolution, position_load: float | None =
             "edge_pressure_at": name, "edge_strip_mm": EDGE_STRIP,
             "bem_raw_peak_MPa": s.peak_pressure_MPa, "bem_iterations": s.iterations,
             "bem_relative_error": s.relative_error, "bem_reason": None}
+
+
+#: a contact whose load lies within this distance (mm) of a tip, root or form edge of a
+#: curved line's flank (or on its rounding) touches there alone: a corner contact
+CORNER_REACH = 2.0 * EDGE_STRIP
+
+
+def _summarise_crossed(field: GapField, s: ContactSolution, position_load: float | None,
+                       breaks: EdgeBreaks) -> dict:
+    """summarise for contact lines that curve and cross the flanks' edges (a worm set's,
+    breaks.curved): each edge is judged by its load share, the line load in the strip at
+    the edge (its rounding or chamfer included) over the line's mean (line_load_ratio): a
+    face end's is its end_load_ratio, end-loaded above END_LOAD_RATIO; a tip, root or form
+    edge pressed above that ratio, or a contact lying within CORNER_REACH of such an edge
+    alone (a pair touching only there), is a corner contact. The pressures keep their
+    meanings: the edge's (a rounding's resolved peak, a sharp edge's strip mean), the
+    flank's more than EDGE_STRIP inside its edges and off the roundings."""
+    edges = crossed_edges(field, breaks)
+    rounded = {**tip_roundings(field, breaks.roundings), **chamfered_ends(field, breaks.chamfers)}
+    loads = {name: _rounding_load(field, name, on, s, patch=is_face_end(name))
+             for name, on in rounded.items()}
+    for name, edge in flank_edges(field, s):
+        if name in edges and name not in loads:
+            loads[name] = edge
+    ratios = {name: line_load_ratio(field, s, mask) for name, mask in edges.items()}
+    interior = _interior_peak(field, s, list(rounded.values()))
+    judged = s.load_N >= EDGE_LEAST_SHARE * (position_load or s.load_N)
+    ends = {n: r for n, (r, _) in ratios.items() if is_face_end(n)}
+    profile = {n: r for n, (r, _) in ratios.items() if not is_face_end(n)}
+    alone = [n for n, (_, reach) in ratios.items()
+             if not is_face_end(n) and reach < CORNER_REACH]
+    end_ratio = max(ends.values(), default=0.0)
+    overloaded = [n for n, r in profile.items() if r > END_LOAD_RATIO]
+    corner_edges = sorted(set(alone + overloaded), key=lambda n: -profile.get(n, 0.0))
+    corner = corner_edges[0] if judged and corner_edges else "none"
+    end_loaded = bool(judged and end_ratio > END_LOAD_RATIO)
+    worst = max(((n, e) for n, e in loads.items() if e.load_N > 0),
+                key=lambda item: item[1].edge_pressure_MPa, default=("none", None))
+    edge_pressure = 0.0 if worst[1] is None else worst[1].edge_pressure_MPa
+    corner_load = loads[corner] if corner in loads else None
+    return {"bem_status": "solved", "bem_load_N": s.load_N,
+            "bem_p_max_MPa": max(interior, edge_pressure), "flank_p_max_MPa": interior,
+            "edge_loaded": end_loaded or corner != "none", "end_loaded": end_loaded,
+            "corner_contact": corner != "none",
+            "corner_pressure_MPa": 0.0 if corner_load is None else corner_load.edge_pressure_MPa,
+            "corner_load_N": 0.0 if corner_load is None else corner_load.load_N,
+            "corner_at": corner, "end_load_ratio": float(end_ratio),
+            "edge_load_ratio": float(max(profile.values(), default=0.0)),
+            "bem_area_mm2": s.area_mm2, "bem_approach_mm": s.approach_mm,
+            "bem_grid": list(s.pressure_MPa.shape),
+            "edge_pressure_MPa": edge_pressure,
+            "edge_load_fraction": 0.0 if worst[1] is None else worst[1].load_fraction,
+            "edge_pressure_at": worst[0], "edge_strip_mm": EDGE_STRIP,
+            "bem_raw_peak_MPa": s.peak_pressure_MPa, "bem_iterations": s.iterations,
+            "bem_relative_error": s.relative_error, "bem_reason": None}
+
+
+def crossed_edges(field: GapField, breaks: EdgeBreaks) -> dict[str, np.ndarray]:
+    """The flank edges in a field as the cells beyond each ("gear_tip" -> bool mask): those
+    the field crosses (field.beyond, less where a surface does not exist), a broken edge's
+    rounding or chamfer added to its own (tip_roundings, chamfered_ends)."""
+    edges = {name: beyond.copy() for name, beyond in field.beyond.items()
+             if name != "beyond_surface"}
+    for name, on in {**tip_roundings(field, breaks.roundings),
+                     **chamfered_ends(field, breaks.chamfers)}.items():
+        edges[name] = edges[name] | on if name in edges else on.copy()
+    return {name: mask for name, mask in edges.items() if mask.any()}
+
+
+def line_load_ratio(field: GapField, s: ContactSolution, edge: np.ndarray
+                    ) -> tuple[float, float]:
+    """(ratio, reach): a contact's line load in the strip within EDGE_STRIP of an edge
+    (`edge`: the cells beyond it, or on its rounding, themselves in the strip) over its
+    mean line load, and the farthest its load lies from the edge (mm; 0 for none). The
+    line is followed through strips of EDGE_STRIP by distance from the edge: its length in
+    each is the distance between the load's centroids in the strips beside it (half of
+    each; a straight line's segment in the strip, whatever its angle to the edge, and a
+    curved line's chord), or, where the load lies in fewer than three strips, its loaded
+    cells' extent along their principal axis. For a straight line square to a face end
+    this is its load per mm of face over the mean, the cylindrical gears' end_load_ratio
+    measure; along a worm set's curved lines, crossing edges at any angle, it stays the
+    share the edge carries."""
+    from scipy.ndimage import distance_transform_edt
+
+    loaded = s.pressure_MPa > 0.0
+    if not loaded.any():
+        return 0.0, 0.0
+    distance = distance_transform_edt(~edge, sampling=field.spacing)[loaded]
+    strips = np.floor(distance / EDGE_STRIP).astype(int)
+    weights = s.pressure_MPa[loaded]
+    X, Y = np.meshgrid(field.x, field.y, indexing="ij")
+    points = np.stack([X[loaded], Y[loaded]], axis=-1)
+    reach = float(distance.max())
+    if strips.min() > 0:
+        return 0.0, reach
+    used = np.unique(strips)
+    load = np.array([weights[strips == k].sum() for k in used])
+    if len(used) < 3:
+        lengths = np.array([_principal_extent(points[strips == k], field.spacing)
+                            for k in used])
+    else:
+        centroid = np.array([np.average(points[strips == k], axis=0,
+                                        weights=weights[strips == k]) for k in used])
+        step = np.linalg.norm(np.diff(centroid, axis=0), axis=1)
+        lengths = 0.5 * (np.concatenate([step, step[-1:]]) + np.concatenate([step[:1], step]))
+    lengths = np.maximum(lengths, min(field.spacing))
+    return float((load[0] / lengths[0]) / (load.sum() / lengths.sum())), reach
+
+
+def _principal_extent(points: np.ndarray, spacing) -> float:
+    """The extent (mm) of cell centres `points` (n, 2) along their principal axis, a cell
+    added."""
+    if len(points) < 2:
+        return float(min(spacing))
+    centred = points - points.mean(axis=0)
+    _, vectors = np.linalg.eigh(centred.T @ centred)
+    along = centred @ vectors[:, -1]
+    return float(np.ptp(along)) + float(min(spacing))
 
 
 def corner_footprints(field: GapField, s: ContactSolution, roundings: dict[str, np.ndarray]
@@ -281,29 +401,28 @@ class EdgeBreaks:
     #: member -> its face width (mm): a face end's load per mm is judged against its
     #: position's load spread over it
     faces: dict = dataclasses.field(default_factory=dict)
+    #: whether the contact lines curve and cross the edges (a worm set's): its edges are
+    #: judged by the line load along the line (line_load_ratio), not per mm of face
+    curved: bool = False
 
 
 def edge_breaks(cycle) -> EdgeBreaks:
     """The tip roundings (or chamfers) and end chamfers of a cycle's members (those
-    without one left out)."""
+    without one left out), from each flank's own breaks (Flank.breaks)."""
     roundings, chamfers, kinks, faces = {}, {}, {}, {}
     for member in ("pinion", "gear"):
         flank = getattr(cycle, member)
         gear = getattr(getattr(flank, "base", flank), "gear", None)
         if isinstance(getattr(gear, "face_width", None), float):
             faces[member] = gear.face_width
-        modifications = getattr(flank, "modifications", None)
-        if modifications is None:
-            continue
-        edge = modifications.tip_edge
-        if edge is not None:
-            toward = 1.0 if flank.base.tip_roll >= edge.start else -1.0
-            roundings[member] = (edge.start / gear.base_radius, toward)
-        if modifications.end_chamfer is not None:
-            chamfers[member] = modifications.end_chamfer.start(gear.face_width)
-        kinks[member] = (np.sort(np.array(modifications.profile_breaks)) / gear.base_radius,
-                         np.array(modifications.lead_breaks(gear.face_width)))
-    return EdgeBreaks(roundings, chamfers, kinks, faces)
+        broken = flank.breaks()
+        if broken.rounding is not None:
+            roundings[member] = broken.rounding
+        if broken.chamfer is not None:
+            chamfers[member] = broken.chamfer
+        if broken.profile_kinks or broken.lead_kinks:
+            kinks[member] = (np.array(broken.profile_kinks), np.array(broken.lead_kinks))
+    return EdgeBreaks(roundings, chamfers, kinks, faces, curved_lines(cycle))
 
 
 def chamfered_ends(field: GapField, chamfers: dict[str, float], before: float = 0.0
@@ -484,7 +603,7 @@ def loaded_cycle(cycle, C_E: float, points: int = 128, teeth: PairCompliance | N
     reaches, patterns = field_reach(cycle, every), pattern_semi_axes(cycle, every)
     samples = contact_samples(cycle, every, _Pair.MARGIN,                # one batch
                               np.minimum(patterns, reaches[:, None]), far=LOADED_FAR,
-                              along_pattern=True)
+                              along_pattern=True, fit=curved_lines(cycle))
     fields = [s.field(points, CELL, snap=True) for s in samples]
     groups = list(positions.values())
     breaks = edge_breaks(cycle)
@@ -639,7 +758,8 @@ class _Pair:
             where = (dict(margin=1.0, semi_axes=self.semi_axes[None]) if self.box is None
                      else dict(boxes=self.box[None]))
             self.samples = contact_samples(self.cycle, [self.k], far=LOADED_FAR,
-                                           along_pattern=True, **where)[0]
+                                           along_pattern=True, fit=curved_lines(self.cycle),
+                                           **where)[0]
         return self.samples.field(self.points, self.cell, snap=True)
 
     def sharpen(self, solution: ContactSolution | None, steps: tuple[int, int] = (1, 1)
@@ -853,6 +973,14 @@ def _member_ends(teeth: PairCompliance | None) -> dict[str, float]:
     c = {name: (1.0 - t.nu ** 2) / t.E for name, t in teeth.members.items()}
     return {name: free_end_factor(teeth.members[name].nu) * value / sum(c.values())
             for name, value in c.items()}
+
+
+def curved_lines(cycle) -> bool:
+    """Whether a cycle's contact lines curve (a worm set's): their fields, laid square to
+    the face rather than along a line, are fitted to the flanks' material (a pattern that
+    runs past an edge would size them past it, field.gap_samples)."""
+    return not all(getattr(flank, "straight_contact_lines", False)
+                   for flank in (cycle.pinion, cycle.gear))
 
 
 def field_reach(cycle, rows) -> np.ndarray:

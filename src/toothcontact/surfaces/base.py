@@ -84,10 +84,34 @@ class Flank:
         shape = np.shape(points)[:-1]
         return u[index].reshape(shape), v[index].reshape(shape)
 
+    def breaks(self) -> "FlankBreaks":
+        """Where the flank's edges are broken and its modifications bend it (none here)."""
+        return FlankBreaks()
+
+    def profile_parameters(self, count: int) -> np.ndarray:
+        """`count` values of u evenly over the domain: where a section (a solid's, a
+        picture's) samples the profile."""
+        (u0, u1), _ = self.domain
+        return np.linspace(u0, u1, count)
+
     def grid(self, nu: int, nv: int):
         """A regular (nu × nv) grid over the domain: arrays u, v of shape (nu, nv)."""
         (u0, u1), (v0, v1) = self.domain
         return np.meshgrid(np.linspace(u0, u1, nu), np.linspace(v0, v1, nv), indexing="ij")
+
+
+@dataclass(frozen=True)
+class FlankBreaks:
+    """Where a flank's edges are broken, in its own parameters: `rounding` (u where its tip
+    edge's rounding or chamfer starts, and +1 or -1 toward the tip) or None; `chamfer` (v,
+    mm from mid-face either way, where its face ends' chamfers' rounded edges start) or
+    None; `profile_kinks` (u) and `lead_kinks` (v) where its modifications and broken edges
+    bend it (relief starts, roundings' and chamfers' ends)."""
+
+    rounding: tuple[float, float] | None = None
+    chamfer: float | None = None
+    profile_kinks: tuple[float, ...] = ()
+    lead_kinks: tuple[float, ...] = ()
 
 
 @dataclass(frozen=True)

@@ -4,8 +4,10 @@ from __future__ import annotations
 
 import math
 
+import numpy as np
+
 from ..modify import FlankModifications
-from .base import Flank
+from .base import Flank, FlankBreaks
 from .involute import InvoluteFlank
 
 
@@ -28,6 +30,11 @@ class ModifiedFlank(Flank):
         """The material removed along the flank's normal (mm) at (u, v)."""
         return self._normal_factor * self.drop(u, v)
 
+    def drop_normals(self, u, v):
+        """The unit normals (..., 3) along which the drop is taken: the involute's."""
+        _, normal = self.base.point_and_normal(np.asarray(u, float), np.asarray(v, float))
+        return np.stack(np.broadcast_arrays(*normal), axis=-1)
+
     def point(self, u, v):
         (x, y, z), (nx, ny, nz) = self.base.point_and_normal(u, v)
         d = -self.normal_drop(u, v)
@@ -35,3 +42,17 @@ class ModifiedFlank(Flank):
 
     def parameters_near(self, points):
         return self.base.parameters_near(points)
+
+    def breaks(self) -> FlankBreaks:
+        """Where the tip edge is broken, the end chamfers start and the modifications bend
+        the flank, in its parameters (roll angle u, face position v)."""
+        mods, gear = self.modifications, self.base.gear
+        edge = mods.tip_edge
+        rounding = None
+        if edge is not None:
+            rounding = (edge.start / gear.base_radius,
+                        1.0 if self.base.tip_roll >= edge.start else -1.0)
+        chamfer = None if mods.end_chamfer is None else mods.end_chamfer.start(gear.face_width)
+        return FlankBreaks(rounding, chamfer,
+                           tuple(sorted(b / gear.base_radius for b in mods.profile_breaks)),
+                           mods.lead_breaks(gear.face_width))

@@ -232,6 +232,11 @@ class WormFlank(Flank):
         cos_theta, sin_theta = cos_sin(v - f / self._p)
         return u * cos_theta, u * sin_theta, self._p * v
 
+    def axial_section(self, count: int) -> tuple[np.ndarray, np.ndarray]:
+        """The flank's axial section through `count` points: radii and z (mm)."""
+        r = self.profile_parameters(count)
+        return r, self.axial_profile(r)
+
     def axial_profile(self, r):
         """z (mm) of this flank in the axial half-plane y = 0, x > 0 at radius r (mm), for the
         thread centred at z = 0 (other threads and turns: + k·px)."""
