@@ -111,6 +111,13 @@ THERMAL_DESCRIPTION = ("sqrt(λρc) for the flash temperature, e.g. '12.7 kW*s^0
 class Material(Model):
     E: Modulus = Field(description="Young's modulus, e.g. '206 GPa'")
     nu: Poisson = Field(description="Poisson's ratio, e.g. 0.3")
+    yield_strength: Modulus | None = Field(
+        None, description="0.2 % proof stress, e.g. '150 MPa' (a cast tin bronze's): the "
+                          "stresses below the contact are checked against it")
+    temperature_limit: Temperature | None = Field(
+        None, description="the highest contact temperature the material (or its lubricant) "
+                          "takes, e.g. '150 degC' (a polyamide's): the flash temperature's "
+                          "peak is checked against it")
     thermal_contact_coefficient: ThermalCoefficient | None = Field(
         None, description=THERMAL_DESCRIPTION)
 
@@ -1001,6 +1008,10 @@ class WormSpec(Model):
     tip_edge: TipEdgeSpec | None = Field(
         None, description="the thread's tip edges as made: a rounding (radius) or a rounded "
                           "chamfer; none given: rounded by 0.1 normal modules")
+    shaft: ShaftSpec | None = Field(
+        None, description="the worm shaft: bearings and diameters along the worm axis from "
+                          "the mesh (the worm's middle); the mesh force bends it, and its "
+                          "deflection at the mesh moves the worm against the wheel")
     roughness_Ra: Roughness | None = ROUGHNESS_FIELD
 
     @model_validator(mode="after")

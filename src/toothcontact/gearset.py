@@ -274,6 +274,27 @@ def tip_thickness(gear: CylindricalGear) -> float:
                                     - inv(math.acos(rb / ra))))
 
 
+def shaft_of(spec, material, half: float, field: str):
+    """The shaft (shaft.Shaft) a case's [member.shaft] `spec` describes, in the member's
+    `material` where it gives no E and ν; its sections must hold the bearings and the
+    loaded stretch ±`half` (mm) about the mesh; `field` names it in the message."""
+    from .shaft import Shaft
+
+    sections = (tuple(spec.sections) if spec.sections else
+                ((min(*spec.bearings, -2.0 * half), max(*spec.bearings, 2.0 * half),
+                  spec.diameter),))
+    stiffness = spec.bearing_stiffness
+    shaft = Shaft(tuple(spec.bearings), sections, spec.E or material.E,
+                  spec.nu if spec.nu is not None else material.nu, spec.torque_side,
+                  (tuple(stiffness) * 2)[:2] if stiffness else None)
+    span = np.linspace(min(*spec.bearings, -half), max(*spec.bearings, half), 201)
+    if np.isnan(shaft.diameter(span)).any():
+        gap = float(span[np.isnan(shaft.diameter(span))][0])
+        raise ValueError(f"{field}.sections: no section holds z = {gap:.4g} mm; they must "
+                         "cover the bearings and the face")
+    return shaft
+
+
 def _shafts(case, pinion: CylindricalGear, gear: CylindricalGear, center: float,
             alpha_w: float, line_load=None) -> dict:
     """The shaft deflection (shaft.ShaftDeflection) of each member with a [member.shaft],
@@ -282,7 +303,7 @@ def _shafts(case, pinion: CylindricalGear, gear: CylindricalGear, center: float,
     gear, and the helix's axial part), on the gear the opposite, spread evenly over the face
     or as `line_load` ((face positions mm on the pinion, N/mm)) gives it; each read along
     its own flank's normal toward the mate."""
-    from .shaft import Shaft, shaft_deflection
+    from .shaft import shaft_deflection
 
     specs = {name: getattr(case, name).shaft for name in ("pinion", "gear")}
     if case.load is None or not any(specs.values()):
@@ -303,20 +324,7 @@ def _shafts(case, pinion: CylindricalGear, gear: CylindricalGear, center: float,
         if member.internal:
             raise ValueError(f"{name}.shaft: a ring gear has no shaft here (its rim is held "
                              "by its housing)")
-        sections = (tuple(spec.sections) if spec.sections else
-                    ((min(*spec.bearings, -member.face_width), max(*spec.bearings,
-                                                                   member.face_width),
-                      spec.diameter),))
-        stiffness = spec.bearing_stiffness
-        shaft = Shaft(tuple(spec.bearings), sections, spec.E or material[name].E,
-                      spec.nu if spec.nu is not None else material[name].nu, spec.torque_side,
-                      (tuple(stiffness) * 2)[:2] if stiffness else None)
-        half = 0.5 * member.face_width
-        span = np.linspace(min(*spec.bearings, -half), max(*spec.bearings, half), 201)
-        if np.isnan(shaft.diameter(span)).any():
-            gap = float(span[np.isnan(shaft.diameter(span))][0])
-            raise ValueError(f"{name}.shaft.sections: no section holds z = {gap:.4g} mm; "
-                             "they must cover the bearings and the face")
+        shaft = shaft_of(spec, material[name], 0.5 * member.face_width, f"{name}.shaft")
         sign = 1.0 if name == "pinion" else -1.0
         r_w = r_w1 if name == "pinion" else r_w1 * gear.teeth / pinion.teeth
         to_pitch = np.array([sign * r_w, 0.0])

@@ -270,8 +270,8 @@ def _edge_verdicts(cycle, rows: list[dict], summary: dict, result: Result) -> No
 def _edge_note(curved: bool) -> str:
     """What the edge figures mean (the summary's edge_pressure_note); `curved`: a worm
     set's contact lines, crossing the edges, judged by their line load."""
-    from ..contact.loaded import (CORNER_REACH, EDGE_LEAST_SHARE, EDGE_PRESSURE_RATIO,
-                                  EDGE_STRIP, END_LOAD_RATIO)
+    from ..contact.loaded import (CORNER_REACH, EDGE_LEAST_SHARE, EDGE_NEIGHBOURHOOD,
+                                  EDGE_PRESSURE_RATIO, EDGE_STRIP, END_LOAD_RATIO)
 
     pressures = (f"edge_pressure_MPa is the pressure averaged over a {EDGE_STRIP} mm strip at "
                  "a sharp edge, the largest on the rounding at a rounded tip (a smooth "
@@ -286,7 +286,9 @@ def _edge_note(curved: bool) -> str:
     if curved:
         verdicts = ("The contact lines curve and cross the edges: each edge is judged by the "
                     f"line load in the {EDGE_STRIP} mm strip at it (its rounding included) "
-                    "over the line's mean, the line followed by the load's centroids "
+                    f"over the line's mean over the next {EDGE_NEIGHBOURHOOD:g} mm inward (the "
+                    "edge's own effect, not the line's trend), the line followed by the "
+                    "load's centroids "
                     "(end_load_ratio at the face ends, edge_load_ratio at the tip, root and "
                     "form edges). Of the contacts that carry load (loaded_contacts), one is "
                     f"end_loaded when its end_load_ratio exceeds {END_LOAD_RATIO:g}, a "

@@ -274,26 +274,36 @@ def crossed_edges(field: GapField, breaks: EdgeBreaks) -> dict[str, np.ndarray]:
     return {name: mask for name, mask in edges.items() if mask.any()}
 
 
+#: an edge's line load is judged against the line's over this length (mm) inside the
+#: strip at it (line_load_ratio)
+EDGE_NEIGHBOURHOOD = 1.0
+
+
 def line_load_ratio(field: GapField, s: ContactSolution, edge: np.ndarray
                     ) -> tuple[float, float]:
-    """(ratio, reach): a contact's line load in the strip within EDGE_STRIP of an edge
-    (`edge`: the cells beyond it, or on its rounding, themselves in the strip) over its
-    mean line load, and the farthest its load lies from the edge (mm; 0 for none). The
-    line is followed through strips of EDGE_STRIP by distance from the edge: its length in
-    each is the distance between the load's centroids in the strips beside it (half of
-    each; a straight line's segment in the strip, whatever its angle to the edge, and a
-    curved line's chord), or, where the load lies in fewer than three strips, its loaded
-    cells' extent along their principal axis. For a straight line square to a face end
-    this is its load per mm of face over the mean, the cylindrical gears' end_load_ratio
-    measure; along a worm set's curved lines, crossing edges at any angle, it stays the
-    share the edge carries."""
+    """(ratio, reach): a contact's line load in the strip within EDGE_STRIP of an edge (two
+    cells where they are longer: `edge` the cells beyond it, or on its rounding, themselves
+    in the strip) over the line's mean over the next EDGE_NEIGHBOURHOOD inward (over the
+    whole line where it is shorter), and the farthest its load lies from the edge (mm; 0
+    for none). The line is followed through strips of that width by distance from the
+    edge: its length in each is
+    the distance between the load's centroids in the strips beside it (half of each; a
+    straight line's segment in the strip, whatever its angle to the edge, and a curved
+    line's chord), or, where the load lies in fewer than three strips, its loaded cells'
+    extent along their principal axis. Judged against its neighbourhood, the ratio is the
+    edge's own effect (a sharp edge raising the load, a free end or a rounding relieving
+    it), not the line's trend: a worm wheel's line running from near its root at the face
+    ends to near its tip mid-face carries twice its mean at the ends, the teeth stiffer
+    there, with no edge effect at all."""
     from scipy.ndimage import distance_transform_edt
 
     loaded = s.pressure_MPa > 0.0
     if not loaded.any():
         return 0.0, 0.0
+    # a strip of at least two cells: an oblique end's staircase decides nothing finer
+    width = max(EDGE_STRIP, 2.0 * max(field.spacing))
     distance = distance_transform_edt(~edge, sampling=field.spacing)[loaded]
-    strips = np.floor(distance / EDGE_STRIP).astype(int)
+    strips = np.floor(distance / width).astype(int)
     weights = s.pressure_MPa[loaded]
     X, Y = np.meshgrid(field.x, field.y, indexing="ij")
     points = np.stack([X[loaded], Y[loaded]], axis=-1)
@@ -311,7 +321,10 @@ def line_load_ratio(field: GapField, s: ContactSolution, edge: np.ndarray
         step = np.linalg.norm(np.diff(centroid, axis=0), axis=1)
         lengths = 0.5 * (np.concatenate([step, step[-1:]]) + np.concatenate([step[:1], step]))
     lengths = np.maximum(lengths, min(field.spacing))
-    return float((load[0] / lengths[0]) / (load.sum() / lengths.sum())), reach
+    near = (used > 0) & (used <= max(round(EDGE_NEIGHBOURHOOD / width), 1))
+    if not near.any():
+        near = np.ones_like(near)
+    return float((load[0] / lengths[0]) / (load[near].sum() / lengths[near].sum())), reach
 
 
 def _principal_extent(points: np.ndarray, spacing) -> float:
