@@ -732,9 +732,12 @@ class Factor:
 class Tooth3D:
     """The section extruded over z in [0, b/2] (z = 0 mid-face, z-planes `z`), quadratic
     tetrahedra; factorised twice: symmetric about mid-face (u_z = 0 on z = 0) and
-    antisymmetric (u_x = u_y = 0 there). Bore (and cut faces) held; z = b/2 free."""
+    antisymmetric (u_x = u_y = 0 there). Bore (and cut faces) held; z = b/2 free.
+    factorise=False: `factors` stays empty and `factor(kind)` factorises one half on demand
+    (one factor in memory at a time on a large body)."""
 
-    def __init__(self, S: Section, z: np.ndarray, E: float = E_STEEL, nu: float = NU_STEEL):
+    def __init__(self, S: Section, z: np.ndarray, E: float = E_STEEL, nu: float = NU_STEEL,
+                 factorise: bool = True):
         import time
 
         from skfem import Basis, ElementTetP2, ElementVector, asm
@@ -767,17 +770,21 @@ class Tooth3D:
         mid_dofs = self.basis.get_dofs(facets=mid)
         comp = {name: mid_dofs.all(name) for name in ("u^1", "u^2", "u^3")}
         nd = self.K.shape[0]
-        coords = self.basis.doflocs
         self.dofs = nd
-        self.factors = {}
+        self._free = {}
         for kind, extra in (("sym", comp["u^3"]),
                             ("anti", np.concatenate([comp["u^1"], comp["u^2"]]))):
             fixed = np.zeros(nd, bool)
             fixed[held_dofs] = True
             fixed[extra] = True
-            self.factors[kind] = Factor(self.K, np.flatnonzero(~fixed), coords)
+            self._free[kind] = np.flatnonzero(~fixed)
+        self.factors = {kind: self.factor(kind) for kind in self._free} if factorise else {}
         t2 = time.perf_counter()
         self.timing = dict(assemble=t1 - t0, factor=t2 - t1)
+
+    def factor(self, kind: str) -> Factor:
+        """The Cholesky factor of the half `kind` ("sym" or "anti")."""
+        return Factor(self.K, self._free[kind], self.basis.doflocs)
 
     def patch_load(self, site: int, z0: float, z1: float) -> np.ndarray:
         """Consistent nodal loads (N) of a unit force spread evenly over site `site`'s patch
