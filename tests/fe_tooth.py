@@ -818,18 +818,19 @@ class Tooth3D:
 # ----------------------------------------------------------------------------- the study
 
 def model_line(c: float, length: float, start: float, end: float, patches, nodes: int = 481,
-               end_factor: float = 1.0):
-    """The compliance model's face line (contact.compliance.FaceCoupling, free ends) under a
-    unit force spread evenly over each patch (z0, z1) in turn: its node positions, the
-    deflections (nodes × patches, mm per N, slice compliance c mm²/N) and each patch's
-    work-conjugate (load-weighted mean) deflection (mm per N). end_factor β != 1: the
-    proposed end softening, the flexibility D·G·D with D = diag(sqrt(f)),
+               end_factor: float = 1.0, end_layer: float = 0.0):
+    """The compliance model's face line (contact.compliance.FaceCoupling, free ends, its end
+    layer `end_layer` mm) under a unit force spread evenly over each patch (z0, z1) in turn:
+    its node positions, the deflections (nodes × patches, mm per N, slice compliance c
+    mm²/N) and each patch's work-conjugate (load-weighted mean) deflection (mm per N).
+    end_factor β != 1: an end softening proposed before the end layer, the flexibility
+    D·G·D with D = diag(sqrt(f)),
     f(z) = 1 + (β - 1)·(exp(-2(z - start)/λ) + exp(-2(end - z)/λ)) (symmetric, as the
     contact solver needs; over half a coupling length from each end, so that mid-face
     keeps G)."""
     from toothcontact.contact.compliance import FaceCoupling, hats
 
-    line = FaceCoupling(start, end, length, nodes)
+    line = FaceCoupling(start, end, length, nodes, end_layer)
     G = line.flexibility
     if end_factor != 1.0:
         z = line.nodes
@@ -921,7 +922,7 @@ def face_study(gear, radii=(30.0,), h_patch=0.3, h_tooth=1.2, h_far=6.0, growth=
     benchmarks/fe_tooth_face.py for the reported quantities."""
     import time
 
-    from toothcontact.contact.compliance import ToothCompliance
+    from toothcontact.contact.compliance import ToothCompliance, end_layer
     from toothcontact.contact.pressure import free_end_factor
 
     t0 = time.perf_counter()
@@ -984,7 +985,8 @@ def face_study(gear, radii=(30.0,), h_patch=0.3, h_tooth=1.2, h_far=6.0, growth=
         hs_strip = halfspace_strip(width, depth, E, nu)
         hs_patch = halfspace_patch(width, length, depth, E, nu)
         hs_end = hs_patch + phi * halfspace_patch(width, length, depth, E, nu, offset=length)
-        nodes, W, at = model_line(c, lam, -half, half, [mid_patch, end_patch])
+        layer = end_layer(depth)
+        nodes, W, at = model_line(c, lam, -half, half, [mid_patch, end_patch], end_layer=layer)
         fe = dict(
             c_2d_centre=ps["centre"][i], c_2d_surface=ps["surface"][i] - hs_strip,
             c_3d_centre=float(rows["centre"]["line"][k_mid]),
@@ -1007,7 +1009,7 @@ def face_study(gear, radii=(30.0,), h_patch=0.3, h_tooth=1.2, h_far=6.0, growth=
                 fe[f"lambda_match_{m}"] = fe[f"model_ratio_at_match_{m}"] = float("nan")
         fits = {f"{name}_{a:g}": fit_decay(z, rows[name]["mid"][k_mid:], half, a)
                 for name in ("centre", "flank") for a in fit_from}
-        model = dict(c=c, coupling_length=lam, parts=dict(
+        model = dict(c=c, coupling_length=lam, end_layer=layer, parts=dict(
             zip(("bending", "shear", "axial", "foundation"),
                 (float(p[0, 0]) for p in teeth.slices(site.radius)[:4]))),
             half_thickness=depth, mid=float(at[0]), end=float(at[1]),
