@@ -732,9 +732,12 @@ class Factor:
 class Tooth3D:
     """The section extruded over z in [0, b/2] (z = 0 mid-face, z-planes `z`), quadratic
     tetrahedra; factorised twice: symmetric about mid-face (u_z = 0 on z = 0) and
-    antisymmetric (u_x = u_y = 0 there). Bore (and cut faces) held; z = b/2 free."""
+    antisymmetric (u_x = u_y = 0 there). Bore (and cut faces) held; z = b/2 free.
+    factorise=False: `factors` stays empty and `factor(kind)` factorises one half on demand
+    (one factor in memory at a time on a large body)."""
 
-    def __init__(self, S: Section, z: np.ndarray, E: float = E_STEEL, nu: float = NU_STEEL):
+    def __init__(self, S: Section, z: np.ndarray, E: float = E_STEEL, nu: float = NU_STEEL,
+                 factorise: bool = True):
         import time
 
         from skfem import Basis, ElementTetP2, ElementVector, asm
@@ -767,17 +770,21 @@ class Tooth3D:
         mid_dofs = self.basis.get_dofs(facets=mid)
         comp = {name: mid_dofs.all(name) for name in ("u^1", "u^2", "u^3")}
         nd = self.K.shape[0]
-        coords = self.basis.doflocs
         self.dofs = nd
-        self.factors = {}
+        self._free = {}
         for kind, extra in (("sym", comp["u^3"]),
                             ("anti", np.concatenate([comp["u^1"], comp["u^2"]]))):
             fixed = np.zeros(nd, bool)
             fixed[held_dofs] = True
             fixed[extra] = True
-            self.factors[kind] = Factor(self.K, np.flatnonzero(~fixed), coords)
+            self._free[kind] = np.flatnonzero(~fixed)
+        self.factors = {kind: self.factor(kind) for kind in self._free} if factorise else {}
         t2 = time.perf_counter()
         self.timing = dict(assemble=t1 - t0, factor=t2 - t1)
+
+    def factor(self, kind: str) -> Factor:
+        """The Cholesky factor of the half `kind` ("sym" or "anti")."""
+        return Factor(self.K, self._free[kind], self.basis.doflocs)
 
     def patch_load(self, site: int, z0: float, z1: float) -> np.ndarray:
         """Consistent nodal loads (N) of a unit force spread evenly over site `site`'s patch
@@ -811,18 +818,19 @@ class Tooth3D:
 # ----------------------------------------------------------------------------- the study
 
 def model_line(c: float, length: float, start: float, end: float, patches, nodes: int = 481,
-               end_factor: float = 1.0):
-    """The compliance model's face line (contact.compliance.FaceCoupling, free ends) under a
-    unit force spread evenly over each patch (z0, z1) in turn: its node positions, the
-    deflections (nodes × patches, mm per N, slice compliance c mm²/N) and each patch's
-    work-conjugate (load-weighted mean) deflection (mm per N). end_factor β != 1: the
-    proposed end softening, the flexibility D·G·D with D = diag(sqrt(f)),
+               end_factor: float = 1.0, end_layer: float = 0.0):
+    """The compliance model's face line (contact.compliance.FaceCoupling, free ends, its end
+    layer `end_layer` mm) under a unit force spread evenly over each patch (z0, z1) in turn:
+    its node positions, the deflections (nodes × patches, mm per N, slice compliance c
+    mm²/N) and each patch's work-conjugate (load-weighted mean) deflection (mm per N).
+    end_factor β != 1: an end softening proposed before the end layer, the flexibility
+    D·G·D with D = diag(sqrt(f)),
     f(z) = 1 + (β - 1)·(exp(-2(z - start)/λ) + exp(-2(end - z)/λ)) (symmetric, as the
     contact solver needs; over half a coupling length from each end, so that mid-face
     keeps G)."""
     from toothcontact.contact.compliance import FaceCoupling, hats
 
-    line = FaceCoupling(start, end, length, nodes)
+    line = FaceCoupling(start, end, length, nodes, end_layer)
     G = line.flexibility
     if end_factor != 1.0:
         z = line.nodes
@@ -914,7 +922,7 @@ def face_study(gear, radii=(30.0,), h_patch=0.3, h_tooth=1.2, h_far=6.0, growth=
     benchmarks/fe_tooth_face.py for the reported quantities."""
     import time
 
-    from toothcontact.contact.compliance import ToothCompliance
+    from toothcontact.contact.compliance import ToothCompliance, end_layer
     from toothcontact.contact.pressure import free_end_factor
 
     t0 = time.perf_counter()
@@ -977,7 +985,8 @@ def face_study(gear, radii=(30.0,), h_patch=0.3, h_tooth=1.2, h_far=6.0, growth=
         hs_strip = halfspace_strip(width, depth, E, nu)
         hs_patch = halfspace_patch(width, length, depth, E, nu)
         hs_end = hs_patch + phi * halfspace_patch(width, length, depth, E, nu, offset=length)
-        nodes, W, at = model_line(c, lam, -half, half, [mid_patch, end_patch])
+        layer = end_layer(depth)
+        nodes, W, at = model_line(c, lam, -half, half, [mid_patch, end_patch], end_layer=layer)
         fe = dict(
             c_2d_centre=ps["centre"][i], c_2d_surface=ps["surface"][i] - hs_strip,
             c_3d_centre=float(rows["centre"]["line"][k_mid]),
@@ -1000,7 +1009,7 @@ def face_study(gear, radii=(30.0,), h_patch=0.3, h_tooth=1.2, h_far=6.0, growth=
                 fe[f"lambda_match_{m}"] = fe[f"model_ratio_at_match_{m}"] = float("nan")
         fits = {f"{name}_{a:g}": fit_decay(z, rows[name]["mid"][k_mid:], half, a)
                 for name in ("centre", "flank") for a in fit_from}
-        model = dict(c=c, coupling_length=lam, parts=dict(
+        model = dict(c=c, coupling_length=lam, end_layer=layer, parts=dict(
             zip(("bending", "shear", "axial", "foundation"),
                 (float(p[0, 0]) for p in teeth.slices(site.radius)[:4]))),
             half_thickness=depth, mid=float(at[0]), end=float(at[1]),
