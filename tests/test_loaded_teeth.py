@@ -45,8 +45,10 @@ def test_the_mesh_stiffness_of_standard_pairs_is_isos(teeth, module, face, helix
     changed it by 0.1 %). Its contact lines cross the face obliquely, so each loads a short
     stretch of many slices, which the FE-fitted coupling (0.74 of the root chord) spreads
     along the face further than Vlasov's did (+8 % before the correction); ISO's helical
-    c' is the spur value times cos β with no such term, and no 3D FE of a helical pair
-    checks either figure yet (stated in the issue 27 note)."""
+    c' is the spur value times cos β with no such term. The 3D FE of this very pair
+    (tests/test_helical_stiffness_fe.py) puts its c_γα at 15.31 N/(mm·µm), ISO's 19.82 29 %
+    and the model's 24.01 57 % above it: agreeing with ISO here is agreeing with a figure
+    the FE does not support (the teeth's coupling through the bodies, which neither has)."""
     result = aligned if (teeth, face, helix) == ((20, 60), 20, 0.0) else spur(teeth, module, face, helix)
     s = result.sections["summary"]
     assert s["mesh_stiffness_N_per_mm_um"] == pytest.approx(s["iso_mesh_stiffness_N_per_mm_um"],
