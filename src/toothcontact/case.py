@@ -1145,6 +1145,13 @@ class AntiRattleSpring(Model):
     mount_moment: quantity("torque") = Field(description="moment held at the mount, e.g. '3.3 N*m'")
     output_torques: list[quantity("torque")] = Field(min_length=1,
                                                      description="wheel torques, e.g. ['0 N*m']")
+    published_stiffness: Stiffness | None = Field(
+        None, description="the source's spring rate, e.g. '30 N/mm'")
+    published_misalignment_at_no_torque: quantity("length") | None = Field(
+        None, description="the source's eq (21) at no output torque, e.g. '-1.10 mm'")
+    published_aligned_torque: Torque | None = Field(
+        None, description="the output torque where the source's shaft is aligned, "
+                          "e.g. '19.67 N*m'")
 
 
 class FrictionLaw(Model):
@@ -1156,14 +1163,34 @@ class FrictionLaw(Model):
                             description="n in [-5, 0]: -0.9 sliding, -0.6 rolling")
 
 
+class PublishedFriction(Model):
+    """A friction coefficient a source prints at a contact pressure."""
+
+    mu: Friction
+    pressure: Modulus = Field(description="e.g. '130 MPa'")
+
+
+class PublishedEfficiency(Model):
+    """An efficiency a source prints (or measured) at an output torque."""
+
+    output_torque: quantity("torque") = Field(description="e.g. '36 N*m'")
+    eta: Efficiency
+
+
 class KimContact(Model):
     """What seed 001's contact pressure (eqs 10-19) needs beyond the worm set: a ZI worm,
-    the hob that cut the wheel, the materials."""
+    the hob that cut the wheel, the materials; and what the source prints of them, to
+    check against."""
 
     hob_pitch_diameter: Length = Field(description="the (oversized) hob, e.g. '22 mm'")
     worm: Material = Field(DEFAULT_STEEL, description="default steel")
     wheel: Material = Field(description="e.g. nylon: E = '3 GPa', nu = 0.4")
     friction: FrictionLaw
+    published_friction: PublishedFriction | None = Field(
+        None, description="a measured friction, e.g. {mu = 0.029, pressure = '130 MPa'}")
+    published_efficiency: list[PublishedEfficiency] = Field(
+        [], description="efficiencies the source prints, e.g. [{output_torque = '36 N*m', "
+                        "eta = 0.931}]")
 
 
 class WormEfficiencyCase(CaseInfo):
