@@ -111,6 +111,8 @@ def spur_geometry_case(case: schema.SpurCase) -> Result:
                                ", ".join(f"{name} tip {c:.3f} mm" for name, c in clearance.items())))
     if case.load is not None:
         rating.rated_pair(case, pair)      # a material without ISO 6336-5 row fails first
+        if case.operation is not None:     # and a friction outside its formula's range
+            lubrication.check_friction_range(case, lubrication.spur_running(case, pair))
         _spur_contact(case, pair, result)
         rating.duty_cycle_sections(
             case, result, lambda level, scratch: _spur_contact(level, gearset.gear_pair(level),
