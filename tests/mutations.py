@@ -96,6 +96,7 @@ MUST_REFUSE = {what for key, options in NAMED.items() if key not in ("friction_c
                for what, _ in options} - {
     "oil at 300 degC"} | {     # refused where it thins the oil below 2 mm²/s, not always
     "a helix slope of 1 m", "a helix slope of 500 mm", "a profile slope of 50 mm",
+    "a profile slope of 1 mm", "a profile slope of 2 mm",
     "a scuffing temperature below the oil's", "a switch for a number", "a control character",
     "a sweep for a base", "a bulk far below the oil", "a switch for application_factor",
     "a switch for dynamic_factor", "a switch for S_Hmin",

@@ -539,14 +539,23 @@ SLOPED = {"lead_crown": "crown", "profile_crown": "profile_crown", "tip_relief":
           "topography": "topography"}
 #: samples per side of the flank on which check_slopes measures each modification
 SLOPE_SAMPLES = 81
+#: the largest drop (either sign, in normal modules) of the modifications that tilt the
+#: whole flank (a helix or profile slope, a twist): they correct a lead or profile
+#: deviation of the size ISO 1328's tolerances give (tens of µm), and half of one adds
+#: material; a twentieth of a module (150 µm at m_n = 3 mm, twice ISO 1328-1 class 11's
+#: profile slope tolerance there) is taken as the most, an assumed bound: a twist of 1 mm
+#: on a 3 mm module put whole positions' contacts off both flanks
+TILT_MODULES = 0.05
+TILTS = ("helix_slope", "profile_slope", "twist")
 
 
 def check_slopes(mods: FlankModifications, gear: CylindricalGear, name: str,
                  measured: str = "topography") -> None:
     """Refuse (ValueError naming the table) a modification whose drop turns the flank by
     more than a misalignment may (units' slope limit, 0.1 rad) anywhere on its face and
-    active profile: a modification is a small deviation from the involute and the helix
-    (DESIGN principle 2: a displacement along the normal), and one steeper moves the
+    active profile, or a slope or twist whose drop reaches beyond TILT_MODULES of the
+    normal module: a modification is a small deviation from the involute and the helix
+    (DESIGN principle 2: a displacement along the normal), and a larger one moves the
     contact onto an edge or off the flank. `measured`: the table a topography came from."""
     from . import units
 
@@ -564,13 +573,19 @@ def check_slopes(mods: FlankModifications, gear: CylindricalGear, name: str,
             W, S, gear.face_width, s_form, s_tip)
         along_face, along_profile = np.gradient(drop, w, s)
         steepest = float(np.max(np.hypot(along_face, along_profile)))
+        table = measured if field == "topography" else SLOPED[field]
         if not steepest <= limit:
-            table = measured if field == "topography" else SLOPED[field]
             raise ValueError(f"{name}.{table}: its drop turns the flank by up to "
                              f"{steepest:.3g} rad over the {gear.face_width:.4g} mm face and "
                              f"{abs(s_tip - s_form):.4g} mm of active profile (roll length); "
                              f"at most {limit:g} rad, as a misalignment: a modification is a "
                              "small deviation from the involute and the helix")
+        largest, most = float(np.max(np.abs(drop))), TILT_MODULES * gear.normal_module
+        if field in TILTS and not largest <= most:
+            raise ValueError(f"{name}.{table}: its drop reaches ±{largest:.4g} mm over the "
+                             f"flank, beyond {TILT_MODULES:g} of the normal module "
+                             f"({most:.4g} mm): a slope or twist corrects deviations of tens "
+                             "of µm")
 
 
 def _form_roll(gear: CylindricalGear) -> float:
