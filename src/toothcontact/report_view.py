@@ -73,6 +73,7 @@ LABELS = {
     "sigma_H_MPa": "contact stress σ_H (ISO 6336-2)",
     "flank_pressure_at": "largest loaded flank pressure at",
     "flank_pressure_to_sigma_H": "largest loaded flank pressure over ISO's σ_H",
+    "S_B_note": "scuffing safety S_B",
     "subsurface_shear_depth_mm": "its depth",
     "sliding_velocity_m_per_s": "sliding speed |v1 − v2|",
     "sum_velocity_m_per_s": "sum speed |v1 + v2|",
@@ -877,10 +878,10 @@ def _lubrication_results(summary: dict) -> list[KeyResult]:
     for key, label_, needs in (("S_B", "scuffing safety S_B", "scuffing_temperature"),
                                ("S_lambda", "micropitting safety S_λ",
                                 "permissible_specific_film")):
-        value = summary.get(key)
+        value, note = summary.get(key), summary.get(f"{key}_note")
         out.append(KeyResult(label_, "—" if value is None else number(value),
-                             f"not computed: no [lubricant] {needs}" if value is None else
-                             f"against the [lubricant] {needs}",
+                             note or (f"not computed: no [lubricant] {needs}" if value is None
+                                      else f"against the [lubricant] {needs}"),
                              value is not None and value < 1.0))
     return out
 
