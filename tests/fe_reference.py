@@ -9,7 +9,9 @@ SuperLU on a geometric nested-dissection ordering. Units: mm, N, MPa.
 Geometry: top face z = 0 loaded, bottom z = -H fixed (u = 0), other faces free unless a
 function says otherwise. "Free end": the block stops at x = 0 (a quarter-space). "Running
 on": the block continues past x = 0 (the half-space-like reference). Loads symmetric about
-y = 0 are solved on the half y >= 0 with u_y = 0 on y = 0.
+y = 0 are solved on the half y >= 0 with u_y = 0 on y = 0. Two elastic bodies in contact
+(mixed_end_line_load): two such blocks, their contact faces' u_z dofs on matching nodes each
+condensed to a compliance, the contact solved on the sum.
 """
 
 from __future__ import annotations
@@ -25,7 +27,7 @@ __all__ = [
     "graded_axis", "block_mesh", "stiffness", "love_rectangle_uz",
     "BlockSolver", "SurfaceResult", "PunchResult",
     "surface_displacement", "surface_displacements", "flat_punch_line_load",
-    "CylinderResult", "cylinder_end_line_load",
+    "CylinderResult", "cylinder_end_line_load", "mixed_end_line_load",
 ]
 
 
@@ -412,16 +414,18 @@ def flat_punch_line_load(a, length, end_free=True, nu=0.3, E=210000.0, delta=1e-
 
 @dataclass
 class CylinderResult:
-    """Rigid cylinder on a block (see cylinder_end_line_load). Along x: nodes x (mm) on
-    [-length, 0], line load q (N/mm, whole width, nodal reactions over their tributary
-    lengths), q_norm = q / q_mid, node_force (N, whole width, per x node); q_mid at x =
-    -length/2. Across y (mm, y >= 0, the candidate nodes): top-surface pressure p_mid and
-    p_end (MPa, nodal reaction over tributary area) at mid-length and at x = 0. b_hertz,
-    p0_hertz: the Hertz half-width and peak pressure of the target line load (= q_mid to
-    1e-7; rigid cylinder, E* = E / (1 - nu^2)); peak_mid = p_mid[0]; half_width_mid: the
+    """Rigid cylinder on a block (see cylinder_end_line_load), or two blocks in a line
+    contact (mixed_end_line_load). Along x: nodes x (mm) on [-length, 0], line load q (N/mm,
+    whole width, nodal reactions over their tributary lengths), q_norm = q / q_mid,
+    node_force (N, whole width, per x node); q_mid at x = -length/2. Across y (mm, y >= 0,
+    the candidate nodes): top-surface pressure p_mid and p_end (MPa, nodal reaction over
+    tributary area) at mid-length and at x = 0. b_hertz, p0_hertz: the Hertz half-width and
+    peak pressure of the target line load (= q_mid to 1e-7; E* = E / (1 - nu^2) under a
+    rigid cylinder, the pair's for two bodies); peak_mid = p_mid[0]; half_width_mid: the
     last y in contact at mid-length. delta: the approach (mm); iterations: constrained-CG
     steps per solve (one solve per face-width load tried); reach: the largest y in contact
-    over the face width (below y[-1], the candidates' edge)."""
+    over the face width (below y[-1], the candidates' edge); dofs: the free dofs per body
+    where there are two (mixed_end_line_load), n_dofs their sum."""
     x: np.ndarray
     q: np.ndarray
     q_norm: np.ndarray
@@ -440,6 +444,7 @@ class CylinderResult:
     n_dofs: int
     n_candidates: int
     reach: float
+    dofs: dict = field(default_factory=dict)
 
     def end_average(self, c):
         """Mean q over x in [-c b, 0] (b = b_hertz; -c b must be a node) over q_mid."""
@@ -516,59 +521,31 @@ def _signorini_cg(C, gap, W, P, tol=1e-10, max_iter=5000):
     return np.maximum(P, 0.0), float(delta), it
 
 
-def cylinder_end_line_load(radius=84.0, load=None, length=None, end_free=True, nu=0.3,
-                           E=210000.0, depth=None, width=None, run_on=None, refine=1.0,
-                           growth=0.3, ends=(0.05, 0.1, 0.25, 0.5), y_reach=2.5,
-                           tol=1e-10, outer_max=12):
-    """Rigid frictionless cylinder (radius mm, axis along x, x in [-length, 0]) pressed into
-    the top face z = 0 of an elastic block (bottom z = -depth fixed, y in +-width), the line
-    load at mid-length x = -length/2 brought to `load` (N/mm; default: the load of a Hertz
-    half-width b = 1 mm, w = pi E* b^2 / (4 radius), E* = E / (1 - nu^2)).
-
-    end_free: the block's end face x = 0 is free (it ends flush with the cylinder); else the
-    block runs on to x = run_on. The block always runs on past x = -length to -length -
-    run_on (then the running-on case is symmetric about -length/2 and solved on its half).
-    Defaults length = 10 b, depth = width = run_on = 2 * length (b the Hertz half-width).
-
-    Contact (Signorini, frictionless): the candidate nodes are the top nodes with x in
-    [-length, 0], 0 <= y <= y_reach * b (y >= 0 solved, u_y = 0 on y = 0). Their u_z-dofs
-    are ordered last in one SuperLU factorisation, whose trailing block is their Schur
-    complement S (N/mm): the exact stiffness of the block seen from those dofs, every other
-    node force-free; its inverse C is their compliance. The plain active-set iteration
-    (u_z = -(delta - y^2 / (2 radius)) prescribed on the nodes in contact, the others
-    force-free; those whose reaction pulls leave, those that penetrate the cylinder join,
-    all at once) cycles on this dense compliance, so the set is found by the constrained
-    conjugate gradient (_signorini_cg: the same moves inside CG) at a given load on the
-    face width, then solved exactly on that set and checked (no tensile reaction, no
-    penetration). The face-width load is rescaled until the mid-length line load is `load`
-    (to 1e-7). RuntimeError if the contact reaches y_reach * b.
-
-    Mesh: element size b/16/refine along x at the end face x = 0, b/8/refine across the
-    contact (y in [0, 1.5 b]), at the top and at x = -length, b/2/refine along the middle of
-    the cylinder, growing by growth/sqrt(refine) per mm (b = 1 mm by default) up to a
-    quarter of the block size; nodes at x = -c b for c in ends. Returns a CylinderResult.
-    """
-    E_star = E / (1 - nu**2)
-    load = np.pi * E_star / (4 * radius) if load is None else float(load)
-    b = np.sqrt(4 * load * radius / (np.pi * E_star))
-    length = 10 * b if length is None else float(length)
-    depth = 2 * length if depth is None else depth
-    width = 2 * length if width is None else width
-    run_on = 2 * length if run_on is None else run_on
+def _line_axes(b, lo, hi, length, depth, width, run_on, refine, growth, ends, y_reach):
+    """Node coordinates (x on [lo, hi], y on [0, width], z on [-depth, 0]; mm) of a block
+    under a line contact along x over [-length, 0] of Hertz half-width b (mm): elements of
+    b/16/refine along x at x = 0, b/8/refine across the contact (y in [0, 1.5 b]), at the
+    top and at x = -length, b/2/refine along the middle, growing by growth/sqrt(refine) per
+    mm up to a quarter of the block size; nodes at x = -c b (c in ends), -length/2 and y =
+    y_reach b. The nodes on x <= 0 do not depend on hi >= 0 (0 is a break): blocks that
+    stop at x = 0 and that run on past it have the same nodes there."""
     h_end, h_c, h_in = b / 16 / refine, b / 8 / refine, b / 4 / refine
     g = growth / np.sqrt(refine)
-    half = length / 2
     h_far = max(depth, width, run_on) / 4
-    breaks = [-c * b for c in ends] + [-half]
+    breaks = [-c * b for c in ends] + [-length / 2]
     zones = [(0.0, 0.0, h_end), (-length, 0.0, 2 * h_in), (-length, -length, h_c)]
-    if end_free:
-        x = graded_axis(-length - run_on, 0.0, zones, h_far=h_far, growth=g, breaks=breaks)
-    else:
-        x = graded_axis(-half, run_on, zones, h_far=h_far, growth=g, breaks=breaks)
+    x = graded_axis(lo, hi, zones, h_far=h_far, growth=g, breaks=breaks)
     y = graded_axis(0.0, width, [(0.0, 1.5 * b, h_c)], h_far=h_far, growth=g,
                     breaks=[y_reach * b])
     z = graded_axis(-depth, 0.0, [(0.0, 0.0, h_c)], h_far=h_far, growth=g)
+    return x, y, z
 
+
+def _top_compliance(x, y, z, E, nu, ix, iy, sym_x0=False):
+    """The compliance C (mm/N, dense, symmetric) of the top-face u_z dofs of the nodes x[ix]
+    x y[iy] (x-major) of a block on the tensor mesh x, y, z (bottom z = z[0] fixed, u_y = 0
+    on y = 0, u_x = 0 on x = x[0] if sym_x0, all else free): the inverse of their Schur
+    complement (_schur_factor), every other node force-free. Returns (C, dofs)."""
     mesh = block_mesh(x, y, z)
     p = mesh.p
     grid = np.empty((len(x), len(y), len(z)), int)
@@ -580,17 +557,28 @@ def cylinder_end_line_load(radius=84.0, load=None, length=None, end_free=True, n
     for c in range(3):
         fixed[3 * grid[:, :, 0].ravel() + c] = True
     fixed[3 * grid[:, 0, :].ravel() + 1] = True                 # y = 0 symmetry
-    if not end_free:
-        fixed[3 * grid[0, :, :].ravel()] = True                 # x = -length/2 symmetry
-    ix = np.nonzero((x >= -length - 1e-9 * (1 + length)) & (x <= 1e-12))[0]
-    iy = np.nonzero(y <= y_reach * b * (1 + 1e-9))[0]
+    if sym_x0:
+        fixed[3 * grid[0, :, :].ravel()] = True                 # x = x[0] symmetry
     nodes = grid[np.ix_(ix, iy, [len(z) - 1])][:, :, 0]          # (nx_c, ny_c)
-    lu, order, S = _schur_factor(K, fixed, grid, 3 * nodes.ravel() + 2)
-    C = np.linalg.inv(S)                                        # compliance (mm/N)
-    C = 0.5 * (C + C.T)
+    lu, _, S = _schur_factor(K, fixed, grid, 3 * nodes.ravel() + 2)
+    dofs = lu.shape[0]
+    del lu, K
+    C = np.linalg.inv(S)
+    return 0.5 * (C + C.T), dofs
 
+
+def _line_contact(C, x, y, ix, iy, radius, load, length, b, mirrored, tol, outer_max,
+                  n_dofs, dofs=None):
+    """Frictionless line contact of the gap y^2 / (2 radius) (mm) along x on the candidate
+    nodes x[ix] x y[iy] (x-major; y >= 0 solved, x[ix] over [-length, 0], or over [-length/2,
+    0] if mirrored about x = -length/2) of the compliance C (mm/N): the set found by the
+    constrained conjugate gradient (_signorini_cg) at a load on the face width, solved
+    exactly on it and checked, that load rescaled until the line load at x = -length/2 is
+    `load` (N/mm, to 1e-7). b: the Hertz half-width of `load` (mm). Returns a CylinderResult
+    (see cylinder_end_line_load)."""
     xc, yc = x[ix], y[iy]
     nxc, nyc = len(xc), len(yc)
+    half = length / 2
     trib_y = np.empty(nyc)
     trib_y[0] = 0.5 * (y[1] - y[0])
     trib_y[1:] = 0.5 * (y[iy[1:] + 1] - y[iy[1:] - 1])
@@ -628,7 +616,7 @@ def cylinder_end_line_load(radius=84.0, load=None, length=None, end_free=True, n
     pressure = Pg / (trib_x[:, None] * trib_y[None, :])
     q_mid = float(F[k_mid] / trib_x[k_mid])
     xp = xc.copy()
-    if not end_free:                                            # mirror about -length/2
+    if mirrored:                                                # mirror about -length/2
         F = np.concatenate([F[:0:-1], [2 * F[0]], F[1:]])
         xp = np.concatenate([-length - xc[:0:-1], xc])
     trib = np.empty_like(xp)
@@ -642,4 +630,108 @@ def cylinder_end_line_load(radius=84.0, load=None, length=None, end_free=True, n
         delta=float(delta), y=yc, p_mid=pressure[k_mid], p_end=pressure[k_end],
         b_hertz=float(b), p0_hertz=float(2 * load / (np.pi * b)),
         peak_mid=float(pressure[k_mid, 0]), half_width_mid=float(yc[in_mid.max()]),
-        iterations=iterations, n_dofs=lu.shape[0], n_candidates=nxc * nyc, reach=reach)
+        iterations=iterations, n_dofs=n_dofs, n_candidates=nxc * nyc, reach=reach,
+        dofs=dict(dofs or {}))
+
+
+def _candidates(x, y, length, b, y_reach):
+    """Indices of the contact's candidate nodes: x in [-length, 0], 0 <= y <= y_reach b."""
+    ix = np.nonzero((x >= -length - 1e-9 * (1 + length)) & (x <= 1e-12))[0]
+    iy = np.nonzero(y <= y_reach * b * (1 + 1e-9))[0]
+    return ix, iy
+
+
+def cylinder_end_line_load(radius=84.0, load=None, length=None, end_free=True, nu=0.3,
+                           E=210000.0, depth=None, width=None, run_on=None, refine=1.0,
+                           growth=0.3, ends=(0.05, 0.1, 0.25, 0.5), y_reach=2.5,
+                           tol=1e-10, outer_max=12):
+    """Rigid frictionless cylinder (radius mm, axis along x, x in [-length, 0]) pressed into
+    the top face z = 0 of an elastic block (bottom z = -depth fixed, y in +-width), the line
+    load at mid-length x = -length/2 brought to `load` (N/mm; default: the load of a Hertz
+    half-width b = 1 mm, w = pi E* b^2 / (4 radius), E* = E / (1 - nu^2)).
+
+    end_free: the block's end face x = 0 is free (it ends flush with the cylinder); else the
+    block runs on to x = run_on. The block always runs on past x = -length to -length -
+    run_on (then the running-on case is symmetric about -length/2 and solved on its half).
+    Defaults length = 10 b, depth = width = run_on = 2 * length (b the Hertz half-width).
+
+    Contact (Signorini, frictionless): the candidate nodes are the top nodes with x in
+    [-length, 0], 0 <= y <= y_reach * b (y >= 0 solved, u_y = 0 on y = 0). Their u_z-dofs
+    are ordered last in one SuperLU factorisation, whose trailing block is their Schur
+    complement S (N/mm): the exact stiffness of the block seen from those dofs, every other
+    node force-free; its inverse C is their compliance (_top_compliance). The plain
+    active-set iteration (u_z = -(delta - y^2 / (2 radius)) prescribed on the nodes in
+    contact, the others force-free; those whose reaction pulls leave, those that penetrate
+    the cylinder join, all at once) cycles on this dense compliance, so the set is found by
+    the constrained conjugate gradient (_signorini_cg: the same moves inside CG) at a given
+    load on the face width, then solved exactly on that set and checked (no tensile
+    reaction, no penetration). The face-width load is rescaled until the mid-length line
+    load is `load` (to 1e-7; _line_contact). RuntimeError if the contact reaches y_reach * b.
+
+    Mesh (_line_axes): element size b/16/refine along x at the end face x = 0, b/8/refine
+    across the contact (y in [0, 1.5 b]), at the top and at x = -length, b/2/refine along
+    the middle of the cylinder, growing by growth/sqrt(refine) per mm (b = 1 mm by default)
+    up to a quarter of the block size; nodes at x = -c b for c in ends. Returns a
+    CylinderResult.
+    """
+    E_star = E / (1 - nu**2)
+    load = np.pi * E_star / (4 * radius) if load is None else float(load)
+    b = np.sqrt(4 * load * radius / (np.pi * E_star))
+    length = 10 * b if length is None else float(length)
+    depth = 2 * length if depth is None else depth
+    width = 2 * length if width is None else width
+    run_on = 2 * length if run_on is None else run_on
+    lo, hi = (-length - run_on, 0.0) if end_free else (-length / 2, run_on)
+    x, y, z = _line_axes(b, lo, hi, length, depth, width, run_on, refine, growth, ends,
+                         y_reach)
+    ix, iy = _candidates(x, y, length, b, y_reach)
+    C, dofs = _top_compliance(x, y, z, E, nu, ix, iy, sym_x0=not end_free)
+    return _line_contact(C, x, y, ix, iy, radius, load, length, b, not end_free, tol,
+                         outer_max, dofs)
+
+
+def mixed_end_line_load(radius=84.0, load=None, length=None, b_runs_on=True,
+                        E_a=98000.0, nu_a=0.35, E_b=210000.0, nu_b=0.3, depth=None,
+                        width=None, run_on=None, refine=1.0, growth=0.3,
+                        ends=(0.05, 0.1, 0.25, 0.5), y_reach=2.5, tol=1e-10, outer_max=12):
+    """Two elastic bodies in a frictionless Hertzian line contact along x over [-length, 0]
+    (the gap y^2 / (2 radius) between them, mm): body A (E_a MPa, nu_a) ends at x = 0 with
+    a free end face; body B (E_b, nu_b) runs on past x = 0 to x = run_on (b_runs_on: a worm
+    set, the wheel's face ending while the worm's thread runs on), or ends flush with A at
+    x = 0 (b_runs_on False). Both run on past x = -length to -length - run_on. The line load
+    at mid-length x = -length/2 brought to `load` (N/mm; default: the load of a Hertz
+    half-width b = 1 mm, w = pi E* b^2 / (4 radius), 1/E* = (1 - nu_a^2)/E_a + (1 -
+    nu_b^2)/E_b). Defaults length = 10 b, depth = half width = run_on = 2 * length.
+
+    Each body a block (bottom z = -depth fixed, y in +-width; y >= 0 solved, u_y = 0 on
+    y = 0) meshed as cylinder_end_line_load's block (_line_axes, the same y, z nodes for
+    both and the same x nodes on x <= 0: the contact faces' nodes match over the region
+    where A exists; B's mesh past x = 0 grades out from the end's b/16/refine). Each body's
+    top-face u_z dofs of the candidate nodes (x in [-length, 0], 0 <= y <= y_reach b)
+    condensed to their Schur complement, inverted to a compliance (_top_compliance); the
+    contact, whose nodal forces press both faces equal and opposite, solved on the summed
+    compliance C_A + C_B and the rigid gap (_line_contact, as cylinder_end_line_load). B's
+    nodes past x = 0 carry no contact. Returns a CylinderResult, its n_dofs both bodies'
+    and dofs = {"A": ..., "B": ...}.
+    """
+    c_a, c_b = (1 - nu_a**2) / E_a, (1 - nu_b**2) / E_b
+    E_star = 1 / (c_a + c_b)
+    load = np.pi * E_star / (4 * radius) if load is None else float(load)
+    b = np.sqrt(4 * load * radius / (np.pi * E_star))
+    length = 10 * b if length is None else float(length)
+    depth = 2 * length if depth is None else depth
+    width = 2 * length if width is None else width
+    run_on = 2 * length if run_on is None else run_on
+    axes = [_line_axes(b, -length - run_on, hi, length, depth, width, run_on, refine,
+                       growth, ends, y_reach) for hi in (0.0, run_on if b_runs_on else 0.0)]
+    (xa, y, z), (xb, yb, zb) = axes
+    ix, iy = _candidates(xa, y, length, b, y_reach)
+    if not (np.array_equal(xb[:len(xa)], xa) and np.array_equal(yb, y)
+            and np.array_equal(zb, z)):
+        raise RuntimeError("the two bodies' contact faces do not share their nodes")
+    C_a, dofs_a = _top_compliance(xa, y, z, E_a, nu_a, ix, iy)
+    C_b, dofs_b = _top_compliance(xb, y, z, E_b, nu_b, ix, iy)
+    C_a += C_b
+    del C_b
+    return _line_contact(C_a, xa, y, ix, iy, radius, load, length, b, False, tol, outer_max,
+                         dofs_a + dofs_b, dict(A=dofs_a, B=dofs_b))

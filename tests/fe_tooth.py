@@ -40,6 +40,7 @@ benchmarks/fe_tooth_face.py. Units: mm, N, MPa.
 from __future__ import annotations
 
 import math
+import time
 import tomllib
 from dataclasses import dataclass, field
 from pathlib import Path
@@ -161,13 +162,15 @@ def _rotate(xy: np.ndarray, angle: float) -> np.ndarray:
 
 def section_mesh(gear, radii, h_patch: float, h_tooth: float, h_far: float,
                  teeth: int | None = None, patch: float = 0.3, bore: float | None = None,
-                 growth: float = 0.25, iterations: int = 60, seed: int = 0) -> Section:
+                 growth: float = 0.25, iterations: int = 60, seed: int = 0,
+                 refine: np.ndarray | None = None) -> Section:
     """Triangles of the gear section: tooth 0 loaded at each of `radii` (a patch `patch` mm
     along the profile, boundary nodes at its ends), `teeth` neighbours on each side with the
     rim under them (radial cut lines tagged 'cut'), or the whole gear (None); the bore
     (default half the root radius). Element size (mm): h_patch at the load points growing
     by `growth` per mm, h_tooth over the loaded tooth and its root, growing by `growth` per
-    mm away from it, at most h_far."""
+    mm away from it, at most h_far; refine (k, 2): more points (mm) where the size is
+    h_patch (a whole flank's contact zone)."""
     section = tooth_section(gear)
     radii = [float(r) for r in np.atleast_1d(radii)]
     sites = [load_site(gear, r, patch, section) for r in radii]
@@ -177,11 +180,13 @@ def section_mesh(gear, radii, h_patch: float, h_tooth: float, h_far: float,
     centre = np.array([0.5 * (root + gear.tip_radius), 0.0])
     reach = 0.5 * (gear.tip_radius - root) + 0.5 * root * pitch
     points = np.array([st.point for st in sites])
+    if refine is not None:
+        points = np.vstack([points, np.asarray(refine, float).reshape(-1, 2)])
+    near_tree = cKDTree(points)
 
     def size(xy):
         xy = np.atleast_2d(xy)
-        near = np.min(np.hypot(xy[:, None, 0] - points[None, :, 0],
-                               xy[:, None, 1] - points[None, :, 1]), axis=1)
+        near = near_tree.query(xy)[0]
         h = np.minimum(h_patch + growth * near,
                        h_tooth + growth * np.maximum(np.hypot(*(xy - centre).T) - reach, 0.0))
         return np.minimum(h, h_far)
@@ -545,14 +550,20 @@ def graded(lo: float, hi: float, fine: list[tuple[float, float, float]], coarse:
     return np.concatenate(out)
 
 
-def extrude(p2: np.ndarray, t2: np.ndarray, z: np.ndarray):
+def extrude(p2: np.ndarray, t2: np.ndarray, z: np.ndarray, twist: float = 0.0):
     """MeshTet of the triangles (p2 (2, n), t2 (3, m)) extruded over the z-planes: each
     prism cut into three tetrahedra by its vertices' global order (the quad faces' diagonals
-    then agree between neighbours). Vertex k of plane j is j·n + k."""
+    then agree between neighbours). Vertex k of plane j is j·n + k. twist (rad/mm): plane
+    z's section turned by twist·z about the axis (a helical gear's teeth: the section
+    screwed along the face, CylindricalGear.twist_per_length)."""
     from skfem import MeshTet
 
     n, nz = p2.shape[1], len(z)
     p = np.vstack([np.tile(p2, nz), np.repeat(z, n)[None, :]])
+    if twist:
+        turn = twist * p[2]
+        c, s = np.cos(turn), np.sin(turn)
+        p[:2] = np.vstack([c * p[0] - s * p[1], s * p[0] + c * p[1]])
     t = np.sort(t2, axis=0)                            # a < b < c by global index
     tets = []
     for j in range(nz - 1):
@@ -620,18 +631,67 @@ def nested_dissection(coords: np.ndarray, graph: sp.csr_matrix, leaf: int = 48):
 class Factor:
     """Cholesky factor of K on its free dofs: a multifrontal factorisation (dense fronts by
     LAPACK/BLAS) on a geometric nested-dissection order of the nodes (a node's components
-    together). `solve` takes loads on all dofs and gives u on all dofs (held ones 0)."""
+    together). `solve` takes loads on all dofs and gives u on all dofs (held ones 0).
 
-    def __init__(self, K: sp.csr_matrix, free: np.ndarray, coords: np.ndarray):
-        from threadpoolctl import threadpool_limits
+    threads: BLAS threads for the fronts of at least `big` rows (and the solves' blocks of
+    at least `big` rows); smaller ones, and everything on 1 thread, run single-threaded
+    (OpenBLAS's threaded potrf runs 10-100x slower than its one thread on 2 busy cores,
+    and a thread team costs more than a small front's work). calibrate: first time a
+    front-sized Cholesky and update (1500 rows) on one thread and on `threads`, and keep
+    one thread unless the team is at least 1.3 times as fast (a busy machine);
+    `threads_used` says which. `peak_front_bytes`: the largest front (a dense matrix) met;
+    `update_bytes_peak`: the most memory the pending update matrices held at once."""
 
-        # OpenBLAS's threaded potrf runs 10-100x slower than its one thread on 2 cores
-        with threadpool_limits(1):
+    def __init__(self, K: sp.csr_matrix, free: np.ndarray, coords: np.ndarray,
+                 threads: int = 1, big: int = 1200, calibrate: bool = True):
+        self.threads, self.big = int(threads), int(big)
+        self.calibration = self._calibrate() if calibrate and self.threads > 1 else {}
+        if self.calibration and self.calibration["speedup"] < 1.3:
+            self.threads = 1
+        self.threads_used = self.threads
+        with self._limit(1):
             self._factor(K, free, coords)
 
-    def _factor(self, K, free, coords):
+    def _calibrate(self, n: int = 1500) -> dict:
+        """Seconds of a Cholesky, a triangular solve and a symmetric update of n rows on
+        one BLAS thread and on `threads` (the best of two tries each)."""
         from scipy.linalg import cholesky, solve_triangular
         from scipy.linalg.blas import dsyrk
+
+        rng = np.random.default_rng(0)
+        with self._limit(1):
+            M = rng.standard_normal((n, n))
+            A = M @ M.T + n * np.eye(n)
+        B = np.asfortranarray(rng.standard_normal((n, n)))
+        seconds = {}
+        for t in (1, self.threads):
+            best = math.inf
+            for _ in range(2):
+                with self._limit(t):
+                    t0 = time.perf_counter()
+                    L = cholesky(A, lower=True, check_finite=False)
+                    X = np.asfortranarray(solve_triangular(L, B, lower=True,
+                                                           check_finite=False).T)
+                    dsyrk(-1.0, X, beta=1.0, c=np.asfortranarray(A), lower=1)
+                    best = min(best, time.perf_counter() - t0)
+            seconds[t] = best
+        return dict(one=seconds[1], team=seconds[self.threads],
+                    speedup=seconds[1] / seconds[self.threads])
+
+    def _limit(self, n: int):
+        """BLAS on n threads within the block (one scan of the loaded libraries per
+        factor: threadpool_limits rescans them each time, 4 ms)."""
+        if getattr(self, "_controller", None) is None:
+            from threadpoolctl import ThreadpoolController
+
+            self._controller = ThreadpoolController()
+        return self._controller.limit(limits=n, user_api="blas")
+
+    def _factor(self, K, free, coords):
+        from contextlib import nullcontext
+
+        from scipy.linalg import cholesky
+        from scipy.linalg.blas import dsyrk, dtrsm
 
         self.free = free
         A = K[free][:, free].tocsr()
@@ -640,7 +700,9 @@ class Factor:
         P = sp.csr_matrix((np.ones(len(free)), (np.arange(len(free)), node)),
                           shape=(len(free), loc.shape[1]))
         G = (P.T @ (abs(A) @ P)).tocsr()
+        t0 = time.perf_counter()
         blocks, parent = nested_dissection(loc, G)
+        t_order = time.perf_counter() - t0
         # dofs block by block: the permutation and each block's range
         dofs_of_node = np.argsort(node, kind="stable")
         starts = np.searchsorted(node[dofs_of_node], np.arange(loc.shape[1]))
@@ -662,6 +724,8 @@ class Factor:
                 children[p].append(k)
         lookup = np.full(n, -1, dtype=np.int64)
         self.L, updates, self.flops = [], {}, 0.0
+        self.peak_front_bytes, self.update_bytes_peak, pending = 0, 0, 0
+        dense = dense_big = flops_big = extend = 0.0
         for s, (a, b) in enumerate(ranges):
             rows = Ap[a:b]
             cols = rows.indices
@@ -672,41 +736,64 @@ class Factor:
             idx = np.concatenate([np.arange(a, b), B])
             lookup[idx] = np.arange(len(idx))
             # the front, its lower triangle only (Fortran order for BLAS)
+            t_extend = time.perf_counter()
             F = np.zeros((len(idx), len(idx)), order="F")
+            self.peak_front_bytes = max(self.peak_front_bytes, F.nbytes)
             r = np.repeat(np.arange(k), np.diff(rows.indptr))
             keep = cols >= a
             lc = lookup[cols[keep]]
             F[np.maximum(r[keep], lc), np.minimum(r[keep], lc)] = rows.data[keep]
             for c in children[s]:
                 Bc, Uc = updates.pop(c)
+                pending -= Uc.nbytes
                 li = lookup[Bc]
                 for j in range(len(li)):                 # lower triangle, column by column
-                    F[li[j:], li[j]] += Uc[j:, j]
+                    column = F[:, li[j]]
+                    column[li[j:]] += Uc[j:, j]
+                del Uc
+            extend += time.perf_counter() - t_extend
             lookup[idx] = -1
             if k == 0:
                 if len(B):
                     updates[s] = (B, F)
+                    pending += F.nbytes
                 continue
-            Lss = cholesky(F[:k, :k], lower=True, check_finite=False)
-            Lbs = np.asfortranarray(solve_triangular(Lss, F[k:, :k].T, lower=True,
-                                                     check_finite=False).T)
-            if len(B):
-                Ub = np.asfortranarray(F[k:, k:])
-                Ub = dsyrk(-1.0, Lbs, beta=1.0, c=Ub, lower=1, overwrite_c=1)
-                updates[s] = (B, Ub)
+            t_dense = time.perf_counter()
+            team = self.threads > 1 and len(idx) >= self.big
+            with self._limit(self.threads) if team else nullcontext():
+                Lss = cholesky(F[:k, :k], lower=True, check_finite=False)
+                # Lbs·Lssᵀ = F_bs, on the right in place (one copy of F_bs, Fortran order)
+                Lbs = dtrsm(1.0, Lss, np.asfortranarray(F[k:, :k]), side=1, lower=1,
+                            trans_a=1, overwrite_b=1)
+                if len(B):
+                    Ub = np.asfortranarray(F[k:, k:])
+                    del F
+                    Ub = dsyrk(-1.0, Lbs, beta=1.0, c=Ub, lower=1, overwrite_c=1)
+                    updates[s] = (B, Ub)
+                    pending += Ub.nbytes
+            dense += time.perf_counter() - t_dense
+            if len(idx) >= self.big:
+                dense_big += time.perf_counter() - t_dense
+                flops_big += k ** 3 / 3 + k * k * len(B) + k * len(B) ** 2
+            self.update_bytes_peak = max(self.update_bytes_peak, pending)
             self.L.append((a, b, Lss, B, Lbs))
             self.flops += k ** 3 / 3 + k * k * len(B) + k * len(B) ** 2
-            del F
+            F = None
         self.n = n
+        # seconds: the ordering, the dense kernels (and those of the fronts of `big` rows
+        # and more, which run on `threads`), the fronts' assembly (extend-add), all of it;
+        # the big fronts' flops
+        self.timing = dict(order=t_order, dense=dense, dense_big=dense_big, extend=extend,
+                           total=time.perf_counter() - t0, flops_big=flops_big)
         self.nnz = int(sum(l[2].size / 2 + l[4].size for l in self.L))
 
     def solve(self, f: np.ndarray) -> np.ndarray:
-        from threadpoolctl import threadpool_limits
-
-        with threadpool_limits(1):
+        with self._limit(1):
             return self._solve(f)
 
     def _solve(self, f: np.ndarray) -> np.ndarray:
+        from contextlib import nullcontext
+
         from scipy.linalg import solve_triangular
 
         f = np.asarray(f, float)
@@ -714,14 +801,23 @@ class Factor:
         one = X.ndim == 1
         if one:
             X = X[:, None]
+        many = self.threads > 1 and X.shape[1] > 8
+
+        def limit(a, b, B):
+            return self._limit(self.threads) if many and b - a + len(B) >= self.big \
+                else nullcontext()
+
         for a, b, Lss, B, Lbs in self.L:
-            xs = solve_triangular(Lss, X[a:b], lower=True, check_finite=False)
-            X[a:b] = xs
-            if len(B):
-                X[B] -= Lbs @ xs
+            with limit(a, b, B):
+                xs = solve_triangular(Lss, X[a:b], lower=True, check_finite=False)
+                X[a:b] = xs
+                if len(B):
+                    X[B] -= Lbs @ xs
         for a, b, Lss, B, Lbs in reversed(self.L):
-            rhs = X[a:b] - Lbs.T @ X[B] if len(B) else X[a:b]
-            X[a:b] = solve_triangular(Lss, rhs, lower=True, trans="T", check_finite=False)
+            with limit(a, b, B):
+                rhs = X[a:b] - Lbs.T @ X[B] if len(B) else X[a:b]
+                X[a:b] = solve_triangular(Lss, rhs, lower=True, trans="T",
+                                          check_finite=False)
         u = np.zeros(f.shape if not one else f.shape + (1,))
         tmp = np.empty_like(X)
         tmp[self.perm] = X
@@ -732,9 +828,16 @@ class Factor:
 class Tooth3D:
     """The section extruded over z in [0, b/2] (z = 0 mid-face, z-planes `z`), quadratic
     tetrahedra; factorised twice: symmetric about mid-face (u_z = 0 on z = 0) and
-    antisymmetric (u_x = u_y = 0 there). Bore (and cut faces) held; z = b/2 free."""
+    antisymmetric (u_x = u_y = 0 there). Bore (and cut faces) held; z = b/2 free.
+    factorise=False: `factors` stays empty and `factor(kind)` factorises one half on demand
+    (one factor in memory at a time on a large body).
 
-    def __init__(self, S: Section, z: np.ndarray, E: float = E_STEEL, nu: float = NU_STEEL):
+    The whole face instead (z-planes from -b/2 to b/2: z[0] < 0; a helical tooth, `twist`
+    rad/mm, has no mid-face symmetry): both end faces free, one factor, kind "full".
+    threads: the factors' BLAS threads for their large fronts (Factor)."""
+
+    def __init__(self, S: Section, z: np.ndarray, E: float = E_STEEL, nu: float = NU_STEEL,
+                 factorise: bool = True, twist: float = 0.0, threads: int = 1):
         import time
 
         from skfem import Basis, ElementTetP2, ElementVector, asm
@@ -742,7 +845,11 @@ class Tooth3D:
 
         t0 = time.perf_counter()
         self.S, self.z, self.E, self.nu = S, np.asarray(z, float), E, nu
-        self.mesh = extrude(S.p, S.t, self.z)
+        self.twist, self.threads = float(twist), int(threads)
+        self.whole = bool(self.z[0] < -1e-9)
+        if twist and not self.whole:
+            raise ValueError("a twisted tooth has no mid-face symmetry: give the whole face")
+        self.mesh = extrude(S.p, S.t, self.z, twist)
         self.element = ElementVector(ElementTetP2())
         self.basis = Basis(self.mesh, self.element, intorder=2)
         self.K = asm(linear_elasticity(*lame_parameters(E, nu)), self.basis).tocsr()
@@ -767,17 +874,22 @@ class Tooth3D:
         mid_dofs = self.basis.get_dofs(facets=mid)
         comp = {name: mid_dofs.all(name) for name in ("u^1", "u^2", "u^3")}
         nd = self.K.shape[0]
-        coords = self.basis.doflocs
         self.dofs = nd
-        self.factors = {}
-        for kind, extra in (("sym", comp["u^3"]),
-                            ("anti", np.concatenate([comp["u^1"], comp["u^2"]]))):
+        self._free = {}
+        halves = (("sym", comp["u^3"]), ("anti", np.concatenate([comp["u^1"], comp["u^2"]])))
+        for kind, extra in ((("full", np.zeros(0, np.int64)),) if self.whole else halves):
             fixed = np.zeros(nd, bool)
             fixed[held_dofs] = True
             fixed[extra] = True
-            self.factors[kind] = Factor(self.K, np.flatnonzero(~fixed), coords)
+            self._free[kind] = np.flatnonzero(~fixed)
+        self.factors = {kind: self.factor(kind) for kind in self._free} if factorise else {}
         t2 = time.perf_counter()
         self.timing = dict(assemble=t1 - t0, factor=t2 - t1)
+
+    def factor(self, kind: str) -> Factor:
+        """The Cholesky factor of the half `kind` ("sym" or "anti"; "full": the whole
+        face)."""
+        return Factor(self.K, self._free[kind], self.basis.doflocs, self.threads)
 
     def patch_load(self, site: int, z0: float, z1: float) -> np.ndarray:
         """Consistent nodal loads (N) of a unit force spread evenly over site `site`'s patch
@@ -800,7 +912,7 @@ class Tooth3D:
     def normal_at(self, u: np.ndarray, xy: np.ndarray, site: int = 0) -> np.ndarray:
         """Displacement of u along site `site`'s normal at the point xy (mm) of every
         z-plane (rows; u (n,) or (n, k))."""
-        zz = np.clip(self.z, 1e-7, self.z[-1] - 1e-7)
+        zz = np.clip(self.z, self.z[0] + 1e-7, self.z[-1] - 1e-7)
         pts = np.vstack([np.tile(np.asarray(xy, float)[:, None], (1, len(zz))), zz])
         vals = self.basis.probes(pts) @ u
         vals = vals.reshape((3, len(zz)) + np.shape(u)[1:])
@@ -811,18 +923,19 @@ class Tooth3D:
 # ----------------------------------------------------------------------------- the study
 
 def model_line(c: float, length: float, start: float, end: float, patches, nodes: int = 481,
-               end_factor: float = 1.0):
-    """The compliance model's face line (contact.compliance.FaceCoupling, free ends) under a
-    unit force spread evenly over each patch (z0, z1) in turn: its node positions, the
-    deflections (nodes × patches, mm per N, slice compliance c mm²/N) and each patch's
-    work-conjugate (load-weighted mean) deflection (mm per N). end_factor β != 1: the
-    proposed end softening, the flexibility D·G·D with D = diag(sqrt(f)),
+               end_factor: float = 1.0, end_layer: float = 0.0):
+    """The compliance model's face line (contact.compliance.FaceCoupling, free ends, its end
+    layer `end_layer` mm) under a unit force spread evenly over each patch (z0, z1) in turn:
+    its node positions, the deflections (nodes × patches, mm per N, slice compliance c
+    mm²/N) and each patch's work-conjugate (load-weighted mean) deflection (mm per N).
+    end_factor β != 1: an end softening proposed before the end layer, the flexibility
+    D·G·D with D = diag(sqrt(f)),
     f(z) = 1 + (β - 1)·(exp(-2(z - start)/λ) + exp(-2(end - z)/λ)) (symmetric, as the
     contact solver needs; over half a coupling length from each end, so that mid-face
     keeps G)."""
     from toothcontact.contact.compliance import FaceCoupling, hats
 
-    line = FaceCoupling(start, end, length, nodes)
+    line = FaceCoupling(start, end, length, nodes, end_layer)
     G = line.flexibility
     if end_factor != 1.0:
         z = line.nodes
@@ -914,7 +1027,7 @@ def face_study(gear, radii=(30.0,), h_patch=0.3, h_tooth=1.2, h_far=6.0, growth=
     benchmarks/fe_tooth_face.py for the reported quantities."""
     import time
 
-    from toothcontact.contact.compliance import ToothCompliance
+    from toothcontact.contact.compliance import ToothCompliance, end_layer
     from toothcontact.contact.pressure import free_end_factor
 
     t0 = time.perf_counter()
@@ -977,7 +1090,8 @@ def face_study(gear, radii=(30.0,), h_patch=0.3, h_tooth=1.2, h_far=6.0, growth=
         hs_strip = halfspace_strip(width, depth, E, nu)
         hs_patch = halfspace_patch(width, length, depth, E, nu)
         hs_end = hs_patch + phi * halfspace_patch(width, length, depth, E, nu, offset=length)
-        nodes, W, at = model_line(c, lam, -half, half, [mid_patch, end_patch])
+        layer = end_layer(depth)
+        nodes, W, at = model_line(c, lam, -half, half, [mid_patch, end_patch], end_layer=layer)
         fe = dict(
             c_2d_centre=ps["centre"][i], c_2d_surface=ps["surface"][i] - hs_strip,
             c_3d_centre=float(rows["centre"]["line"][k_mid]),
@@ -1000,7 +1114,7 @@ def face_study(gear, radii=(30.0,), h_patch=0.3, h_tooth=1.2, h_far=6.0, growth=
                 fe[f"lambda_match_{m}"] = fe[f"model_ratio_at_match_{m}"] = float("nan")
         fits = {f"{name}_{a:g}": fit_decay(z, rows[name]["mid"][k_mid:], half, a)
                 for name in ("centre", "flank") for a in fit_from}
-        model = dict(c=c, coupling_length=lam, parts=dict(
+        model = dict(c=c, coupling_length=lam, end_layer=layer, parts=dict(
             zip(("bending", "shear", "axial", "foundation"),
                 (float(p[0, 0]) for p in teeth.slices(site.radius)[:4]))),
             half_thickness=depth, mid=float(at[0]), end=float(at[1]),

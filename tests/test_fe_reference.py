@@ -132,3 +132,26 @@ def test_cylinder_line_contact_at_a_free_end():
         assert free.end_average(c) < 1.0
         assert running.end_average(c) > 1.5
     assert free.p_end[0] < free.peak_mid < running.p_end[0]
+
+
+def test_two_body_line_contact_reduces_to_one_body_on_a_rigid_one():
+    """(e) mixed_end_line_load (two elastic blocks, each's contact face condensed, the
+    contact on the summed compliance) with body B all but rigid (E_b = 1e9 MPa) is
+    cylinder_end_line_load's block A under a rigid cylinder: the same mesh on A, the end
+    ratios within 1e-3 (B's compliance is 1e-4 of A's). With B elastic and running on past
+    A's end, A's end carries more than where B ends flush with it, less than where both run
+    on (a coarse, small mesh: 4b long, blocks 4b, elements b/6 across)."""
+    kw = dict(length=4.0, depth=4.0, width=4.0, run_on=4.0, refine=0.75)
+    one = fr.cylinder_end_line_load(E=98000.0, nu=0.35, **kw)
+    two = fr.mixed_end_line_load(E_a=98000.0, nu_a=0.35, E_b=1e9, nu_b=0.3, **kw)
+    assert two.dofs["A"] == one.n_dofs and two.dofs["B"] > two.dofs["A"]
+    for c in (0.05, 0.1, 0.25, 0.5):
+        assert two.end_average(c) == pytest.approx(one.end_average(c), rel=1e-3)
+    mixed = fr.mixed_end_line_load(**kw)
+    flush = fr.mixed_end_line_load(b_runs_on=False, **kw)
+    assert flush.dofs["A"] == flush.dofs["B"] == mixed.dofs["A"]
+    for res in (mixed, flush):
+        assert res.peak_mid == pytest.approx(res.p0_hertz, rel=0.05)
+        assert res.reach < res.y[-1]
+    for c in (0.05, 0.1, 0.25, 0.5):
+        assert flush.end_average(c) < mixed.end_average(c) < 1.5

@@ -2,18 +2,24 @@
 Guilbault's mirror pressure with a factor), checked against a direct sum of its own
 definition, against 3D finite elements of an elastic block with a free end (tests/
 fe_reference.py: a rigid flat strip punch on a block that ends flush with it, and on one
-that runs on), and on the FZG C-type gear (cases/fzg_c_type.toml: aligned, uncrowned,
-flush ends)."""
+that runs on; a Hertz line contact of a rigid cylinder, and of two elastic bodies where one
+ends and the other runs on, a worm set's mixed end), and on the FZG C-type gear
+(cases/fzg_c_type.toml: aligned, uncrowned, flush ends)."""
 
+import json
 import math
+from pathlib import Path
+from types import SimpleNamespace
 
 import numpy as np
 import pytest
 
 from toothcontact.contact import pressure as P
+from toothcontact.contact.loaded import _member_ends, _merged
 from toothcontact.contact.pressure import FreeEnd, Grid, free_end_factor, solve_shared
 
 E_STEEL, NU = 210000.0, 0.3
+E_BRONZE, NU_BRONZE = 98000.0, 0.35
 
 
 def direct_mirror(p, end, dx, dy):
@@ -113,12 +119,13 @@ def test_a_flat_punch_at_a_free_end_loads_it_as_3d_finite_elements_do(fe_punch):
     assert ours_free[0.1] < 0.6 and ours_running[0.1] > 4.0
 
 
-def cylinder_line_load(radius, load, length, phi, cell):
+def cylinder_line_load(radius, load, length, phi, cell, E_star=E_STEEL / (1 - NU**2)):
     """Our line load under a rigid cylinder (axis along x, x in [-length, 0], `radius` mm)
     on an elastic half-space with its end at x = 0 free (phi) or running on (0), the load
     scaled so that mid-length carries `load` N/mm: the mean over the last c·b against
-    mid-length, for c = 0.05, 0.1, 0.25, 0.5 (b the Hertz half-width at `load`)."""
-    E_star = E_STEEL / (1 - NU**2)
+    mid-length, for c = 0.05, 0.1, 0.25, 0.5 (b the Hertz half-width at `load`). E_star
+    (MPa): the body's, or a pair's (two elastic bodies on one half-space; phi then the
+    FreeEnd's weight, see loaded._member_ends)."""
     b = math.sqrt(4 * load * radius / (math.pi * E_star))
     nx, ny = int(round(length / cell)), int(round(6 * b / cell))
     y = (np.arange(ny) - 0.5 * (ny - 1)) * cell
@@ -222,3 +229,89 @@ def test_an_oblique_free_end_loads_its_end_as_a_square_one():
 
     u, v = rng.random((30, 24)), rng.random((30, 24))
     assert abs(np.sum(v * K(u)) - np.sum(u * K(v))) < 1e-3 * np.sum(v * K(u))
+
+
+#: benchmarks/fe_mixed_end.json, fe_best_estimate_mean_last: the 3D finite elements' mean
+#: line load over the last c·b of body A's end against mid-length (refine 2 at blocks 2L,
+#: plus the change from blocks 2L to 8L at refine 1)
+FE_MIXED = {0.05: 0.9608, 0.1: 0.9065, 0.25: 0.8702, 0.5: 0.8647}
+FE_FLUSH = {0.05: 0.4074, 0.1: 0.4477, 0.25: 0.5185, 0.5: 0.5877}
+
+
+def worm_pair():
+    """A bronze wheel (A: E 98 GPa, ν 0.35) and a steel worm (B): each member's end weight
+    as loaded._member_ends gives it (φ(ν) times its share of the composite compliance), and
+    the pair's E* (MPa)."""
+    members = {"A": SimpleNamespace(E=E_BRONZE, nu=NU_BRONZE),
+               "B": SimpleNamespace(E=E_STEEL, nu=NU)}
+    E_star = 1.0 / sum((1 - m.nu**2) / m.E for m in members.values())
+    return _member_ends(SimpleNamespace(members=members)), E_star
+
+
+def test_a_mixed_end_loads_it_as_3d_finite_elements_do():
+    """A worm set's mixed end: the wheel (A, bronze, E = 98 GPa, ν = 0.35) ends at x = 0
+    with a free end face while the worm (B, steel) runs on past it. A Hertz line contact
+    between them (R = 84 mm, b = 1 mm on the pair's E* = 75.3 GPa: w = 703.7 N/mm, 10b
+    long). Ours: the half-space with the pair's E* and ONE mirror at x = 0, weighted as
+    loaded._member_ends weights A alone (φ(0.35)·s_A = 1.57 × 0.674 = 1.058; B runs on, no
+    mirror), cells of b/20 (b/40 within 0.6 %).
+
+    The finite elements (tests/fe_reference.py mixed_end_line_load: both blocks elastic,
+    their contact faces condensed on matching nodes, the contact on C_A + C_B; stored from
+    benchmarks/fe_mixed_end.json): A's end carries 0.907 of mid-length's line load over the
+    last 0.1b, 0.870 over the last 0.25b. Converged: with elements b/8, b/12, b/16 across
+    (blocks 2L) 0.948, 0.942, 0.940 over 0.1b and 0.901, 0.899, 0.898 over 0.25b; with
+    blocks 2L, 4L, 8L (elements b/8) 0.948, 0.921, 0.915 and 0.901, 0.878, 0.873 (the best
+    estimate: the finest mesh plus the 2L-to-8L change; 4L to 8L moves it < 0.8 %).
+
+    Tolerances: ours within 10 % over the last 0.1b (measured +5.9 %). Over the last 0.25b
+    ours MISSES the 10 % target: +13.0 % (+15.1 % over 0.5b), pinned here between +8 % and
+    +18 % so that a change of the model shows. Not the split of the weight between the
+    members: the weight that would match the FE rises from 1.05 over the last 0.05b to 1.09,
+    1.16, 1.24 over 0.1b, 0.25b, 0.5b (benchmarks/fe_mixed_end.json, ours_weight_scan), so
+    no weight fits; it is the mirror's shape, too soft at the very end and too stiff further
+    in, as for one body on a rigid cylinder (+12 % over 0.25b for steel,
+    test_a_hertz_line_contact_at_a_free_end_loads_it_as_3d_finite_elements_do).
+
+    Both ending flush (both mirrors merged as loaded._merged does, weight 1.521): the FE
+    0.448 over 0.1b, 0.519 over 0.25b (converged as above: 0.473, 0.478, 0.476 and 0.548,
+    0.550, 0.547 with the elements; 0.473, 0.450, 0.446 and 0.548, 0.524, 0.519 with the
+    blocks); ours within 10 % over 0.25b (+8.7 %), but 19 % low over 0.1b (pinned between
+    -26 % and -12 %): the mirror's over-softening of the last cells grows with its weight.
+
+    The FE solver's two-body coupling is checked against its one-body form in
+    tests/test_fe_reference.py (a rigid B gives the rigid cylinder's ratios to 1e-3)."""
+    weights, E_star = worm_pair()
+    load = math.pi * E_star / (4 * 84.0)                     # b = 1 mm
+    mixed = cylinder_line_load(84.0, load, 10.0, weights["A"], 0.05, E_star)
+    (flush_end,) = _merged([FreeEnd(0, 0, "high", weights[m], 10.0) for m in ("A", "B")])
+    flush = cylinder_line_load(84.0, load, 10.0, flush_end.weight, 0.05, E_star)
+    assert weights["A"] == pytest.approx(1.058, abs=1e-3)
+    assert flush_end.weight == pytest.approx(1.521, abs=1e-3)
+
+    stored = json.loads((Path(__file__).resolve().parents[1] / "benchmarks"
+                         / "fe_mixed_end.json").read_text())["fe_best_estimate_mean_last"]
+    for c in (0.05, 0.1, 0.25, 0.5):
+        assert stored["mixed"][f"{c}b"] == pytest.approx(FE_MIXED[c], abs=1e-4)
+        assert stored["flush"][f"{c}b"] == pytest.approx(FE_FLUSH[c], abs=1e-4)
+
+    assert mixed[0.1] == pytest.approx(FE_MIXED[0.1], rel=0.10)
+    assert 0.08 < mixed[0.25] / FE_MIXED[0.25] - 1 < 0.18       # the known miss
+    assert flush[0.25] == pytest.approx(FE_FLUSH[0.25], rel=0.10)
+    assert -0.26 < flush[0.1] / FE_FLUSH[0.1] - 1 < -0.12       # the known miss
+    assert flush[0.1] < mixed[0.1] < 1.0
+
+    fr = pytest.importorskip("fe_reference")
+    live = fr.mixed_end_line_load(depth=20.0, width=20.0, run_on=20.0, refine=0.75)
+    assert live.q_mid == pytest.approx(load, rel=1e-6)
+    for c in (0.1, 0.25):
+        assert 0.0 < live.end_average(c) / FE_MIXED[c] - 1 < 0.08
+    assert mixed[0.1] == pytest.approx(live.end_average(0.1), rel=0.10)
+
+    def error(ours, fe, c):
+        return ours[c] / fe[c] - 1.0
+
+    assert abs(error(mixed, FE_MIXED, 0.1)) < 0.10
+    assert 0.08 < error(mixed, FE_MIXED, 0.25) < 0.18
+    assert abs(error(flush, FE_FLUSH, 0.25)) < 0.10
+    assert -0.26 < error(flush, FE_FLUSH, 0.1) < -0.12

@@ -111,8 +111,26 @@ def test_labels_and_numbers_read_as_an_engineer_writes_them():
     assert label("normal_backlash_mm") == "normal backlash [mm]"
     assert label("viscosity_mm2_s") == "viscosity [mm²/s]"
     assert number(1.96638e-08) == "1.966e-08" and number(1.96638e-08, scale=3.0) == "0"
+    # beside its column's largest (1.417 mm, shown to 0.001 mm) a figure below half that
+    # resolution is 0, one above it keeps its digits; large numbers in digits
+    assert number(6.839e-06, scale=1.417) == "0" and number(0.0002052, scale=42.5) == "0"
+    assert number(-0.0006, scale=1.417) == "-0.0006" and number(-0.0004, scale=1.417) == "0"
+    assert number(30000.0) == "30000" and number(123456.0) == "123500"
+    assert number(9999.6) == "10000" and number(2.5e12) == "2.5e+12"
     assert number(3265.9474) == "3266" and number(True) == "yes" and number(None) == ""
     assert number({"pinion_tip": -0.2}) == "pinion_tip: -0.2"
+
+
+def test_a_column_that_applies_to_no_row_is_left_out():
+    """A result table drops a column whose every row is null (the Kim case's temperature
+    and viscosity: it has no lubricant conditions) and keeps the others in their order."""
+    from toothcontact.report_view import _tables
+
+    table, = _tables("efficiency", [{"temperature_C": None, "mu_zm": 0.029, "eta_z": 0.8553},
+                                    {"temperature_C": None, "mu_zm": None, "eta_z": 0.9}],
+                     "worm_efficiency")
+    assert table.headers == ["mean friction mu_zm", "efficiency eta_z (worm driving)"]
+    assert table.rows == [["0.029", "0.8553"], ["", "0.9"]]
 
 
 def test_write_run_writes_the_html_beside_the_markdown(images, tmp_path):

@@ -22,6 +22,7 @@ CASES = Path(__file__).parent.parent / "cases"
 #: bundled cases of every kind, run with few positions and no pictures
 QUICK = {"hertz_ball_in_race": None, "crown_example1_planet_bias": None,
          "spline_crown_torque_tube": None, "worm_saba_set": None,
+         "worm_kim_steering_ars": None,
          "spur_crowned_20_60": {"positions": 3, "pressure_grid": 64},
          "worm_eps_oversized_hob": {"positions": 3, "pressure_grid": 64}}
 

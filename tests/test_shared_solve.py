@@ -140,11 +140,50 @@ def helical():
     return result, {id(c.field): built[id(c.field)][1] for c in result.loaded if c is not None}
 
 
+def cell_kernel(ox, oy, dx, dy, reference, E_star):
+    """The displacement (mm per MPa, E* = 1) at the offsets (ox, oy) (mm, any, not only
+    whole cells) of 1 MPa on one dx × dy cell: Johnson eq (3.25)'s double difference of F
+    at the cell's corners, less each body's Boussinesq displacement at its reference depth
+    (pressure.InfluenceOperator's terms, here at any offset)."""
+    total = 0.0
+    for sx, sy, sign in ((1, 1, 1), (1, -1, -1), (-1, 1, -1), (-1, -1, 1)):
+        s, t = ox + sx * dx / 2, oy + sy * dy / 2
+        total = total + sign * P._antiderivative(s, t) / math.pi
+        for depth, E, nu in reference:
+            G = E / (2.0 * (1.0 + nu))
+            total = total - sign * E_star / (4.0 * math.pi * G) * P._depth_antiderivative(
+                s, t, depth, nu)
+    return total
+
+
+def mirrored_oblique(p, end, dx, dy, reference, E_star):
+    """The mirror term of an oblique free end (pressure.ObliqueFreeEnd) summed directly
+    (mm per E*): each tapered cell's pressure as a uniform cell centred on its exact image
+    about the end's line (not spread onto the cells around it, as the solver does), its
+    displacement read at every tapered cell by `cell_kernel`."""
+    I, J = np.meshgrid(np.arange(p.shape[0]), np.arange(p.shape[1]), indexing="ij")
+    d = end.a * I + end.b * J + end.c
+    band = (d > 0.0) & (d < end.reach_mm)
+    u = np.zeros(p.shape)
+    if not band.any():
+        return u
+    i, j, d = I[band], J[band], d[band]
+    taper = P.end_taper(d / end.reach_mm)
+    x, y = i * dx, j * dy
+    image_x, image_y = x - 2.0 * d * end.a / dx, y - 2.0 * d * end.b / dy
+    K = cell_kernel(x[:, None] - image_x[None, :], y[:, None] - image_y[None, :], dx, dy,
+                    reference, E_star)
+    u[band] = end.weight * taper * (K @ (taper * p[band])) / E_star
+    return u
+
+
 def mirrored(p, end, dx, dy, reference, E_star):
     """The mirror term of a free end (pressure.FreeEnd) evaluated directly (mm per E*): the
     tapered pressure placed at its mirror cells (2·index - 1 - i) on a grid extended past
     the end, linearly convolved with Love's cell coefficients (scipy.signal), read back on
     the tapered cells."""
+    if isinstance(end, P.ObliqueFreeEnd):
+        return mirrored_oblique(p, end, dx, dy, reference, E_star)
     q = p if end.axis == 0 else p.T
     step = (dx, dy)[end.axis]
     n, m = q.shape
@@ -170,7 +209,11 @@ def test_a_loaded_helical_position_satisfies_the_coupled_equations(helical):
     pairs in contact, one on a relieved tip), its teeth bending: at every position the
     final pressure p and the common approach D satisfy h + K·p + B·p = D on the contact
     and >= D elsewhere on the material (K with the mirror term of every free face end,
-    evaluated directly on an extended grid), to 1e-4 of the position's largest displacement
+    evaluated directly on an extended grid; an end crossing the field obliquely has its
+    images off the cells, which the solver spreads onto the cells around them: that
+    spreading is held within 2 % of the mirror term's largest against a direct sum of each
+    image as its own cell, measured 1.6 % on the pinion's end, 12 nm; the equations are then
+    checked with the spread term the solve used), to 1e-4 of the position's largest displacement
     (the scale of the solver's tolerance: a pair on a relieved tip, a few cells touching,
     misses by 2.1e-4 of its own, 0.4 nm), with K·p
     recomputed as a linear convolution (scipy.signal.fftconvolve) of Love's cell
@@ -196,8 +239,18 @@ def test_a_loaded_helical_position_satisfies_the_coupled_equations(helical):
                                                                      n1 - 1:2 * n1 - 1]
                  / s.E_star_MPa + B(s.pressure_MPa))
             for end in free_ends(f, _member_ends(None), B.reference):
-                u += mirrored(s.pressure_MPa, end, s.dx_mm, s.dy_mm, B.reference,
-                              s.E_star_MPa)
+                direct = mirrored(s.pressure_MPa, end, s.dx_mm, s.dy_mm, B.reference,
+                                  s.E_star_MPa)
+                if isinstance(end, P.ObliqueFreeEnd):
+                    spread = np.zeros(direct.shape)
+                    end.add_mirror(spread, s.pressure_MPa,
+                                   P.InfluenceOperator(direct.shape, s.dx_mm, s.dy_mm,
+                                                       B.reference, s.E_star_MPa),
+                                   (s.dx_mm, s.dy_mm), False)
+                    spread /= s.E_star_MPa
+                    assert np.max(np.abs(spread - direct)) <= 0.02 * np.max(np.abs(direct))
+                    direct = spread
+                u += direct
             gaps.append((np.where(f.material, f.gap + u - s.approach_mm, np.nan),
                          s.pressure_MPa > 0, f.material))
             scale = max(scale, float(np.max(np.abs(u[f.material]))))

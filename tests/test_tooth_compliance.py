@@ -10,8 +10,9 @@ import numpy as np
 import pytest
 
 from toothcontact.analytic.stiffness import foundation_compliance, mesh_stiffness
+from toothcontact.contact.compliance import (FaceCoupling, FaceLoad, ToothCompliance, cantilever,
+                                             end_layer, end_layer_share, hats)
 from toothcontact.rating.load_factors import face_load_factor
-from toothcontact.contact.compliance import FaceCoupling, FaceLoad, ToothCompliance, cantilever
 from toothcontact.surfaces.involute import CylindricalGear
 
 E, NU = 206000.0, 0.3
@@ -109,6 +110,47 @@ def test_a_load_at_the_face_end_deflects_twice_as_far_as_in_mid_face():
     exact = green(0.0, 0.0, 3.0, 36.0) / green(18.0, 18.0, 3.0, 36.0)
     assert ratio == pytest.approx(exact, rel=2e-3)
     assert exact == pytest.approx(2.0, rel=1e-3)
+
+
+def test_a_coupling_fading_at_the_free_ends_softens_them_only_under_uneven_loads():
+    """The end layer (Reissner's t/sqrt(10): 1.48 mm for a tooth 4.67 mm thick) on a 40 mm
+    face, λ = 5.94 mm: a uniform load still deflects every node by 1; each link keeps the
+    exact mean of (1 - e^(-d0/ℓ))(1 - e^(-d1/ℓ)) over it (the end link 1 - ℓ/s·(1 - e^(-s/ℓ))
+    on a long face); a 1 mm patch at the end deflects 2.22 times one in mid-face (the free
+    line's 1.89), converged within 1 % with the nodes half a layer apart; a load rising
+    along the face (q = z/20 N/mm, c = 1) deflects the end node 2.6 % further than with
+    w' = 0 (0.722 against 0.704), as the 3D FE's tooth does (benchmarks/fe_face_load.py's
+    pinion: 0.731 c over the last 0.1 mm against the free line's 0.701)."""
+    layer = end_layer(2.336)
+    assert layer == pytest.approx(2 * 2.336 / math.sqrt(10))
+    nodes = np.linspace(-20.0, 20.0, 81)
+    share = end_layer_share(nodes, layer)
+    step = 0.5
+    assert share[0] == pytest.approx(1 - layer / step * (1 - math.exp(-step / layer)), rel=1e-9)
+    assert share[0] == pytest.approx(share[-1]) and share[40] == pytest.approx(1.0, abs=1e-5)
+    assert np.allclose(end_layer_share(nodes, 0.0), 1.0)
+
+    def patch(coupling, z0, z1):
+        zs = np.linspace(z0, z1, 4001)
+        q = np.zeros(len(coupling.nodes))
+        left, right = hats(coupling.nodes, zs)
+        np.add.at(q, left, (1 - right) / len(zs))
+        np.add.at(q, left + 1, right / len(zs))
+        return q @ coupling.flexibility @ q
+
+    ratios = {}
+    for count in (81, 481):
+        coupling = FaceCoupling(-20.0, 20.0, 5.944, count, layer)
+        assert np.allclose(coupling.flexibility @ coupling.widths, 1.0, atol=1e-10)
+        ratios[count] = patch(coupling, 19.0, 20.0) / patch(coupling, -0.5, 0.5)
+    assert ratios[81] == pytest.approx(ratios[481], rel=0.01)
+    assert ratios[481] == pytest.approx(2.22, abs=0.02)
+    free = FaceCoupling(-20.0, 20.0, 5.944, 481)
+    assert patch(free, 19.0, 20.0) / patch(free, -0.5, 0.5) == pytest.approx(1.89, abs=0.02)
+    fading = FaceCoupling(-20.0, 20.0, 5.944, 481, layer)
+    rising = [c.flexibility @ (c.widths * c.nodes / 20.0) for c in (fading, free)]
+    assert rising[0][-1] == pytest.approx(0.722, abs=0.002)
+    assert rising[1][-1] == pytest.approx(0.704, abs=0.002)
 
 
 def test_the_gear_body_term_is_sainsots_fit():

@@ -121,3 +121,131 @@ def test_kim_case_efficiency_with_and_without_the_spring():
     assert aligned["eta_kim"] == pytest.approx(aligned["eta_kim_aligned"], abs=1e-6)
     below = [g for r, g in zip(loaded, gap) if r["output_torque_Nm"] < 19.67]
     assert all(g > 0 for g in below) and below == sorted(below, reverse=True)
+
+
+KIM = bundled_cases_dir() / "worm_kim_steering_ars.toml"
+
+#: seed 001's printed numbers and the checks that hold the case to them
+KIM_CHECKS = {"the spring rate k of eq (21) is the paper's": ("eq (21)", "30 N/mm"),
+              "misalignment at no output torque matches the paper's": ("eqs (20)-(21)", "-1.1 mm"),
+              "output torque where the shaft is aligned matches the paper's":
+              ("eq (20)", "19.67 N·m"),
+              "friction at 130 MPa matches the paper's": ("§2.3", "0.029"),
+              "efficiency at 36 N·m matches the paper's": ("eq (2)", "0.931")}
+
+
+def test_kim_case_checks_eqs_20_21_and_the_printed_numbers():
+    """The README promises the Kim case checks eqs 20-21 against the paper: each printed
+    number (spring rate, -1.10 mm at 0 N·m, aligned at 19.67 N·m, 0.029 at 130 MPa, the
+    measured 93.10 % at 36 N·m) is a source check naming its equation, the computed and
+    the published number and a tolerance; all agree."""
+    checks = {c["name"]: c for c in analyse_file(KIM)["checks"]}
+    assert set(checks) == set(KIM_CHECKS)
+    for name, (equation, published) in KIM_CHECKS.items():
+        check = checks[name]
+        assert check["ok"] and check["kind"] == "source", check
+        assert equation in check["detail"] and f"published {published}" in check["detail"]
+        assert "tolerance ±" in check["detail"]
+    details = " ".join(c["detail"] for c in checks.values())
+    assert "computed -1.1000 mm" in details and "computed 19.670 N·m" in details
+
+
+@pytest.mark.parametrize("field, value, failing", [
+    ("published_misalignment_at_no_torque", "-1.20 mm",
+     "misalignment at no output torque matches the paper's"),
+    ("published_aligned_torque", "19.7 N*m",
+     "output torque where the shaft is aligned matches the paper's"),
+    ("published_stiffness", "31 N/mm", "the spring rate k of eq (21) is the paper's"),
+])
+def test_a_kim_check_fails_when_its_published_number_is_altered(tmp_path, field, value, failing):
+    """Each check compares: a published number moved past its tolerance (0.005 mm, 0.005 N·m,
+    0.5 N/mm) fails that check alone."""
+    import tomllib
+
+    import tomli_w
+
+    raw = tomllib.loads(KIM.read_text())
+    raw["anti_rattle_spring"][field] = value
+    case = tmp_path / "kim_altered.toml"
+    case.write_text(tomli_w.dumps(raw))
+    failed = [c["name"] for c in analyse_file(case)["checks"] if not c["ok"]]
+    assert failed == [failing]
+
+
+def test_kim_friction_and_efficiency_checks_fail_when_altered(tmp_path):
+    import tomllib
+
+    import tomli_w
+
+    raw = tomllib.loads(KIM.read_text())
+    raw["contact"]["published_friction"] = {"mu": 0.031, "pressure": "130 MPa"}
+    raw["contact"]["published_efficiency"] = [{"output_torque": "36 N*m", "eta": 0.95}]
+    case = tmp_path / "kim_altered.toml"
+    case.write_text(tomli_w.dumps(raw))
+    failed = {c["name"] for c in analyse_file(case)["checks"] if not c["ok"]}
+    assert failed == {"friction at 130 MPa matches the paper's",
+                      "efficiency at 36 N·m matches the paper's"}
+
+
+def test_kim_aligned_torque_is_eq_20_at_no_spring_force():
+    """The torque where the shaft is aligned zeroes eq (20) (and so eq 21)."""
+    g, a, Rp = math.radians(10.08), math.radians(20.0), 35.55
+    T0 = w.anti_rattle_aligned_torque(4091.0, 20.0, Rp, a, g)
+    assert w.anti_rattle_spring_force(T0, 4091.0, 103.97, 20.0, Rp, a, g) == pytest.approx(
+        0.0, abs=1e-12)
+    section = analyse_file(KIM)["anti_rattle_spring"]
+    assert section["aligned_torque_Nm"] == pytest.approx(19.67, abs=0.005)
+    assert section["misalignment_at_no_torque_mm"] == pytest.approx(-1.10, abs=0.005)
+
+
+def test_kim_key_results_range_over_the_output_torques():
+    """The Kim case's conditions are its output torques: the key results name them, with
+    units, for the efficiency, the spring force, the misalignment, the aligned torque, the
+    pressure and the friction; no empty placeholder ('( to °C)', '0.8553 to 0.8553')."""
+    from toothcontact.report_view import key_results
+
+    results = {k.label: k for k in key_results(analyse_file(KIM))}
+    text = " | ".join(f"{k.label} {k.value} {k.where}" for k in results.values())
+    assert "( to" not in text and "°C" not in text and "conditions" not in text
+    assert not any(" to " in k.value and k.value.split(" to ")[0] == k.value.split(" to ")[1]
+                   for k in results.values())
+    assert results["anti-rattle spring force (eq 20)"].value == "-33 to 42.5 N"
+    assert results["worm-shaft misalignment (eq 21)"].value == "-1.1 to 1.417 mm"
+    assert results["output torque where the shaft is aligned"].value == "19.67 N·m"
+    assert results["contact pressure with the spring (eq 19)"].value.endswith(" MPa")
+    friction = results["friction coefficient μ with the spring"]
+    assert "μ = 0.029·(p / 130 MPa)^-0.9" in friction.where
+    spring = results["efficiency with the spring (eq 2, μ from eq 19's pressure)"]
+    assert spring.value == "0.6921 to 0.9307"
+    assert "over 9 output torques, 0.5 to 45 N·m" in spring.where
+    for label in ("anti-rattle spring force (eq 20)", "worm-shaft misalignment (eq 21)",
+                  "contact pressure with the spring (eq 19)"):
+        assert "over 10 output torques, 0 to 45 N·m" in results[label].where
+
+
+def test_saba_key_results_still_range_over_temperatures():
+    from toothcontact.report_view import key_results
+
+    doc = analyse_file(bundled_cases_dir() / "worm_saba_flap_actuator.toml")
+    results = {k.label: k for k in key_results(doc)}
+    assert results["efficiency eta_z (worm driving, DIN 3996)"].value == "0.4427 to 0.5375"
+    assert results["efficiency eta_z (worm driving, DIN 3996)"].where == \
+        "over 6 lubricant temperatures, -50 to 70 °C"
+    assert results["self-locking (wheel driving)"].where.startswith("at -50, -35 °C of 6")
+
+
+def test_kim_report_rounds_its_figures():
+    """No figure of the Kim report in exponent notation: the misalignment at 19.67 N·m
+    (6.8e-06 mm, the mount moment's last digit) shows as 0 beside -1.1 to 1.417 mm, and the
+    spring force there as 0 N; the same in report.md and report.html."""
+    import re
+
+    from toothcontact import report
+
+    doc = analyse_file(KIM)
+    for text in (report.markdown(doc), report.html(doc)):
+        body = text.split("Inputs (as given)")[0]
+        assert not re.findall(r"\d(?:\.\d+)?e[-+]?\d", body)
+    row = next(line for line in report.markdown(doc).splitlines()
+               if line.startswith("| 19.67 |"))
+    assert row.split(" | ")[2:4] == ["0", "0"]

@@ -11,10 +11,10 @@ import math
 import re
 import tomllib
 from pathlib import Path
-from typing import Annotated, Any, Literal
+from typing import Annotated, Any, Literal, get_args
 
-from pydantic import (BaseModel, BeforeValidator, ConfigDict, Field, ValidationError,
-                      field_validator, model_validator)
+from pydantic import (AfterValidator, BaseModel, BeforeValidator, ConfigDict, Field,
+                      ValidationError, field_validator, model_validator)
 
 from . import units
 
@@ -79,6 +79,29 @@ Efficiency = Annotated[float, Field(gt=0.0, le=1.0, description="an efficiency i
 
 class Model(BaseModel):
     model_config = ConfigDict(extra="forbid", frozen=True)
+
+    @field_validator("*", mode="before")
+    @classmethod
+    def _no_switch_for_a_number(cls, value: Any, info) -> Any:
+        """A switch (TOML's true or false) is refused where the field takes no switch:
+        pydantic would read it as 1 or 0."""
+        if _holds_switch(value) and not _takes_switch(cls.model_fields[info.field_name]
+                                                      .annotation):
+            raise ValueError(f"{value!r} {'holds' if isinstance(value, (list, tuple)) else 'is'}"
+                             " a switch (true or false) where a number or a name is expected")
+        return value
+
+
+def _holds_switch(value: Any) -> bool:
+    """Whether `value` is a bool or a list (at any depth) holding one."""
+    if isinstance(value, (list, tuple)):
+        return any(_holds_switch(v) for v in value)
+    return isinstance(value, bool)
+
+
+def _takes_switch(annotation: Any) -> bool:
+    """Whether a field's type admits a bool anywhere in it."""
+    return annotation is bool or any(_takes_switch(a) for a in get_args(annotation))
 
 
 class CaseInfo(Model):
@@ -227,6 +250,21 @@ class GearMaterial(Model):
         return self
 
 
+#: the most load cycles a case may give (a tooth at 30 000 rpm for 500 000 h meets 9e11)
+MOST_CYCLES = 1e13
+
+
+def _whole(value: float) -> float:
+    if value != math.floor(value):
+        raise ValueError(f"{value!r} is no whole number of cycles")
+    return value
+
+
+#: load cycles: a count, finite and whole, from 1 to MOST_CYCLES
+Cycles = Annotated[float, Field(ge=1.0, le=MOST_CYCLES, allow_inf_nan=False),
+                   AfterValidator(_whole)]
+
+
 #: a load factor of ISO 6336-1 given instead of computed: at least 1 (ISO's load factors
 #: raise the nominal load), at most 20
 LoadFactor = Annotated[float, Field(ge=1.0, le=20.0, description="a load factor in [1, 20]")]
@@ -283,7 +321,7 @@ class RatingSpec(Model):
         None, description="ISO 1328-1:2013 flank tolerance class 1-11 of both members: the "
                           "pitch and profile deviations of K_v, K_Hα and K_Hβ's Method C "
                           "(default: none, deviations taken as zero)")
-    pinion_cycles: Annotated[float, Field(ge=1.0)] | None = Field(
+    pinion_cycles: Cycles | None = Field(
         None, description="load cycles of each pinion tooth, e.g. 1e9 (default: from life "
                           "and the speed, else the endurance limit, Z_NT = Y_NT = 1)")
     life: quantity("time", positive=True) | None = Field(
@@ -377,6 +415,40 @@ def lubricated_pair(case, members: dict, friction_needed: bool) -> None:
         raise ValueError("lubricant.friction_coefficient: give a worm set's mean friction "
                          "(e.g. DIN 3996's mu_zm from the worm_efficiency kind): ISO/TR "
                          "14179-2's is for cylindrical gears")
+    _temperatures(case.operation, case.lubricant)
+
+
+def _temperatures(op: Running, oil: LubricantSpec) -> None:
+    """The oil, bulk and scuffing temperatures where their formulas hold (ValueError naming
+    the field): the oil at or above its pour point (analytic.lubricant.POUR_POINTS where not
+    given) and within ASTM D341's viscosities there; the teeth's bulk at or above the oil
+    that cools them; the scuffing temperature above the oil's (S_B's margin)."""
+    from .analytic import lubricant
+
+    theta = op.oil_temperature
+    pour = oil.pour_point if oil.pour_point is not None else lubricant.POUR_POINTS[oil.family]
+    whose = ("the lubricant.pour_point given" if oil.pour_point is not None else
+             f"the {oil.family} family's default pour point; give lubricant.pour_point for "
+             "this oil's")
+    if theta < pour:
+        raise ValueError(f"operation.oil_temperature: {theta:.4g} degC lies below the oil's "
+                         f"pour point {pour:.4g} degC ({whose}): ASTM D341's viscosity line "
+                         "holds only for a liquid oil")
+    nu = lubricant.kinematic_viscosity(oil.viscosity_40, oil.viscosity_100, theta)
+    largest = units.KINDS["viscosity"].largest
+    if not lubricant.WALTHER_LEAST <= nu <= largest:
+        raise ValueError(f"operation.oil_temperature: {theta:.4g} degC gives the oil a "
+                         f"viscosity of {nu:.4g} mm^2/s on ASTM D341's line, outside the "
+                         f"{lubricant.WALTHER_LEAST:g} to {largest:.4g} mm^2/s it is taken "
+                         "over")
+    if op.bulk_temperature is not None and not op.bulk_temperature >= theta:
+        raise ValueError(f"operation.bulk_temperature: {op.bulk_temperature:.4g} degC must be "
+                         f"at least the oil temperature {theta:.4g} degC: the teeth run at "
+                         "or above the oil that cools them (ISO/TS 6336-20)")
+    if oil.scuffing_temperature is not None and not oil.scuffing_temperature > theta:
+        raise ValueError(f"lubricant.scuffing_temperature: {oil.scuffing_temperature:.4g} degC "
+                         f"must exceed the oil temperature {theta:.4g} degC: S_B = (θ_S - "
+                         "θ_oil)/(θ_B,max - θ_oil) measures the margin above the oil")
 
 
 class LubricantSpec(Model):
@@ -404,9 +476,20 @@ class LubricantSpec(Model):
     permissible_specific_film: Factor | None = Field(
         None, description="λ_GFP of ISO/TR 15144-1 (from a micropitting test): the "
                           "micropitting safety S_lambda")
+    pour_point: Temperature | None = Field(
+        None, description="the oil's pour point, e.g. '-27 degC': no oil temperature below "
+                          "it is taken (default: the family's, mineral -15, pao -45, pag -30 "
+                          "degC)")
 
     @model_validator(mode="after")
     def _thinner_when_hot(self):
+        from .analytic.lubricant import WALTHER_LEAST
+
+        for name in ("viscosity_40", "viscosity_100"):
+            if not getattr(self, name) >= WALTHER_LEAST:
+                raise ValueError(f"{name}: {getattr(self, name):.4g} mm^2/s must be at least "
+                                 f"{WALTHER_LEAST:g} mm^2/s, the least ASTM D341's Walther "
+                                 "line log log(ν + 0.7) holds for")
         if not self.viscosity_100 < self.viscosity_40:
             raise ValueError(f"viscosity_100: {self.viscosity_100:.4g} mm^2/s must be below "
                              f"viscosity_40 ({self.viscosity_40:.4g} mm^2/s): an oil thins as "
@@ -620,11 +703,10 @@ class TopographySpec(Model):
         if any(raw.get(k) is not None for k in ("face", "diameter", "deviation_um")):
             raise ValueError("file / face / diameter / deviation_um: give the grid inline or "
                              "as a file, not both")
-        path = Path(str(raw["file"]))
-        if not path.is_absolute() and info.context and info.context.get("base"):
-            path = Path(info.context["base"]) / path
-        if not path.is_file():
-            raise ValueError(f"file: {shown(raw['file'])}: no such file ({path})")
+        try:
+            path = _given_file(raw["file"], info)
+        except ValueError as exc:
+            raise ValueError(f"file: {exc}") from None
         return {**raw, **read_topography_csv(path)}
 
     @model_validator(mode="after")
@@ -645,6 +727,32 @@ class TopographySpec(Model):
             raise ValueError(f"deviation_um: each value must be finite and within "
                              f"±{TOPOGRAPHY_LIMIT_UM:g} µm")
         return self
+
+
+#: the longest name a file system gives a file (bytes of one path component)
+NAME_MAX = 255
+
+
+def _given_file(name: Any, info) -> Path:
+    """The file a case names (relative to the case's folder), which must exist: a
+    ValueError (its message without the field) for a name that is no text, holds a control
+    character, is too long for a file system or names no file."""
+    if not isinstance(name, str) or not name:
+        raise ValueError(f"{shown(name)} is not a file name")
+    if any(ord(ch) < 32 or ord(ch) == 127 for ch in name):
+        raise ValueError(f"{shown(name)} holds a control character")
+    if any(len(part.encode("utf-8")) > NAME_MAX for part in Path(name).parts):
+        raise ValueError(f"{shown(name)}: a file name has at most {NAME_MAX} bytes")
+    path = Path(name)
+    if not path.is_absolute() and info.context and info.context.get("base"):
+        path = Path(info.context["base"]) / path
+    try:
+        found = path.is_file()
+    except OSError as exc:
+        raise ValueError(f"{shown(name)}: cannot be read ({exc.strerror})") from None
+    if not found:
+        raise ValueError(f"{shown(name)}: no such file ({_cut(str(path))})")
+    return path
 
 
 class KChartSpec(Model):
@@ -687,29 +795,63 @@ class KChartSpec(Model):
 
 def read_topography_csv(path: Path) -> dict:
     """A topography CSV as TopographySpec's fields: the first row a label cell and the
-    diameters (mm), each next row a face position (mm from mid-face toward end B) and its
-    deviations (µm). Units are those; a cell that is no number is named with its place."""
+    diameters (mm, increasing), each next row a face position (mm from mid-face toward end
+    B, increasing) and its deviations (µm, one per diameter, within ±TOPOGRAPHY_LIMIT_UM).
+    Units are those; a problem is a ValueError naming the file, the row and the column as
+    a spreadsheet counts them (blank lines counted)."""
     import csv
 
-    rows = [r for r in csv.reader(path.read_text(encoding="utf-8-sig").splitlines())
+    try:
+        text = path.read_text(encoding="utf-8-sig")
+    except UnicodeDecodeError as exc:
+        raise ValueError(f"file: {path.name}: not UTF-8 text (byte 0x{exc.object[exc.start]:02x} "
+                         f"at position {exc.start}); save the CSV as UTF-8") from None
+    except OSError as exc:
+        raise ValueError(f"file: {path.name}: cannot be read ({exc.strerror})") from None
+    rows = [(i, r) for i, r in enumerate(csv.reader(text.splitlines()), start=1)
             if any(cell.strip() for cell in r)]
 
-    def number(cell: str, where: str) -> float:
+    def where(line: int, column: int | None = None) -> str:
+        return f"file: {path.name} row {line}" + ("" if column is None else f", column {column}")
+
+    def number(cell: str, line: int, column: int) -> float:
         try:
-            return float(cell)
+            value = float(cell)
         except ValueError:
-            raise ValueError(f"file: {path.name} {where}: {shown(cell)} is not a number") \
-                from None
+            raise ValueError(f"{where(line, column)}: {shown(cell)} is not a number") from None
+        if not math.isfinite(value):
+            raise ValueError(f"{where(line, column)}: {shown(cell)} is not a finite number")
+        return value
+
+    def increasing(values: list[float], places: list[tuple[int, int]], what: str) -> None:
+        for (a, b), place in zip(zip(values, values[1:]), places[1:]):
+            if not b > a:
+                raise ValueError(f"{where(*place)}: the {what} {b:g} does not exceed the one "
+                                 f"before it, {a:g}: they must increase")
 
     if len(rows) < 3:
         raise ValueError(f"file: {path.name}: a header row of diameters and at least two rows "
                          "of face positions are needed")
-    diameters = [number(c, f"row 1, column {k + 2}") for k, c in enumerate(rows[0][1:])]
+    (head, header), body = rows[0], rows[1:]
+    if len(header) < 3:
+        raise ValueError(f"{where(head)}: a label cell and at least two diameters (mm) are "
+                         "needed")
+    diameters = [number(c, head, k) for k, c in enumerate(header[1:], start=2)]
+    increasing(diameters, [(head, k) for k in range(2, len(header) + 1)], "diameter")
     face, deviation = [], []
-    for i, row in enumerate(rows[1:], start=2):
-        face.append(number(row[0], f"row {i}, column 1"))
-        deviation.append([number(c, f"row {i}, column {k + 2}") for k, c in enumerate(row[1:])])
-    return {"face": [f"{f} mm" for f in face], "diameter": [f"{d} mm" for d in diameters],
+    for line, row in body:
+        if len(row) - 1 != len(diameters):
+            raise ValueError(f"{where(line)}: {len(row) - 1} deviations after the face "
+                             f"position; the header gives {len(diameters)} diameters")
+        face.append(number(row[0], line, 1))
+        values = [number(c, line, k) for k, c in enumerate(row[1:], start=2)]
+        for k, v in enumerate(values, start=2):
+            if abs(v) > TOPOGRAPHY_LIMIT_UM:
+                raise ValueError(f"{where(line, k)}: {v:g} µm lies beyond "
+                                 f"±{TOPOGRAPHY_LIMIT_UM:g} µm")
+        deviation.append(values)
+    increasing(face, [(line, 1) for line, _ in body], "face position")
+    return {"face": [f"{f!r} mm" for f in face], "diameter": [f"{d!r} mm" for d in diameters],
             "deviation_um": deviation, "file": str(path)}
 
 
@@ -819,7 +961,7 @@ class LoadLevel(Model):
 
     tangential_load: Force | None = Field(None, description="at the pinion's operating pitch circle")
     torque: Torque | None = Field(None, description="on the pinion, e.g. '240 N*m'")
-    cycles: Annotated[float, Field(gt=0.0)] = Field(
+    cycles: Cycles = Field(
         description="load cycles of each pinion tooth at this level, e.g. 2e8")
 
     @model_validator(mode="after")
@@ -1166,6 +1308,13 @@ class AntiRattleSpring(Model):
     mount_moment: quantity("torque") = Field(description="moment held at the mount, e.g. '3.3 N*m'")
     output_torques: list[quantity("torque")] = Field(min_length=1,
                                                      description="wheel torques, e.g. ['0 N*m']")
+    published_stiffness: Stiffness | None = Field(
+        None, description="the source's spring rate, e.g. '30 N/mm'")
+    published_misalignment_at_no_torque: quantity("length") | None = Field(
+        None, description="the source's eq (21) at no output torque, e.g. '-1.10 mm'")
+    published_aligned_torque: Torque | None = Field(
+        None, description="the output torque where the source's shaft is aligned, "
+                          "e.g. '19.67 N*m'")
 
 
 class FrictionLaw(Model):
@@ -1177,14 +1326,34 @@ class FrictionLaw(Model):
                             description="n in [-5, 0]: -0.9 sliding, -0.6 rolling")
 
 
+class PublishedFriction(Model):
+    """A friction coefficient a source prints at a contact pressure."""
+
+    mu: Friction
+    pressure: Modulus = Field(description="e.g. '130 MPa'")
+
+
+class PublishedEfficiency(Model):
+    """An efficiency a source prints (or measured) at an output torque."""
+
+    output_torque: quantity("torque") = Field(description="e.g. '36 N*m'")
+    eta: Efficiency
+
+
 class KimContact(Model):
     """What seed 001's contact pressure (eqs 10-19) needs beyond the worm set: a ZI worm,
-    the hob that cut the wheel, the materials."""
+    the hob that cut the wheel, the materials; and what the source prints of them, to
+    check against."""
 
     hob_pitch_diameter: Length = Field(description="the (oversized) hob, e.g. '22 mm'")
     worm: Material = Field(DEFAULT_STEEL, description="default steel")
     wheel: Material = Field(description="e.g. nylon: E = '3 GPa', nu = 0.4")
     friction: FrictionLaw
+    published_friction: PublishedFriction | None = Field(
+        None, description="a measured friction, e.g. {mu = 0.029, pressure = '130 MPa'}")
+    published_efficiency: list[PublishedEfficiency] = Field(
+        [], description="efficiencies the source prints, e.g. [{output_torque = '36 N*m', "
+                        "eta = 0.931}]")
 
 
 class WormEfficiencyCase(CaseInfo):
@@ -1264,14 +1433,9 @@ class ImportedBody(Model):
     @field_validator("file")
     @classmethod
     def _exists(cls, value: str, info) -> str:
-        path = Path(value)
-        if not path.is_absolute() and info.context and info.context.get("base"):
-            path = Path(info.context["base"]) / path
-        if path.suffix.lower() not in (".stl", ".step", ".stp"):
-            raise ValueError(f"{value!r}: must be an .stl, .step or .stp file")
-        if not path.is_file():
-            raise ValueError(f"{value!r}: no such file ({path})")
-        return str(path.resolve())
+        if Path(value).suffix.lower() not in (".stl", ".step", ".stp"):
+            raise ValueError(f"{shown(value)}: must be an .stl, .step or .stp file")
+        return str(_given_file(value, info).resolve())
 
 
 class ImportedCase(CaseInfo):

@@ -10,6 +10,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass, field, replace
+from pathlib import Path
 
 import numpy as np
 
@@ -511,7 +512,7 @@ def modifications(member: Member, gear: CylindricalGear, name: str) -> FlankModi
             length = abs(roll(2.0 * gear.tip_radius) - roll(relief.start_diameter))
         return relief.blend / length
 
-    return FlankModifications(
+    mods = FlankModifications(
         tip_edge=tip_edge(member.tip_edge, gear, f"{name}.tip_edge"),
         lead_crown=None if crown is None else LeadCrown(crown.radius, crown.height, crown.shape,
                                                         crown.center),
@@ -536,6 +537,65 @@ def modifications(member: Member, gear: CylindricalGear, name: str) -> FlankModi
             else member.end_relief.blend / member.end_relief.length),
         end_chamfer=end_chamfer(member.end_chamfer, gear.normal_module, gear.face_width,
                                 f"{name}.end_chamfer"))
+    check_slopes(mods, gear, name, "k_chart" if member.k_chart is not None else "topography")
+    return mods
+
+
+#: each modification (their tables in a case) checked by check_slopes; the tip edge and
+#: the end chamfer are the flank's edges, drawn, not deviations of it
+SLOPED = {"lead_crown": "crown", "profile_crown": "profile_crown", "tip_relief": "tip_relief",
+          "root_relief": "root_relief", "helix_slope": "helix_slope",
+          "profile_slope": "profile_slope", "twist": "twist", "end_relief": "end_relief",
+          "topography": "topography"}
+#: samples per side of the flank on which check_slopes measures each modification
+SLOPE_SAMPLES = 81
+#: the largest drop (either sign, in normal modules) of the modifications that tilt the
+#: whole flank (a helix or profile slope, a twist): they correct a lead or profile
+#: deviation of the size ISO 1328's tolerances give (tens of µm), and half of one adds
+#: material; a twentieth of a module (150 µm at m_n = 3 mm, twice ISO 1328-1 class 11's
+#: profile slope tolerance there) is taken as the most, an assumed bound: a twist of 1 mm
+#: on a 3 mm module put whole positions' contacts off both flanks
+TILT_MODULES = 0.05
+TILTS = ("helix_slope", "profile_slope", "twist")
+
+
+def check_slopes(mods: FlankModifications, gear: CylindricalGear, name: str,
+                 measured: str = "topography") -> None:
+    """Refuse (ValueError naming the table) a modification whose drop turns the flank by
+    more than a misalignment may (units' slope limit, 0.1 rad) anywhere on its face and
+    active profile, or a slope or twist whose drop reaches beyond TILT_MODULES of the
+    normal module: a modification is a small deviation from the involute and the helix
+    (DESIGN principle 2: a displacement along the normal), and a larger one moves the
+    contact onto an edge or off the flank. `measured`: the table a topography came from."""
+    from . import units
+
+    present = [field for field in SLOPED if getattr(mods, field) is not None]
+    if not present:
+        return
+    limit = units.KINDS["slope"].largest
+    s_tip = float(gear.base_radius * gear.roll_angle(gear.tip_radius))
+    s_form = _form_roll(gear)
+    w = np.linspace(-0.5 * gear.face_width, 0.5 * gear.face_width, SLOPE_SAMPLES)
+    s = np.linspace(min(s_form, s_tip), max(s_form, s_tip), SLOPE_SAMPLES)
+    W, S = np.meshgrid(w, s, indexing="ij")
+    for field in present:
+        drop = FlankModifications(**{field: getattr(mods, field)}).drop(
+            W, S, gear.face_width, s_form, s_tip)
+        along_face, along_profile = np.gradient(drop, w, s)
+        steepest = float(np.max(np.hypot(along_face, along_profile)))
+        table = measured if field == "topography" else SLOPED[field]
+        if not steepest <= limit:
+            raise ValueError(f"{name}.{table}: its drop turns the flank by up to "
+                             f"{steepest:.3g} rad over the {gear.face_width:.4g} mm face and "
+                             f"{abs(s_tip - s_form):.4g} mm of active profile (roll length); "
+                             f"at most {limit:g} rad, as a misalignment: a modification is a "
+                             "small deviation from the involute and the helix")
+        largest, most = float(np.max(np.abs(drop))), TILT_MODULES * gear.normal_module
+        if field in TILTS and not largest <= most:
+            raise ValueError(f"{name}.{table}: its drop reaches ±{largest:.4g} mm over the "
+                             f"flank, beyond {TILT_MODULES:g} of the normal module "
+                             f"({most:.4g} mm): a slope or twist corrects deviations of tens "
+                             "of µm")
 
 
 def _form_roll(gear: CylindricalGear) -> float:
@@ -560,7 +620,9 @@ def topography(spec, gear: CylindricalGear, field: str) -> Topography | None:
     mm."""
     if spec is None:
         return None
-    return Topography(spec.face, _rolls(spec.diameter, gear, f"{field}.diameter"),
+    where = (f"{field}.diameter" if spec.file is None else
+             f"{field}.file: {Path(spec.file).name} row 1 (the diameters)")
+    return Topography(spec.face, _rolls(spec.diameter, gear, where),
                       np.asarray(spec.deviation_um) * 1e-3)
 
 

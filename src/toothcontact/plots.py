@@ -498,7 +498,8 @@ def lubrication(result: dict, path: str | Path) -> Path:
                         lw=1.0, color=SERIES[i % len(SERIES)],
                         label=f"{name}, pair {int(g):+d}" if g else f"{name}, pair 0")
         ax.set(xlabel=x_label, ylabel=unit, title=title)
-        ax.legend(fontsize=6, loc="best")
+        if ax.get_legend_handles_labels()[0]:     # a panel with no value has no legend
+            ax.legend(fontsize=6, loc="best")
     ax_film.axhline(1.0, color="0.4", ls=":", lw=1.0)
     if summary.get("S_lambda") is not None:
         ax_film.axhline(summary["lambda_min"] / summary["S_lambda"], color="crimson", ls="--",

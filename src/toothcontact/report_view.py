@@ -1,7 +1,8 @@
 """What a report shows, read from a result document (no recomputation, no case parsing):
 the key results that decide the design, the design checks apart from the source-data and
 method checks, the inputs as given, and the results as tables with human labels, units and
-numbers rounded to four significant digits. The templates (templates/report.*.j2) lay it
+numbers rounded to four significant digits (a column's figure below the resolution its
+largest value is printed to shows as 0). The templates (templates/report.*.j2) lay it
 out as Markdown and as one self-contained HTML page."""
 
 from __future__ import annotations
@@ -72,6 +73,7 @@ LABELS = {
     "sigma_H_MPa": "contact stress σ_H (ISO 6336-2)",
     "flank_pressure_at": "largest loaded flank pressure at",
     "flank_pressure_to_sigma_H": "largest loaded flank pressure over ISO's σ_H",
+    "S_B_note": "scuffing safety S_B",
     "subsurface_shear_depth_mm": "its depth",
     "sliding_velocity_m_per_s": "sliding speed |v1 − v2|",
     "sum_velocity_m_per_s": "sum speed |v1 + v2|",
@@ -91,7 +93,7 @@ LABELS = {
     "face_position_mm": "position along the face", "separation_mm": "separation",
     "E_star_MPa": "E*", "Y_VISC": "viscosity factor Y_VISC", "mu_zm": "mean friction mu_zm",
     "eta_z": "efficiency eta_z (worm driving)", "eta_wheel_driving": "efficiency (wheel driving)",
-    "eta_kim": "efficiency (misalignment model)", "eta_total": "total efficiency",
+    "eta_kim": "efficiency by Kim's eq (2)", "eta_total": "total efficiency",
     "I": "AGMA geometry factor I", "Cp_sqrt_MPa": "elastic coefficient Cp",
     "K_D_mm": "K_D", "rho1_mm": "profile radius rho1", "rho2_mm": "profile radius rho2",
     "rho1_lpstc_mm": "pinion profile radius at the LPSTC",
@@ -112,7 +114,7 @@ LABELS = {
     "edge_contacts": "rigid patterns on an edge", "line_contacts": "rigid line patterns",
     "area_contacts": "rigid area patterns",
     "agma_stress_MPa": "AGMA contact stress", "contact_radius_worm_mm": "contact radius on the worm",
-    "self_locking": "self-locking", "eta_kim_aligned": "efficiency (misalignment model, aligned)",
+    "self_locking": "self-locking", "eta_kim_aligned": "efficiency by Kim's eq (2), shaft aligned",
     "mu": "friction coefficient μ", "mu_aligned": "friction coefficient μ (aligned)",
     "found": "interference found at", "back_flanks": "back flanks touching at",
     "Cp_sqrt_MPa": "elastic coefficient Cp",
@@ -120,11 +122,39 @@ LABELS = {
     "profile_slope_um": "profile slope modification f_Hα", "root_relief_um": "root relief",
 }
 
+#: labels of keys that mean something of their own in one section (a worm efficiency
+#: case's anti-rattle spring: seed 001's model with the spring and with the shaft aligned)
+SECTION_LABELS = {
+    "misalignment": {
+        "normal_load_N": "tooth normal load (eq 3)", "spring_force_N": "spring force (eq 20)",
+        "misalignment_mm": "misalignment x (eq 21)",
+        "preloaded_normal_load_N": "normal load with the spring's preload",
+        "pressure_aligned_MPa": "contact pressure, shaft aligned (eq 19)",
+        "mu_aligned": "friction μ, shaft aligned",
+        "eta_kim_aligned": "efficiency, shaft aligned (eq 2)",
+        "pressure_MPa": "contact pressure with the spring (eq 19)",
+        "mu": "friction μ with the spring", "eta_kim": "efficiency with the spring (eq 2)"},
+    "anti_rattle_spring": {
+        "stiffness_N_per_mm": "spring rate k", "d1_mm": "lever d1, mesh to spring",
+        "d2_mm": "lever d2, mount to mesh", "mount_moment_Nm": "moment M at the mount",
+        "misalignment_at_no_torque_mm": "misalignment at no output torque (eq 21)",
+        "aligned_torque_Nm": "output torque where the shaft is aligned (eq 20)",
+        "friction_mu_ref": "friction law: μ at the reference pressure",
+        "friction_pressure_ref_MPa": "friction law: reference pressure",
+        "friction_exponent": "friction law: exponent n (μ = c·p^n)"},
+}
+
 #: the members' names in a worm set's labels
 WORM_MEMBERS = (("pinion", "worm"), ("gear", "wheel"))
 
-#: a number this close to zero, relative to the largest of its kind, shows as 0
+#: significant digits of a figure
+DIGITS = 4
+
+#: round-off: a number this close to zero, relative to what it is measured against
 ZERO = 1e-8
+
+#: a number this large or larger is written with an exponent (below it, as digits)
+LARGE = 1e9
 
 #: edge margins are shown to the micrometre (mm), as the checks give them
 MARGIN_RESOLUTION = 1e-3
@@ -136,11 +166,14 @@ TE_RESOLUTION = 0.01
 TE_UM_RESOLUTION = 0.001
 
 
-def label(key: str, kind: str = "") -> str:
+def label(key: str, kind: str = "", section: str = "") -> str:
     """A key's label with its unit: 'face_position_mm' -> 'position along the face [mm]'; in
-    a worm set's report (`kind` "worm") the pinion is the worm and the gear the wheel."""
+    a worm set's report (`kind` "worm") the pinion is the worm and the gear the wheel; in
+    `section` its SECTION_LABELS first."""
     unit = next((u for suffix, u in UNITS if key.endswith(suffix)), None)
-    if key in LABELS:
+    if key in SECTION_LABELS.get(section, {}):
+        words = SECTION_LABELS[section][key]
+    elif key in LABELS:
         words = LABELS[key]
     else:
         stem = key[: -len(next(s for s, u in UNITS if key.endswith(s)))] if unit else key
@@ -152,10 +185,13 @@ def label(key: str, kind: str = "") -> str:
 
 
 def number(value, scale: float | None = None, resolution: float | None = None) -> str:
-    """A value as text: numbers to four significant digits and no finer than `resolution`
-    (0 when within ZERO of `scale`), None as '', booleans as yes/no, dicts as 'key: value'
-    pairs, an empty list as 'none', short lists of names joined, of numbers inline, long ones
-    by their shape and range."""
+    """A value as text: numbers to four significant digits (in digits up to LARGE: 30000,
+    123500) and no finer than `resolution`;
+    beside the largest figure of its kind (`scale`, e.g. its column's largest magnitude) a
+    number below half a unit in that figure's last shown digit is 0 (-1.1 to 1.417 mm: a
+    misalignment of 6.8e-06 mm shows as 0, as the figures beside it are shown to 0.001 mm);
+    None as '', booleans as yes/no, dicts as 'key: value' pairs, an empty list as 'none',
+    short lists of names joined, of numbers inline, long ones by their shape and range."""
     if value is None:
         return ""
     if isinstance(value, float) and resolution and math.isfinite(value):
@@ -167,9 +203,10 @@ def number(value, scale: float | None = None, resolution: float | None = None) -
     if isinstance(value, float):
         if not math.isfinite(value):
             return str(value)
-        if value == 0.0 or (scale and abs(value) < ZERO * scale):
+        if value == 0.0 or (scale and abs(value) < 0.5 * last_digit(scale)):
             return "0"
-        return f"{value:.4g}"
+        text = f"{value:.{DIGITS}g}"
+        return f"{float(text):.0f}" if "e+" in text and abs(value) < LARGE else text
     if isinstance(value, dict):
         return "; ".join(f"{k}: {number(v)}" for k, v in value.items())
     if isinstance(value, (list, tuple)):
@@ -186,6 +223,14 @@ def number(value, scale: float | None = None, resolution: float | None = None) -
             return f"[{shape} values{span}]"
         return "[" + ", ".join(number(v) for v in value) + "]"
     return str(value)
+
+
+def last_digit(value: float) -> float:
+    """A unit in the last of the DIGITS significant digits `value` is shown to:
+    0.001 for 1.417, 0.01 for 42.5, 1 for 1386."""
+    if not (value and math.isfinite(value)):
+        return 0.0
+    return 10.0 ** (math.floor(math.log10(abs(value))) - DIGITS + 1)
 
 
 def _flatten(value) -> list:
@@ -252,6 +297,11 @@ class ReportView:
     @property
     def failed(self) -> list[CheckLine]:
         return [c for c in self.design_checks if not c.ok]
+
+    @property
+    def disagreements(self) -> list[CheckLine]:
+        """The source and method checks that disagree (shown, not flagged)."""
+        return [c for c in self.other_checks if not c.ok]
 
 
 #: a table of more rows than this is shown collapsed
@@ -324,7 +374,8 @@ def _is_note(key: str) -> bool:
 
 def _tables(key: str, value, kind: str) -> list[Table]:
     """A document section as a table: a dict as quantity/value rows (those that do not
-    apply, None, left out), a list of dicts as one row each."""
+    apply, None, left out), a list of dicts as one row each (a column that applies to no
+    row left out)."""
     title = key.replace("_", " ")
     if isinstance(value, dict):
         plain = {k: v for k, v in value.items() if not _is_note(k)
@@ -334,16 +385,17 @@ def _tables(key: str, value, kind: str) -> list[Table]:
         if not plain:
             return inner
         note = "; ".join(f"{number(v)}" for k, v in value.items() if _is_note(k))
-        rows = [[label(k, kind), number(v)] for k, v in plain.items()]
+        rows = [[label(k, kind, key), number(v)] for k, v in plain.items()]
         return [Table(title, ["quantity", "value"], rows, [False, True], note=note)] + inner
     if isinstance(value, list) and value and all(isinstance(r, dict) for r in value):
-        keys = list(dict.fromkeys(k for row in value for k in row))
+        keys = [k for k in dict.fromkeys(k for row in value for k in row)
+                if any(row.get(k) is not None for row in value)]
         scale = {k: max((abs(r[k]) for r in value if isinstance(r.get(k), float)
                          and math.isfinite(r[k])), default=0.0) for k in keys}
         rows = [[number(r.get(k), scale[k]) for k in keys] for r in value]
         numeric = [all(isinstance(r.get(k), (int, float)) and not isinstance(r.get(k), bool)
                        for r in value if r.get(k) is not None) for k in keys]
-        return [Table(title, [label(k, kind) for k in keys], rows, numeric,
+        return [Table(title, [label(k, kind, key) for k in keys], rows, numeric,
                       collapsed=len(value) > COLLAPSE_ROWS)]
     return []
 
@@ -400,7 +452,7 @@ def key_results(document: dict) -> list[KeyResult]:
                              f"ellipse {number(contact['a_mm'])} × {number(contact['b_mm'])} mm"))
         margins = [contact[k] for k in ("edge_margin_A_mm", "edge_margin_B_mm") if k in contact]
         if margins:
-            shown = number(min(margins), scale=contact["a_mm"])
+            shown = number(min(margins), resolution=ZERO * contact["a_mm"])
             out.append(KeyResult("least margin to the face ends", f"{shown} mm",
                                  "the ellipse just reaches the end" if shown == "0" else
                                  "negative: a face end cuts the ellipse", min(margins) < -1e-6))
@@ -416,9 +468,10 @@ def key_results(document: dict) -> list[KeyResult]:
                              f"tilted tooth fits up to {number(spline['crown_radius_fit_max_mm'])} mm"))
         out.append(KeyResult("contact stress", f"{number(spline['contact_stress_MPa'])} MPa",
                              f"tooth load {number(spline['tooth_load_N'])} N"))
-    efficiency = document.get("efficiency")
-    if isinstance(efficiency, list) and efficiency:
-        out += _efficiency_figures(efficiency)
+    if document["kind"] == "worm_efficiency":
+        out += _anti_rattle_figures(document.get("misalignment") or [],
+                                    document.get("anti_rattle_spring") or {})
+        out += _efficiency_figures(document.get("efficiency") or [])
     return out
 
 
@@ -549,22 +602,102 @@ def _rating_results(summary: dict) -> list[KeyResult]:
     return out
 
 
+def span(values: list, unit: str = "") -> str:
+    """A figure over a case's conditions: 'low to high unit', one value where they agree
+    (as shown), '' where none applies."""
+    values = [v for v in values if isinstance(v, (int, float)) and not isinstance(v, bool)
+              and math.isfinite(v)]
+    if not values:
+        return ""
+    scale = max(abs(v) for v in values)
+    low, high = number(min(values), scale), number(max(values), scale)
+    return (low if low == high else f"{low} to {high}") + (f" {unit}" if unit else "")
+
+
+def over(values: list, unit: str, what: str) -> str:
+    """The conditions a figure ranges over: 'over 6 lubricant temperatures, -50 to 70 °C'
+    ('at the output torque 10 N·m' where there is one)."""
+    count = sum(v is not None for v in values)
+    return (f"over {count} {what}s, {span(values, unit)}" if count > 1 else
+            f"at the {what} {span(values, unit)}")
+
+
 def _efficiency_figures(rows: list[dict]) -> list[KeyResult]:
+    """A worm set's efficiency over its lubricant conditions (temperatures), or at the
+    case's one constant friction."""
+    if not rows:
+        return []
+    temperatures = [r.get("temperature_C") for r in rows]
+    at = (over(temperatures, "°C", "lubricant temperature")
+          if any(t is not None for t in temperatures) else
+          f"at the case's constant friction μ_zm {span([r.get('mu_zm') for r in rows])}")
     out = []
-    for key, what in (("eta_z", "efficiency eta_z (worm driving)"),
-                      ("eta_kim", "efficiency (misalignment model)"),
+    for key, what in (("eta_z", "efficiency eta_z (worm driving, DIN 3996)"),
+                      ("eta_kim", "efficiency by Kim's eq (2)"),
                       ("eta_total", "total efficiency")):
-        values = [r[key] for r in rows if isinstance(r.get(key), (int, float))]
-        if values:
-            at = [r.get("temperature_C", r.get("output_torque_Nm")) for r in rows]
-            out.append(KeyResult(what, f"{number(min(values))} to {number(max(values))}",
-                                 f"over {len(values)} conditions"
-                                 + (f" ({number(min(at))} to {number(max(at))} °C)"
-                                    if "temperature_C" in rows[0] else "")))
+        value = span([r.get(key) for r in rows])
+        if value:
+            out.append(KeyResult(what, value, at))
     locking = [r.get("self_locking") for r in rows if "self_locking" in r]
     if locking:
-        out.append(KeyResult("self-locking", "yes" if all(locking) else
-                             "no" if not any(locking) else "at some conditions"))
+        some = [number(t) for t, lock in zip(temperatures, locking) if lock and t is not None]
+        out.append(KeyResult("self-locking (wheel driving)", "yes" if all(locking) else
+                             "no" if not any(locking) else "at some conditions",
+                             f"at {', '.join(some)} °C of {at.removeprefix('over ')}"
+                             if some and not all(locking) else at))
+    return out
+
+
+def _anti_rattle_figures(rows: list[dict], spring: dict) -> list[KeyResult]:
+    """Seed 001's anti-rattle spring over the case's output torques: the efficiency with the
+    spring and with the shaft aligned, the spring force, the misalignment and the torque
+    where it vanishes, and the contact pressure and friction where [contact] was given."""
+    if not rows:
+        return []
+    torques = [r["output_torque_Nm"] for r in rows]
+    at = over(torques, "N·m", "output torque")
+    out = []
+    # no torque, nothing transmitted: the efficiency of those rows is 0, not a figure
+    driven = [r for r in rows if r["output_torque_Nm"] > 0 and r.get("eta_kim") is not None]
+    if driven:
+        aligned = [r.get("eta_kim_aligned") for r in driven]
+        loss = max(driven, key=lambda r: r["eta_kim_aligned"] - r["eta_kim"])
+        out.append(KeyResult(
+            "efficiency with the spring (eq 2, μ from eq 19's pressure)",
+            span([r["eta_kim"] for r in driven]),
+            over([r["output_torque_Nm"] for r in driven], "N·m", "output torque")
+            + f"; shaft aligned {span(aligned)}; the largest loss to the spring "
+              f"{number(loss['eta_kim_aligned'] - loss['eta_kim'])} at "
+              f"{number(loss['output_torque_Nm'])} N·m"
+            + ("; nothing transmitted at 0 N·m" if len(driven) < len(rows) else "")))
+    out.append(KeyResult("anti-rattle spring force (eq 20)",
+                         span([r["spring_force_N"] for r in rows], "N"),
+                         at + (f"; spring rate {number(spring['stiffness_N_per_mm'])} N/mm"
+                               if "stiffness_N_per_mm" in spring else "")))
+    out.append(KeyResult("worm-shaft misalignment (eq 21)",
+                         span([r["misalignment_mm"] for r in rows], "mm"),
+                         at + "; the shaft's height at the spring, negative: pressed down"))
+    aligned_at = spring.get("aligned_torque_Nm")
+    if aligned_at is not None:
+        out.append(KeyResult("output torque where the shaft is aligned",
+                             f"{number(aligned_at)} N·m" if aligned_at >= 0 else "none",
+                             ("eq (20): no spring force, so no misalignment (eq 21); "
+                              if aligned_at >= 0 else
+                              f"eq (20) has no spring force only at {number(aligned_at)} N·m; ")
+                             + f"{number(spring['misalignment_at_no_torque_mm'])} mm at no "
+                               "torque"))
+    if any(r.get("pressure_MPa") is not None for r in rows):
+        pressed = [r["pressure_MPa"] for r in rows if r["pressure_MPa"] > 0]
+        aligned = [r["pressure_aligned_MPa"] for r in rows if r["pressure_aligned_MPa"] > 0]
+        out.append(KeyResult("contact pressure with the spring (eq 19)", span(pressed, "MPa"),
+                             f"{at}; shaft aligned {span(aligned, 'MPa')}"))
+        law = (f"μ = {number(spring['friction_mu_ref'])}·(p / "
+               f"{number(spring['friction_pressure_ref_MPa'])} MPa)^"
+               f"{number(spring['friction_exponent'])}; " if "friction_mu_ref" in spring else "")
+        aligned_mu = span([r.get("mu_aligned") for r in rows])
+        out.append(KeyResult("friction coefficient μ with the spring",
+                             span([r.get("mu") for r in rows]),
+                             f"{law}{at}; shaft aligned {aligned_mu}"))
     return out
 
 
@@ -745,10 +878,10 @@ def _lubrication_results(summary: dict) -> list[KeyResult]:
     for key, label_, needs in (("S_B", "scuffing safety S_B", "scuffing_temperature"),
                                ("S_lambda", "micropitting safety S_λ",
                                 "permissible_specific_film")):
-        value = summary.get(key)
+        value, note = summary.get(key), summary.get(f"{key}_note")
         out.append(KeyResult(label_, "—" if value is None else number(value),
-                             f"not computed: no [lubricant] {needs}" if value is None else
-                             f"against the [lubricant] {needs}",
+                             note or (f"not computed: no [lubricant] {needs}" if value is None
+                                      else f"against the [lubricant] {needs}"),
                              value is not None and value < 1.0))
     return out
 

@@ -7,6 +7,7 @@ import logging
 import math
 import os
 import time
+import warnings
 from collections.abc import Callable
 from dataclasses import dataclass
 from pathlib import Path
@@ -88,6 +89,9 @@ def load_sweep(path: str | Path):
         raise schema.CaseError(f"{path}: base: {schema.shown(spec.base)} is neither a case "
                                "file (relative to the sweep file) nor a bundled case's name "
                                "(`toothcontact cases` lists them)") from None
+    if schema.read_table(base_path).get("kind") == "sweep":
+        raise schema.CaseError(f"{path}: base: {schema.shown(spec.base)} is a sweep file; give "
+                               "a case file or a bundled case's name (a sweep varies one case)")
     _, base = schema.load_case(base_path)
     return with_class_bands(spec, base, base_path.parent, source=str(path)), base, base_path
 
@@ -185,7 +189,9 @@ def _stage(stages: dict, name: str, action: Callable[[], list[Path]]) -> list[Pa
     stages[name] and the run goes on without its files."""
     start = time.perf_counter()
     try:
-        files = action()
+        with warnings.catch_warnings(record=True) as caught:   # the stage's, not stderr's
+            warnings.simplefilter("always")
+            files = action()
     except Exception as exc:  # noqa: BLE001 - the numbers stand without the pictures
         if os.environ.get("TOOTHCONTACT_DEBUG"):
             raise
@@ -195,6 +201,10 @@ def _stage(stages: dict, name: str, action: Callable[[], list[Path]]) -> list[Pa
         log.debug("the %s's failure", name, exc_info=True)
         return []
     stages[name] = {"status": "done", "files": [p.name for p in files]}
+    told = sorted({f"{w.category.__name__}: {w.message}" for w in caught})
+    if told:      # a library's remark on a drawing (an empty legend, say) stays with it
+        stages[name]["warnings"] = told
+        log.info("%s: %s", name, "; ".join(told))
     log.info("%s: %d files in %.2f s", name, len(files), time.perf_counter() - start)
     return files
 

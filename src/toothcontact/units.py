@@ -72,6 +72,13 @@ _ANGLE_UNITS = {"radian", "degree", "arcminute", "arcsecond", "milliradian", "mi
                 "turn", "gradian"}
 
 
+def split(text: str) -> tuple[float, str] | None:
+    """A quantity's text as its number and its unit's text ('' for none), or None where it
+    does not start with a number."""
+    match = _NUMBER.match(text)
+    return None if match is None else (float(match.group(1)), match.group(2))
+
+
 @lru_cache(maxsize=1)
 def registry():
     """The shared pint registry (built on first use: pint is slow to import)."""
@@ -103,10 +110,13 @@ def parse(text: str | float | int, kind: str) -> float:
         if math.isnan(text):
             raise UnitError(f"{text!r} is not a number; expected {_expected(spec)}")
         return float(text)
-    match = _NUMBER.match(text)
-    if not match:
+    control = next((ch for ch in text if ord(ch) < 32 or 127 <= ord(ch) < 160), None)
+    if control is not None:
+        raise UnitError(f"{text!r} holds control character U+{ord(control):04X}")
+    parts = split(text)
+    if parts is None:
         raise UnitError(f"{text!r} does not start with a number; expected {_expected(spec)}")
-    magnitude, unit_text = float(match.group(1)), match.group(2)
+    magnitude, unit_text = parts
     if math.isinf(magnitude) and kind != "length":
         raise UnitError(f"{text!r} is infinite; expected a finite {_expected(spec)}")
     if not unit_text:

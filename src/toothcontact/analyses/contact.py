@@ -424,7 +424,8 @@ def contact_sections(cycle, loads: dict, result: Result, arm: tuple[float, str])
     # (rigid_contact false) touch nowhere
     rows = [r for r in rows if r.get("rigid_contact", True)]
     te = [r["transmission_error_urad"] for r in rows]
-    summary = {**loads, "max_p_max_MPa": max(r["p_max_MPa"] for r in rows),
+    summary = {**loads, "max_p_max_MPa": max((r["p_max_MPa"] for r in rows
+                                              if math.isfinite(r["p_max_MPa"])), default=None),
                "transmission_error_peak_to_peak_urad": max(te) - min(te),
                "transmission_error_peak_to_peak_um": 1e-3 * arm[0] * (max(te) - min(te)),
                "unloaded_te_harmonics_um": mesh_harmonics(

@@ -24,6 +24,11 @@ LUBRICATION_FACTOR = {"splash": 1.2, "spray": 1.0}
 #: (their formulae's range); a longer ellipse's film is a line contact's, column by column
 POINT_FILM_ELLIPTICITY = 8.0
 #: the per-contact keys (None where the contact has no loaded solution)
+#: an S_B above this is "not limiting" (reported as none, with a note): the contact
+#: temperature rises above the oil by less than 1/S_B_NOT_LIMITING of the scuffing margin,
+#: so that S_B, which tends to infinity as the flash temperature tends to zero, stays a
+#: finite figure of meaning
+S_B_NOT_LIMITING = 100.0
 LOADED_KEYS = ("friction_coefficient", "film_thickness_central_um", "film_thickness_min_um",
                "lambda", "flash_temperature_K", "contact_temperature_degC", "power_loss_W")
 
@@ -43,6 +48,9 @@ class LubricatedPair:
     power: float
     input_power: bool
     iso_bulk: bool
+    #: the sum of the flanks' tangential speeds at the pitch point (m/s), where ISO/TR
+    #: 14179-2's μ may be computed (None: a mesh whose μ is given)
+    pitch_sum_velocity: float | None = None
 
 
 def lubrication_sections(case, running: LubricatedPair, mesh, result: Result) -> None:
@@ -89,10 +97,28 @@ def spur_running(case, pair) -> LubricatedPair:
     torque = (case.load.torque if case.load.torque is not None
               else case.load.tangential_load * pair.operating_pitch_radius)
     speed = case.operation.pinion_speed
+    omega = speed * 2.0 * math.pi / 60.0
     return LubricatedPair(("pinion", "gear"), speed,
                           (case.pinion.roughness_Ra, case.gear.roughness_Ra),
                           (case.material, case.gear_material or case.material),
-                          torque * 1e-3 * speed * 2.0 * math.pi / 60.0, True, True)
+                          torque * 1e-3 * omega, True, True,
+                          2.0 * omega * pair.operating_pitch_radius * 1e-3
+                          * math.sin(pair.working_pressure_angle))
+
+
+def check_friction_range(case, running: LubricatedPair) -> None:
+    """Before the contact is solved: a CaseError where ISO/TR 14179-2's μ would be computed
+    outside its range (the pitch point's sum speed below mesh_losses.SUM_VELOCITY_LEAST)
+    and the case gives no friction_coefficient."""
+    from ..analytic.mesh_losses import SUM_VELOCITY_LEAST
+    from ..case import CaseError
+
+    v = running.pitch_sum_velocity
+    if case.lubricant.friction_coefficient is None and v is not None and v < SUM_VELOCITY_LEAST:
+        raise CaseError(f"operation.{running.names[0]}_speed: {running.speed:.4g} rpm runs the "
+                        f"flanks at a sum speed of {v:.3g} m/s at the pitch point, below the "
+                        f"{SUM_VELOCITY_LEAST:g} m/s ISO/TR 14179-2's friction coefficient is "
+                        "taken from here: give lubricant.friction_coefficient")
 
 
 @dataclass(frozen=True)
@@ -148,18 +174,37 @@ def _lubricated(cycle, k: int, row: dict, contact, motion, across: np.ndarray, f
     pressure = s.pressure_MPa
     sliding = np.hypot(v1x - v2x, v1y - v2y)
     column_load = pressure.sum(axis=1) * s.dy_mm                  # N/mm along the contact
-    radius = 0.5 / row["B_analytic_per_mm"]
     v1, v2 = motion.at(k, motion.point[k])
+    if not row["B_analytic_per_mm"] > 0.0:
+        # no relative radius across the contact (a flank turned onto an edge): neither
+        # film nor ISO's μ holds there; a given μ still heats it
+        if fluid.friction is None:
+            return {key: None for key in LOADED_KEYS}
+        radius = None
+    else:
+        radius = 0.5 / row["B_analytic_per_mm"]
     if fluid.friction is not None:
         mu = fluid.friction
     else:
         mu = friction_coefficient(float(column_load.max()), float(np.linalg.norm(v1 + v2)),
                                   radius, fluid.eta * 1e3, fluid.roughness_um, fluid.X_L)
+        if not 0.0 < mu < 1.0:
+            from ..case import CaseError
+
+            raise CaseError(
+                f"lubricant.friction_coefficient: ISO/TR 14179-2's μ comes out {mu:.3g} at "
+                f"{_at(row)} (line load {float(column_load.max()):.4g} N/mm, sum speed "
+                f"{float(np.linalg.norm(v1 + v2)):.3g} m/s, radius {radius:.4g} mm): outside "
+                "(0, 1), its inputs beyond the formula's range; give the friction coefficient")
     power = mu * float(np.sum(pressure * sliding)) * s.dx_mm * s.dy_mm
     flux = mu * pressure * sliding * 1e6
     flash = flash_temperature(flux, field.x, field.y, ((surface(0), fluid.thermal[0]),
                                                       (surface(1), fluid.thermal[1])))
     entraining = 0.5 * ((v1x + v2x) * (across @ axis[0]) + (v1y + v2y) * (across @ axis[1]))
+    heat = {"friction_coefficient": mu, "flash_temperature_K": flash, "power_loss_W": power}
+    if radius is None:
+        return {**heat, "film_thickness_central_um": None, "film_thickness_min_um": None,
+                "lambda": None}
     if (row["contact_model"] == "ellipse" and row["A_analytic_per_mm"] > 0
             and row["a_mm"] <= POINT_FILM_ELLIPTICITY * row["b_mm"]):
         u = abs(float(0.5 * (v1 + v2) @ across))
@@ -168,10 +213,8 @@ def _lubricated(cycle, k: int, row: dict, contact, motion, across: np.ndarray, f
     else:
         film = _line_film(pressure, column_load, entraining, radius, fluid)
     minimum = 0.0 if film is None else film.minimum_um
-    return {"friction_coefficient": mu,
-            "film_thickness_central_um": 0.0 if film is None else film.central_um,
-            "film_thickness_min_um": minimum, "lambda": minimum / fluid.roughness_um,
-            "flash_temperature_K": flash, "power_loss_W": power}
+    return {**heat, "film_thickness_central_um": 0.0 if film is None else film.central_um,
+            "film_thickness_min_um": minimum, "lambda": minimum / fluid.roughness_um}
 
 
 def _line_film(pressure, column_load, entraining, radius: float, fluid):
@@ -193,6 +236,8 @@ def _summary(case, running: LubricatedPair, result: Result, fluid, nu: float,
              density_15: float) -> None:
     """Bulk and contact temperatures, the mesh loss and efficiency, the extremes and the
     safeties (with their design checks) into the summary and the lubrication section."""
+    from ..analytic import lubricant
+
     op, oil = case.operation, case.lubricant
     rows = result.sections["positions"]
     summary = result.sections["summary"]
@@ -215,18 +260,23 @@ def _summary(case, running: LubricatedPair, result: Result, fluid, nu: float,
     power = running.power
     result.sections["lubrication"] = {
         "oil_temperature_degC": op.oil_temperature, "kinematic_viscosity_mm2_per_s": nu,
+        "viscosity_extrapolated": lubricant.extrapolated(op.oil_temperature),
+        "pour_point_degC": (oil.pour_point if oil.pour_point is not None
+                            else lubricant.POUR_POINTS[oil.family]),
         "dynamic_viscosity_mPa_s": fluid.eta * 1e3, "density_15_kg_per_m3": density_15,
         "pressure_viscosity_per_GPa": fluid.alpha * 1e3, "family": oil.family,
         "reduced_modulus_MPa": fluid.E_reduced, "mean_roughness_Ra_um": fluid.roughness_um,
         "input_power_W" if running.input_power else "output_power_W": power}
     if not solved:
         return
-    coldest = min(solved, key=lambda r: r["lambda"])
+    filmed = [r for r in solved if r["lambda"] is not None]
+    coldest = min(filmed, key=lambda r: r["lambda"]) if filmed else None
     hot = max(solved, key=lambda r: r["flash_temperature_K"])
     contact_max = bulk + hot["flash_temperature_K"]
     summary.update(
-        lambda_min=coldest["lambda"], lambda_min_at=_at(coldest),
-        film_thickness_min_um=coldest["film_thickness_min_um"],
+        lambda_min=None if coldest is None else coldest["lambda"],
+        lambda_min_at=None if coldest is None else _at(coldest),
+        film_thickness_min_um=None if coldest is None else coldest["film_thickness_min_um"],
         flash_temperature_max_K=hot["flash_temperature_K"], flash_temperature_at=_at(hot),
         flash_temperature_mean_K=mean_flash, bulk_temperature_degC=bulk,
         contact_temperature_max_degC=contact_max,
@@ -236,9 +286,16 @@ def _summary(case, running: LubricatedPair, result: Result, fluid, nu: float,
                                                    else power / (power + loss)),
         friction_coefficient_mean=float(np.mean([r["friction_coefficient"] for r in solved])))
     theta_S = oil.scuffing_temperature
-    summary["S_B"] = (None if theta_S is None else
-                      (theta_S - op.oil_temperature) / (contact_max - op.oil_temperature))
-    summary["S_lambda"] = (None if oil.permissible_specific_film is None
+    rise, margin = contact_max - op.oil_temperature, None
+    if theta_S is not None:
+        margin = theta_S - op.oil_temperature
+    limiting = margin is not None and rise * S_B_NOT_LIMITING > margin
+    summary["S_B"] = margin / rise if limiting else None
+    if margin is not None and not limiting:
+        summary["S_B_note"] = (
+            f"not limiting: the hottest contact runs {rise:.3g} K above the oil, under "
+            f"1/{S_B_NOT_LIMITING:g} of the scuffing temperature's margin {margin:.4g} K")
+    summary["S_lambda"] = (None if oil.permissible_specific_film is None or coldest is None
                            else coldest["lambda"] / oil.permissible_specific_film)
     for key, name, limit in (("S_B", "scuffing", "scuffing_temperature"),
                              ("S_lambda", "micropitting", "permissible_specific_film")):
@@ -246,6 +303,10 @@ def _summary(case, running: LubricatedPair, result: Result, fluid, nu: float,
             result.checks.append(Check(
                 f"{name} safety {key} at least 1", summary[key] >= 1.0,
                 f"{key} {summary[key]:.2f} ([lubricant] {limit})"))
+    if summary.get("S_B_note"):
+        result.checks.append(Check("scuffing safety S_B at least 1", True,
+                                   f"S_B {summary['S_B_note']}"))
+    unfilmed = sum(r.get("bem_status") == "solved" and r["lambda"] is None for r in rows)
     summary["lubrication_note"] = (
         f"the lubricated contact at the {running.names[0]}'s "
         f"{running.speed:g} rpm and {op.oil_temperature:g} °C oil: speeds from the mesh's "
@@ -254,11 +315,16 @@ def _summary(case, running: LubricatedPair, result: Result, fluid, nu: float,
         + ("fixed as given" if fluid.friction is not None else
            "ISO/TR 14179-2's μ at each contact (its largest normal line load, its sum speed "
            "and relative radius, the oil's viscosity, the mean Ra, X_L)")
+        + (f"; {unfilmed} contact(s) without a relative radius across them (a flank turned "
+           "onto an edge) have no film" + ("" if fluid.friction is not None else
+                                           ", no ISO μ and no heat") if unfilmed else "")
         + "; film: Dowson-Higginson's minimum and Dowson-Toyoda's central film of each column "
         "of a contact line or of an ellipse longer than "
         f"{POINT_FILM_ELLIPTICITY:g} times its width (its own load per mm and entraining "
         "speed), Hamrock-Dowson's for a shorter ellipse, isothermal, the oil at the oil "
-        "temperature; lambda = h_min / mean Ra; "
+        "temperature (its viscosity on ASTM D341's line through the two given, "
+        + ("extrapolated beyond 40-100 °C" if lubricant.extrapolated(op.oil_temperature)
+           else "between them") + "); lambda = h_min / mean Ra; "
         "flash temperature: Blok's, the solved pressure's heat μ·p·v_s crossing into both "
         "flanks (high Peclet number; sqrt(λρc) "
         + ", ".join(f"{t / 1e3:.3g}" for t in fluid.thermal) + " kW·s^0.5/(m²·K)); bulk "

@@ -260,7 +260,8 @@ def duty_cycle_sections(case, result: Result, run_level) -> None:
     life factors (ISO 6336-6: Z_NT's and Y_NT's lines, continued past 10¹⁰ cycles with their
     last slope: Miner's elementary rule); the summary's `miner_sum_*` and a design check
     each (D <= 1)."""
-    from ..case import LoadSpec
+    from .. import units
+    from ..case import CaseError, LoadSpec
     from ..rating.life import contact_cycles, root_cycles
 
     levels = case.load.spectrum
@@ -277,12 +278,17 @@ def duty_cycle_sections(case, result: Result, run_level) -> None:
                   "loaded_transmission_error_peak_to_peak_um", "te_harmonics_um",
                   *LUBRICATED_LEVEL_KEYS)
     rows = []
-    for level in levels:
+    for i, level in enumerate(levels):
         scratch = Result()
-        run_level(case.model_copy(update={
-            "load": LoadSpec.model_construct(tangential_load=level.tangential_load,
-                                             torque=level.torque, spectrum=[]),
-            "analysis": quiet}), scratch)
+        try:
+            run_level(case.model_copy(update={
+                "load": LoadSpec.model_construct(tangential_load=level.tangential_load,
+                                                 torque=level.torque, spectrum=[]),
+                "analysis": quiet}), scratch)
+        except CaseError as exc:     # the level's load is what the case got wrong
+            given = (f"torque {units.show(level.torque, 'torque')}" if level.torque is not None
+                     else f"tangential_load {units.show(level.tangential_load, 'force')}")
+            raise CaseError(f"load.spectrum[{i}]: at its {given}: {exc}") from None
         s = scratch.sections["summary"]
         rows.append({"tangential_load_N": s["tangential_load_N"], "pinion_cycles": level.cycles,
                      **{key: s.get(key) for key in level_keys}})

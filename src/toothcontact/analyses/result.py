@@ -9,9 +9,10 @@ from dataclasses import dataclass, field
 @dataclass
 class Check:
     """A pass/fail statement about the result. kind "design": about the design (a failed one
-    is flagged at the top of the report and exits the run with 1); "source": whether a
-    source's own printed numbers agree with each other (a misprint is the source's, not the
-    design's); "method": a self-check of the method (two routes to the same number);
+    is flagged at the top of the report and exits the run with 1); "source": whether the
+    result reproduces the numbers a source prints, or those numbers agree with each other (a
+    misprint, or the case's reading of the source, is not the design's); "method": a
+    self-check of the method (two routes to the same number);
     "solver": whether a solver answered everywhere (a failed one leaves the results
     incomplete: its rows say why, and the run exits with 4); "rigid": the rigid pattern's
     edge margins where the loaded contact's verdicts decide (shown, not flagged)."""

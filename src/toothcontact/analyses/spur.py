@@ -111,6 +111,8 @@ def spur_geometry_case(case: schema.SpurCase) -> Result:
                                ", ".join(f"{name} tip {c:.3f} mm" for name, c in clearance.items())))
     if case.load is not None:
         rating.rated_pair(case, pair)      # a material without ISO 6336-5 row fails first
+        if case.operation is not None:     # and a friction outside its formula's range
+            lubrication.check_friction_range(case, lubrication.spur_running(case, pair))
         _spur_contact(case, pair, result)
         rating.duty_cycle_sections(
             case, result, lambda level, scratch: _spur_contact(level, gearset.gear_pair(level),
@@ -271,6 +273,30 @@ def _contact_pass(case: schema.SpurCase, pair, result: Result):
 def _loaded_pass(case: schema.SpurCase, pair, result: Result, phase: float = 0.0):
     """The contact cycle and its loaded contact (positions shifted by `phase` of a step)
     into `result`; the mesh and the cycle."""
+    mesh, cycle, (wt, normal_load, C_E) = contact_cycle(case, pair, phase)
+    contact.contact_sections(cycle, {"tangential_load_N": wt, "normal_load_N": normal_load}, result,
+                      (pair.gear.base_radius, "gear's base circle (along the transverse line "
+                                              "of action)"))
+    from ..contact.compliance import PairCompliance, tooth_compliance
+
+    gear_material = case.gear_material or case.material
+    a = case.analysis
+    teeth = PairCompliance(tooth_compliance(pair.pinion, case.material.E, case.material.nu),
+                           tooth_compliance(pair.gear, gear_material.E, gear_material.nu))
+    contact.loaded_sections(cycle, C_E, a.pressure_grid, teeth,
+                     "tooth bending from each member's exact transverse slices (bending, shear, "
+                     "axial and gear body compliance, solid blanks with a bore of half the root "
+                     "diameter" + ("; the ring gear's body as an external gear's of its root "
+                                   "circle" if pair.gear.internal else "") + ", corrected to 3D finite "
+                     "elements of the whole gear) coupled along the face as a Pasternak line "
+                     "(contact.compliance), solved with the contact in one system", result)
+    return mesh, cycle
+
+
+def contact_cycle(case: schema.SpurCase, pair, phase: float = 0.0):
+    """The pair's contact cycle under the case's load and misalignment (positions shifted by
+    `phase` of a step), with the tooth pairs the loaded contact may bring in: the mesh, the
+    cycle and (tangential load N, normal load N, the pair's Hertz compliance C_E)."""
     from ..assembly import Misalignment, ParallelMesh
     from ..contact.cycle import parallel_cycle
     from ..gearset import working_flank
@@ -293,21 +319,7 @@ def _loaded_pass(case: schema.SpurCase, pair, result: Result, phase: float = 0.0
                               contact.cycle_settings(a, phase, reach=reach))
     except (ValueError, RuntimeError) as exc:
         raise CaseError(f"misalignment / load: no contact could be found: {exc}") from None
-    contact.contact_sections(cycle, {"tangential_load_N": wt, "normal_load_N": normal_load}, result,
-                      (pair.gear.base_radius, "gear's base circle (along the transverse line "
-                                              "of action)"))
-    from ..contact.compliance import PairCompliance, tooth_compliance
-
-    teeth = PairCompliance(tooth_compliance(pair.pinion, case.material.E, case.material.nu),
-                           tooth_compliance(pair.gear, gear_material.E, gear_material.nu))
-    contact.loaded_sections(cycle, C_E, a.pressure_grid, teeth,
-                     "tooth bending from each member's exact transverse slices (bending, shear, "
-                     "axial and gear body compliance, solid blanks with a bore of half the root "
-                     "diameter" + ("; the ring gear's body as an external gear's of its root "
-                                   "circle" if pair.gear.internal else "") + ", corrected to 3D finite "
-                     "elements of the whole gear) coupled along the face as a Pasternak line "
-                     "(contact.compliance), solved with the contact in one system", result)
-    return mesh, cycle
+    return mesh, cycle, (wt, normal_load, C_E)
 
 
 #: the separation (as a multiple of ISO's single-pair approach under the whole load) up

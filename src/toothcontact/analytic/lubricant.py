@@ -8,9 +8,16 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass
 
-#: ASTM D341's Walther offset: log log(ν + 0.7) is linear in log T (ν in mm²/s, T in K),
-#: for ν down to about 2 mm²/s
+#: ASTM D341's Walther offset: log log(ν + 0.7) is linear in log T (ν in mm²/s, T in K)
 WALTHER_OFFSET = 0.7
+#: the least kinematic viscosity (mm²/s) the equation holds for with the offset 0.7 alone:
+#: below 2.0 mm²/s ASTM D341 adds exponential terms (Z = ν + 0.7 + exp(-1.47 - 1.84ν -
+#: 0.51ν²) ...) that this module does not carry, so the oil is held at or above it, given
+#: and at its temperature (ASTM D341-20 §5, as Technical Toolboxes' guide to it states)
+WALTHER_LEAST = 2.0
+#: the two temperatures (degC) the case gives the oil's viscosity at: outside them the
+#: line is extrapolated
+MEASURED = (40.0, 100.0)
 KELVIN = 273.15
 #: the volumetric thermal expansion of the oil's density (1/K), a mineral oil's typical
 #: value (density falls by about 0.064 % per kelvin), assumed for every family
@@ -35,16 +42,38 @@ FAMILIES = {"mineral": Family(890.0, 0.020, 1.0),
             "pao": Family(850.0, 0.016, 0.8),
             "pag": Family(1010.0, 0.013, 0.7)}
 
+#: the pour point (degC) taken for a family's oil where the case gives none: ASTM D341's
+#: line holds only where the oil is a homogeneous liquid ("between the cloud point at low
+#: temperatures and the initial boiling point", D341 §3.1), so no oil or bulk temperature
+#: below it is taken. Mineral: -15 degC, an ISO VG 460 mineral oil's (a mineral oil's pour
+#: point rises with its grade, ISO VG 46 about -39 degC: Panther Lubes, "Pour point"; the
+#: heaviest gear grade's is taken, a lighter oil gives its own); PAO: -45 degC (an ISO VG 32
+#: polyalphaolefin pours below -50 degF: Efficient Plant, "Introduction to synthetic
+#: lubricants", 2007; a gear grade's lies higher); PAG: -30 degC, assumed (no public figure
+#: found; polyglycols are said to have good low-temperature properties: Beatty & Greaves,
+#: Machinery Lubrication, "Polyalkylene glycol synthetic PAG oil explained")
+POUR_POINTS = {"mineral": -15.0, "pao": -45.0, "pag": -30.0}
+
 
 def kinematic_viscosity(nu_40: float, nu_100: float, temperature: float) -> float:
-    """ν (mm²/s) at `temperature` (degC) on the straight line of ASTM D341 through ν at 40
-    and 100 °C: log10 log10(ν + 0.7) = A - B·log10(T/K)."""
+    """ν (mm²/s) at `temperature` (degC, above absolute zero) on the straight line of ASTM
+    D341 through ν at 40 and 100 °C (each at least WALTHER_LEAST): log10 log10(ν + 0.7) =
+    A - B·log10(T/K); inf where the line runs past the largest float (far below any
+    oil's pour point)."""
     def walther(nu):
         return math.log10(math.log10(nu + WALTHER_OFFSET))
 
-    t40, t100, t = (math.log10(x + KELVIN) for x in (40.0, 100.0, temperature))
+    t40, t100, t = (math.log10(x + KELVIN) for x in (*MEASURED, temperature))
     slope = (walther(nu_100) - walther(nu_40)) / (t100 - t40)
-    return 10.0 ** 10.0 ** (walther(nu_40) + slope * (t - t40)) - WALTHER_OFFSET
+    try:
+        return 10.0 ** 10.0 ** (walther(nu_40) + slope * (t - t40)) - WALTHER_OFFSET
+    except OverflowError:
+        return math.inf
+
+
+def extrapolated(temperature: float) -> bool:
+    """Whether ν at `temperature` (degC) lies off the measured span of ASTM D341's line."""
+    return not MEASURED[0] <= temperature <= MEASURED[1]
 
 
 def density(density_15: float, temperature: float) -> float:

@@ -7,6 +7,14 @@ from __future__ import annotations
 import math
 
 
+#: the least sum of the tangential speeds at the pitch point (m/s) for which ISO/TR
+#: 14179-2's μ is taken: an assumed bound, not from the standard's text (not at hand), which
+#: fits gears running in an elastohydrodynamic film (Schlenk's FZG tests ran at metres per
+#: second); μ grows as v_Σ^-0.2 without bound below it (3.5 at 1e-6 rpm), and a slower
+#: mesh gives its friction_coefficient instead
+SUM_VELOCITY_LEAST = 1.0
+
+
 def friction_coefficient(line_load: float, sum_velocity: float, radius: float,
                          viscosity: float, roughness: float, X_L: float) -> float:
     """μ = 0.048·(w/(v_Σ·ρ_red))^0.2·η^-0.05·Ra^0.25·X_L (ISO/TR 14179-2): w the transverse

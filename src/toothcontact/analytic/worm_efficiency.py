@@ -4,7 +4,7 @@ Sources:
 - seed 000: KISSsoft application note "Efficiency of a worm gear flap actuator as function
   of temperature" (2007), §3.5 (DIN 3996 formulas) and Table 3.5-1 (Y_VISC).
 - seed 001: Kim, S.H., "Worm gear efficiency model considering misalignment in electric
-  power steering systems", Mech. Sci. 9, 201-210, 2018, eqs (2), (3), (20), (21).
+  power steering systems", Mech. Sci. 9, 201-210, 2018, eqs (2), (3), (10)-(21).
 Units: mm, N, N·mm, rad, mm²/s.
 """
 
@@ -87,8 +87,22 @@ def anti_rattle_spring_force(wheel_torque: float, mount_moment: float, d1: float
     d2: worm-shaft mount (pivot) to the mesh, d1: mesh to the spring (mm); M: moment held at
     the mount (N·mm). The moment balance about the mount of the radial mesh force
     T_wh·tan(alpha)/(R_p·cos(gamma)) acting at d2."""
-    lever = wheel_pitch_radius * math.cos(lead_angle) / math.tan(pressure_angle)
+    lever = _anti_rattle_lever(wheel_pitch_radius, pressure_angle, lead_angle)
     return (d2 * wheel_torque - mount_moment * lever) / ((d1 + d2) * lever)
+
+
+def anti_rattle_aligned_torque(mount_moment: float, d2: float, wheel_pitch_radius: float,
+                               pressure_angle: float, lead_angle: float) -> float:
+    """Seed 001 eq (20) solved for F_ARS = 0: the output torque
+    T_wh = M·R_p·cot(alpha)·cos(gamma) / d2 (N·mm) at which the spring carries nothing and
+    eq (21)'s misalignment is zero (the paper's 19.67 N·m)."""
+    return mount_moment * _anti_rattle_lever(wheel_pitch_radius, pressure_angle, lead_angle) / d2
+
+
+def _anti_rattle_lever(wheel_pitch_radius: float, pressure_angle: float,
+                       lead_angle: float) -> float:
+    """R_p·cot(alpha)·cos(gamma) of seed 001 eqs (20)-(21) (mm)."""
+    return wheel_pitch_radius * math.cos(lead_angle) / math.tan(pressure_angle)
 
 
 def anti_rattle_misalignment(spring_force: float, stiffness: float) -> float:
@@ -147,9 +161,9 @@ def preloaded_normal_force(normal_force: float, spring_force: float, d1: float, 
 
 def friction_power_law(pressure: float, mu_ref: float, pressure_ref: float,
                        exponent: float) -> float:
-    """Seed 001 §2.4.1: steel on polymer, mu = c·p^n (n = -0.9 sliding, -0.6 rolling, after
+    """Seed 001 §2.3: steel on polymer, mu = c·p^n (n = -0.9 sliding, -0.6 rolling, after
     Mowafi), with c fixed by a measured point: mu_ref at pressure_ref (the paper's 0.029 at
-    130 MPa)."""
+    130 MPa, §2.4.2)."""
     if not pressure > 0:
         raise ValueError(f"pressure must be > 0 MPa, got {pressure}")
     return mu_ref * (pressure / pressure_ref) ** exponent

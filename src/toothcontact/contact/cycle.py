@@ -370,9 +370,12 @@ def _pair_results(pinion, gear, pf, gf, roll_deg, pairs, delta, cp: ContactPoint
     for k in range(len(A)):
         own = margins[k]
         ends = {edge: m for edge, m in own.items() if "_end_" in edge and m < 0.0}
-        if area[k]:   # conformal: no Hertz; the rigid pattern at its mean pressure
+        if area[k]:   # conformal: no Hertz; the rigid pattern at its mean pressure (none
+            # where no cell of both flanks is in it: a flank turned onto an edge)
             a, b, approach = 0.5 * length[k], 0.5 * width[k], None
-            p0, rigid_a = loads[k] / max(length[k] * width[k], 1e-12), 0.5 * length[k]
+            area_mm2 = length[k] * width[k]
+            p0 = loads[k] / area_mm2 if area_mm2 > 0.0 else math.nan
+            rigid_a = 0.5 * length[k]
         elif line[k]:
             contact = hertz_line(loads[k] / length[k], 1.0 / (2.0 * B[k]), C_E)
             a, b, p0, approach = 0.5 * length[k], contact.b, contact.p0, None

@@ -460,7 +460,8 @@ def _continued(hits, flank: Flank, normal: np.ndarray, reach: float,
     """The samples of one contact's field (hits of its lines on a `shape` grid of `spacing`
     (2,) mm; `normal` the plane's normal in the flank's frame) where the lines meet the flank
     continued smoothly from the contact at sample `contact`: converged within `reach` (mm)
-    of the plane and near the flank's domain (REACH_SPANS), the flank facing the plane as
+    of the plane (widened by the flank's own height there: a pair the loaded reach keeps
+    may stand farther off) and near the flank's domain (REACH_SPANS), the flank facing the plane as
     it does at the contact (the parameter map does not fold), rising from its neighbours
     no steeper than STEEPEST, and connected to the centre through such samples. Past a
     fold (an involute's cusp on its base circle) or far off, a line meets another branch of
@@ -474,9 +475,13 @@ def _continued(hits, flank: Flank, normal: np.ndarray, reach: float,
             span = spans * (high - low)
             near &= (value > low - span) & (value < high + span)
     c = contact
-    ok = ((hits.converged & near & (np.abs(hits.s) <= reach)).reshape(shape)
+    height = hits.s.reshape(shape)
+    # a pair apart by more than `reach` (a loaded mesh's next pair) is still followed:
+    # the window widens by the flank's own height at the contact
+    own = abs(float(height[c])) if hits.converged.reshape(shape)[c] else 0.0
+    ok = ((hits.converged & near).reshape(shape) & (np.abs(height) <= reach + own)
           & (facing == facing[c]))
-    height = np.where(ok, hits.s.reshape(shape), np.nan)
+    height = np.where(ok, height, np.nan)
     for axis in (0, 1):
         with np.errstate(invalid="ignore"):
             jump = np.abs(np.diff(height, axis=axis)) > STEEPEST * spacing[axis]

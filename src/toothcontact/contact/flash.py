@@ -46,7 +46,7 @@ def surface_rise(flux: np.ndarray, x: np.ndarray, y: np.ndarray, velocity: Veloc
     X, Y = np.meshgrid(x, y, indexing="ij")
     hot = flux > 0.0
     vx, vy = velocity(X[hot], Y[hot])
-    weight = flux[hot]
+    weight = flux[hot] / flux[hot].max()     # scaled: a tiny flux's squares would underflow
     d = np.array([np.sum(weight * vx), np.sum(weight * vy)])
     if not np.linalg.norm(d) > 0.0:
         return np.inf

@@ -614,9 +614,11 @@ def loaded_cycle(cycle, C_E: float, points: int = 128, teeth: PairCompliance | N
         positions.setdefault(row["roll_deg"], []).append(k)
     every = np.arange(len(rows))
     reaches, patterns = field_reach(cycle, every), pattern_semi_axes(cycle, every)
-    samples = contact_samples(cycle, every, _Pair.MARGIN,                # one batch
-                              np.minimum(patterns, reaches[:, None]), far=LOADED_FAR,
-                              along_pattern=True, fit=curved_lines(cycle))
+    # a contact with no pattern of its own (no relative curvature across it: a flank
+    # turned onto an edge) has no semi-axes, NaN or 0: its field covers the reach
+    patterns = np.fmin(np.where(patterns > 0.0, patterns, np.nan), reaches[:, None])
+    samples = contact_samples(cycle, every, _Pair.MARGIN, patterns,     # one batch
+                              far=LOADED_FAR, along_pattern=True, fit=curved_lines(cycle))
     fields = [s.field(points, CELL, snap=True) for s in samples]
     groups = list(positions.values())
     breaks = edge_breaks(cycle)
@@ -627,10 +629,16 @@ def loaded_cycle(cycle, C_E: float, points: int = 128, teeth: PairCompliance | N
         load), or the reason it could not be solved."""
         ks = groups[index]
         load = sum(rows[k]["normal_load_N"] for k in ks)
-        # a pair kept beyond the approach whose field holds no material of both flanks
-        # carries nothing there (its field has no cell to solve on)
-        solvable = [k for k in ks if rows[k].get("rigid_contact", True)
-                    or fields[k].material.any()]
+        # a pair whose field holds no material of both flanks carries nothing there (its
+        # field has no cell to solve on): one kept beyond the approach, or a rigid contact
+        # off the flanks' edges (a flank turned onto its mate's edge, touching beyond the
+        # form circle)
+        solvable = [k for k in ks if fields[k].material.any()]
+        if not solvable:
+            edges = sorted({name for k in ks for name, cells in fields[k].beyond.items()
+                            if cells.any()})
+            return ("no contact of the position lies on both flanks' material (its fields "
+                    f"lie beyond {', '.join(edges) or 'the flanks'})")
         try:
             pairs = [_Pair(cycle, k, points, samples[k], fields[k], teeth, reaches[k],
                            patterns[k], breaks) for k in solvable]

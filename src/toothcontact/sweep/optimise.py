@@ -45,7 +45,20 @@ def check_statistics(spec: Optimise, figures: dict, where: str) -> None:
         figure = text.partition(" ")[2].strip()
         if figure not in numbers:
             raise CaseError(f"{where}.{field}: {figure!r} is not a figure the base design "
-                            f"reports; it reports: {', '.join(numbers)}")
+                            f"reports; {nearest(figure, numbers)}")
+
+
+#: the most figure names a message offers for one it does not know
+NEAREST = 12
+
+
+def nearest(name: str, known: list[str]) -> str:
+    """The figures nearest `name` by spelling (at most NEAREST), as a message's end."""
+    import difflib
+
+    close = difflib.get_close_matches(name, known, n=NEAREST, cutoff=0.0)
+    return (f"the nearest of the {len(known)} figures: {', '.join(close)}" if close
+            else "no figures are reported")
 
 
 def statistic(text: str, stats: dict, rows: list[dict], where: str) -> float:
@@ -69,7 +82,7 @@ def statistic(text: str, stats: dict, rows: list[dict], where: str) -> float:
     known = sorted((weighted or stats)["percentiles"])
     if figure not in known:
         raise CaseError(f"{where}: {figure!r} is not a figure of this sweep's samples; "
-                        f"they report: {', '.join(known)}")
+                        f"{nearest(figure, known)}")
     if name == "mean":
         values = [(r.get("time_share") or 1.0, r[figure]) for r in ok
                   if isinstance(r.get(figure), float)]

@@ -13,13 +13,14 @@ from __future__ import annotations
 
 import copy
 import itertools
+import math
 import warnings
 from dataclasses import dataclass
 from pathlib import Path
 
 import numpy as np
 
-from ..case import CaseError, CaseInfo, parse_case
+from ..case import CaseError, CaseInfo, parse_case, shown
 from .spec import SweepSpec, Tolerance, Vary
 
 
@@ -130,10 +131,27 @@ def _with(base: dict, inputs: dict) -> dict:
 
 
 def quantity(text, ureg, where: str):
+    """A sweep's number with its unit (a bare number dimensionless) as a pint quantity: the
+    number and the unit read apart, so that an offset unit (degC, degF) reads as a
+    temperature; a CaseError naming `where` for no number, an unknown unit, a control
+    character or a number that is not finite."""
+    from ..units import split
+
+    if isinstance(text, bool) or not isinstance(text, (str, int, float)):
+        raise CaseError(f"{where}: {shown(text)} is not a number with a unit")
+    if isinstance(text, str):
+        parts = split(text) if text.isprintable() else None
+        if parts is None:
+            raise CaseError(f"{where}: {shown(text)} is not a number with a unit")
+        magnitude, unit = parts[0], parts[1].replace("^", "**")
+    else:
+        magnitude, unit = float(text), ""
+    if not math.isfinite(magnitude):
+        raise CaseError(f"{where}: {shown(text)} is not a finite number")
     try:
-        return ureg.Quantity(text) if isinstance(text, str) else ureg.Quantity(float(text))
+        return ureg.Quantity(magnitude, unit or "dimensionless")
     except Exception:        # noqa: BLE001 - pint raises many kinds; the message names it
-        raise CaseError(f"{where}: {text!r} is not a number with a unit") from None
+        raise CaseError(f"{where}: {shown(text)}: unknown unit {unit!r}") from None
 
 
 def as_text(magnitude: float, unit) -> str | float:
@@ -152,13 +170,26 @@ def _grid(axis: Vary, ureg, where: str) -> list:
     return [as_text(m, start.units) for m in np.linspace(start.magnitude, end, axis.steps)]
 
 
-def in_unit(text, unit, ureg, where: str, whose: str) -> float:
-    """The magnitude of `text` in `unit`; a CaseError where it is of another dimension."""
+def in_unit(text, unit, ureg, where: str, whose: str, spread: bool = False) -> float:
+    """The magnitude of `text` in `unit`; a CaseError where it is of another dimension.
+    spread: `text` is a difference (a standard deviation, a band): in an offset unit (degC,
+    degF) a difference of temperatures, 5 degC as 5 K."""
     value = quantity(text, ureg, where)
+    if spread:
+        value, unit = _as_difference(value, ureg), _as_difference(ureg.Quantity(1.0, unit),
+                                                                  ureg).units
     try:
         return float(value.to(unit).magnitude)
     except Exception:        # noqa: BLE001 - a dimensionality error of pint
-        raise CaseError(f"{where}: {text!r} is not in the unit of {whose}") from None
+        raise CaseError(f"{where}: {shown(text)} is not in the unit of {whose}") from None
+
+
+def _as_difference(value, ureg):
+    """A quantity in an offset unit (degC, degF) as the same number of its differences
+    (delta_degC, delta_degF); any other as it is."""
+    if value.units in (ureg.degC, ureg.degF):
+        return ureg.Quantity(value.magnitude, f"delta_{value.units}")
+    return value
 
 
 def _draws(spec: SweepSpec, ureg, source: str) -> list[dict]:
@@ -212,16 +243,19 @@ def _inverse(tolerance: Tolerance, u: np.ndarray, ureg, where: str) -> list:
     from scipy import stats
 
     t = tolerance
-    first = t.mean if t.distribution == "normal" else t.low
-    unit = quantity(first, ureg, where).units
+    key = "mean" if t.distribution == "normal" else "low"
+    first = getattr(t, key)
+    unit = quantity(first, ureg, f"{where}.{key}").units
 
-    def number(name):
-        return in_unit(getattr(t, name), unit, ureg, f"{where}.{name}", repr(first))
+    def number(name, spread: bool = False):
+        return in_unit(getattr(t, name), unit, ureg, f"{where}.{name}", repr(first), spread)
 
     if t.distribution == "normal":
-        spread = number("std") if t.std is not None else number("band") / 3.0
+        key = "std" if t.std is not None else "band"
+        spread = number(key, spread=True) / (1.0 if key == "std" else 3.0)
         if not spread > 0:
-            raise CaseError(f"{where}: the spread must be greater than zero")
+            raise CaseError(f"{where}.{key}: {shown(getattr(t, key))} must be greater than "
+                            "zero (the normal's spread)")
         values = stats.norm.ppf(u, loc=number("mean"), scale=spread)     # finite inside (0, 1)
     else:
         low, high = number("low"), number("high")

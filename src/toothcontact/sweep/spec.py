@@ -144,7 +144,8 @@ class Constraint(Model):
 
     statistic: str = Field(description="'edge_loading' or 'end_loading' (probabilities) or "
                                        "'P95 FIGURE', ...")
-    max: float
+    max: float = Field(allow_inf_nan=False, description="the statistic's largest allowed "
+                                                        "value, a finite number")
 
     _known = field_validator("statistic")(_statistic)
 

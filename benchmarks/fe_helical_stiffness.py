@@ -1,0 +1,395 @@
+"""The mesh stiffness and single-pair stiffness of a 20° helical pair: an independent 3D
+finite-element reference (issue 50, item 6, last part) for the model's helical mesh
+stiffness, which reads +21 % above ISO 6336-1's c_γα
+(tests/test_loaded_teeth.py::test_the_mesh_stiffness_of_standard_pairs_is_isos).
+
+Pair: that test's helical pair, so that the reference checks the figure in question:
+z = 25/75, m_n = 3 mm, α_n = 20°, β = 15°, b = 20 mm (both members, flush ends), ISO 53
+profile A, no profile shift, uncrowned and unmodified, steel (206000 MPa, 0.3), 6000 N
+tangential (300 N/mm, F_n = 6611 N), aligned. ε_α = 1.63, ε_β = 0.55: two or three
+contact lines carry at every position (no single-pair position: the model reports no c'
+for it). The 20 mm face also keeps the FE small: a helical tooth has no mid-face symmetry,
+so the whole face is one factorisation, here as long as the spur reference's half face.
+
+FE (tests/fe_pair_helical.py on tests/fe_tooth.py; its docstring has the method): each
+member's whole gear (every tooth; the bore at half the root radius held; free end faces),
+the exact transverse section screwed along the face, P2 tetrahedra, fine along the whole
+active flank of the loaded tooth; unit forces on every contact line's segments (the face's
+2 mm strips clipped to the zone of action) along the flank's 3D normal, read at the teeth's
+centre lines (on the neighbouring teeth too, by the gears' symmetry: the load one tooth
+puts through the body onto the others is in), plus Weber's flattening from the flanks to
+the centre lines; each of POSITIONS mesh positions over a base pitch solved for the line
+loads and the normal approach under F_n. Mesh stiffness: F_n·cos²β_b/(b·δ) (N/(mm·µm), ISO's
+transverse force over transverse deflection per mm of face, as analyses.spur defines
+mesh_stiffness_N_per_mm_um), its mean over the positions the c_γα counterpart; c' the
+largest single-pair stiffness of one line wholly in the zone carrying F_n alone. Beside
+it, "uncoupled": the same with the compliance between different pairs' lines dropped (each
+pair's teeth deflect alone, as the model's do), which isolates what the bodies' coupling
+of the teeth does.
+
+Levels (LEVELS: the section's sizes at the flank / over the loaded tooth / far, their
+growth per mm, as fe_face_load's; z-layers; strips): light and light_fine_layers (the
+layers halved: the z-convergence), coarse and medium (the section refined: the reference,
+medium). Plane strain of the same sections (2D, whole gear, the centre-line compliance at
+the mid-zone radius against a converged section) states the section's own convergence.
+
+Sizes (dofs pinion, gear; factor Tflop; peak memory GB per member process, measured on 2
+busy cores here, the medium gear's extrapolated): light 58k, 89k (0.11, 0.15; 1.4, 1.7),
+light_fine_layers 113k, 175k (0.36, 0.51; 2.6, 3.7), coarse 139k, 217k (1.04, 1.28; 4.2,
+5.6), medium 183k, 268k (1.89, about 2.0; 6.4, about 7.5): all eight member processes at
+once hold about 35 GB. On one thread here (the two cores 2-5 times oversubscribed by
+other work): the coarse pinion 103 s, the light_fine_layers gear 85 s (its factor 42 s:
+27 s BLAS, 10 s assembling the fronts); the coarse gear 235 s and the medium pinion 351 s
+before the factor's speed-up, at a load of 8-10; from the work and nonzeros, about 160 s
+for the medium pinion and 190 s for the medium gear at the lighter load, half of it BLAS.
+
+Run: each member of a level is one process, `--jobs` at a time, sharing `--threads` BLAS
+threads by their work (a member keeps one thread if a team is no faster: Factor's
+calibration); a member's compliance is kept in --cache. The reference, on a 16-core,
+128 GB machine (about 4 minutes expected, 8 at worst; --deadline stops what is left and
+keeps the levels done):
+
+    python3 benchmarks/fe_helical_stiffness.py --levels light light_fine_layers coarse \
+        medium --threads 16 --jobs 8 --deadline 480 --plane-strain --json OUT.json \
+        [--npz OUT.npz]
+
+then here `--levels --model` adds the model's figures to benchmarks/fe_helical_stiffness.json
+(about 10 s) and prints the table. Smoke (here, 2 cores, about 5 minutes, 4 GB):
+--levels light light_fine_layers --threads 1 --jobs 1. The JSON is written after each
+level, so a run stopped early keeps what it finished.
+"""
+
+from __future__ import annotations
+
+import argparse
+import json
+import math
+import os
+import platform
+import subprocess
+import sys
+import time
+from pathlib import Path
+
+import numpy as np
+
+HERE = Path(__file__).resolve().parent
+ROOT = HERE.parent
+JSON_OUT = HERE / "fe_helical_stiffness.json"
+sys.path.insert(0, str(ROOT / "tests"))
+sys.path.insert(0, str(ROOT / "src"))
+import fe_pair_helical as fh  # noqa: E402
+
+#: the pair (tests/test_loaded_teeth.py's helical one), its load and the mesh positions
+CASE = {"kind": "spur", "title": "helical stiffness reference", "teeth": [25, 75],
+        "module": "3 mm", "pressure_angle": "20 deg", "helix_angle": "15 deg",
+        "face_width": "20 mm", "misalignment": {"slope": "0.0"},
+        "load": {"tangential_load": "6000 N"},
+        "analysis": {"positions": 9, "interference": False, "positions_check": False}}
+TANGENTIAL_N = 6000.0
+POSITIONS = 9
+#: section sizes (mm: h_patch along the active flank, h_tooth, h_far; growth per mm),
+#: z-layers (mm) and strips (mm)
+LEVELS = {
+    "tiny": dict(h_patch=0.4, h_tooth=1.5, h_far=30.0, growth=0.8, layer=4.0, strip=4.0),
+    "light": dict(h_patch=0.3, h_tooth=1.2, h_far=30.0, growth=0.8, layer=2.0, strip=2.0),
+    "light_fine_layers": dict(h_patch=0.3, h_tooth=1.2, h_far=30.0, growth=0.8, layer=1.0,
+                              strip=2.0),
+    "coarse": dict(h_patch=0.3, h_tooth=0.9, h_far=15.0, growth=0.5, layer=2.0, strip=2.0),
+    "medium": dict(h_patch=0.15, h_tooth=0.6, h_far=15.0, growth=0.5, layer=2.0, strip=2.0),
+}
+#: each member's factor work (Tflop: measured for light, light_fine_layers, coarse and the
+#: medium pinion, the medium gear's extrapolated): the jobs' order and their BLAS threads
+WORK = {("pinion", "tiny"): 0.025, ("gear", "tiny"): 0.033,
+        ("pinion", "light"): 0.11, ("gear", "light"): 0.15,
+        ("pinion", "light_fine_layers"): 0.36, ("gear", "light_fine_layers"): 0.51,
+        ("pinion", "coarse"): 1.04, ("gear", "coarse"): 1.28,
+        ("pinion", "medium"): 1.89, ("gear", "medium"): 2.0}
+REFERENCE = "medium"
+SMOKE = "light"
+MEMBERS = ("pinion", "gear")
+
+
+def the_pair():
+    from toothcontact.case import parse_case
+    from toothcontact.gearset import gear_pair
+
+    return gear_pair(parse_case(CASE))
+
+
+def normal_load(pair) -> float:
+    """F_n (N): the tangential force at the pitch circle along the normal."""
+    return TANGENTIAL_N / (math.cos(pair.working_pressure_angle)
+                           * math.cos(pair.pinion.base_helix_angle))
+
+
+def geometry(pair, level: str) -> fh.HelicalPairGeometry:
+    return fh.pair_geometry(pair, POSITIONS, LEVELS[level]["strip"])
+
+
+def member_path(cache: Path, name: str, level: str) -> Path:
+    return cache / f"{name}_{level}.npz"
+
+
+def compute_member(pair, name: str, level: str, threads: int, cache: Path) -> None:
+    """One member's compliance at one level, into the cache."""
+    spec = dict(LEVELS[level])
+    spec.pop("strip")
+    geo = geometry(pair, level)
+    print(f"{name}, {level} ({threads} threads):", flush=True)
+    m = fh.member_compliance(geo, name, threads=threads,
+                             log=lambda s: print(s, flush=True), **spec)
+    try:
+        import resource
+        m.mesh["max_rss_GB"] = resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1e6
+    except ImportError:
+        pass
+    cache.mkdir(parents=True, exist_ok=True)
+    tmp = member_path(cache, name, level).with_suffix(".tmp.npz")
+    np.savez(tmp, matrix=m.matrix, depth=m.depth, roll=m.roll, surface=m.surface,
+             mesh=json.dumps(m.mesh, default=float))
+    tmp.replace(member_path(cache, name, level))
+
+
+def load_member(cache: Path, name: str, level: str) -> fh.MemberHelical:
+    d = np.load(member_path(cache, name, level))
+    return fh.MemberHelical(d["matrix"], d["depth"], d["roll"], json.loads(str(d["mesh"])),
+                            d["surface"])
+
+
+def level_results(pair, level: str, members: dict) -> dict:
+    """The pair's FE results at one level, coupled and uncoupled."""
+    geo = geometry(pair, level)
+    load = normal_load(pair)
+    out = {}
+    for variant, coupled in (("coupled", True), ("uncoupled", False)):
+        r = fh.HelicalPair(geo, members["pinion"], members["gear"], coupled=coupled).stiffness(load)
+        out[variant] = r
+    out["mesh"] = {name: m.mesh for name, m in members.items()}
+    # Maxwell-Betti: the work-conjugate compliance is symmetric; the centre-line one nearly
+    out["asymmetry"] = {name: float(np.abs(m.matrix - m.matrix.T).max() / np.abs(m.matrix).max())
+                        for name, m in members.items()}
+    return out
+
+
+def plane_strain_convergence(pair, levels) -> dict:
+    """The section's own convergence: plane strain of each level's section (whole gear, the
+    bore held), the centre-line compliance (mm²/N) at the zone's middle roll, against a
+    converged section (0.03 mm at the flank, 0.15 over the tooth)."""
+    import fe_tooth as ft
+
+    geo = geometry(pair, SMOKE)
+    out = {}
+    for name in MEMBERS:
+        flank, rolls, zone = geo.member(name)
+        rho = 0.5 * (zone[0] + zone[1])
+        radius = math.hypot(flank.base, rho)
+        specs = {level: LEVELS[level] for level in levels}
+        specs["converged"] = dict(h_patch=0.03, h_tooth=0.15, h_far=15.0, growth=0.3)
+        values = {}
+        for level, spec in specs.items():
+            S = fh.member_section(flank, zone, spec["h_patch"], spec["h_tooth"],
+                                  spec["h_far"], spec["growth"], site=radius)
+            ps = ft.plane_strain(S)
+            values[level] = dict(centre=ps["centre"][0], dofs=ps["dofs"])
+        ref = values["converged"]["centre"]
+        for level in values:
+            values[level]["stiffer_than_converged"] = 1.0 - values[level]["centre"] / ref
+        out[name] = dict(radius=radius, levels=values)
+    return out
+
+
+def model_results() -> dict:
+    """The model's figures for the pair (toothcontact.analyses.analyse of CASE)."""
+    from toothcontact.analyses import analyse
+    from toothcontact.case import parse_case
+
+    result = analyse(parse_case(CASE))
+    s = result.sections["summary"]
+    section = result.sections["load_distribution"]
+    return dict(mesh_stiffness=s["mesh_stiffness_N_per_mm_um"],
+                single_stiffness=s["single_stiffness_N_per_mm_um"],
+                iso_mesh_stiffness=s["iso_mesh_stiffness_N_per_mm_um"],
+                iso_single_stiffness=s["iso_single_stiffness_N_per_mm_um"],
+                roll_deg=section["roll_deg"], stiffness=section["mesh_stiffness_N_per_mm_um"])
+
+
+def thread_shares(jobs: list[tuple[str, str]], threads: int) -> dict:
+    """BLAS threads per job: one each, the rest of `threads` in proportion to the jobs'
+    factor work (WORK)."""
+    total = sum(WORK[job] for job in jobs)
+    spare = max(threads - len(jobs), 0)
+    return {job: 1 + int(round(spare * WORK[job] / total)) for job in jobs}
+
+
+def run_jobs(levels, threads: int, jobs: int, cache: Path, deadline: float | None,
+             on_level, t0: float, meanwhile=None) -> list[str]:
+    """Each member of each level missing from the cache in its own process, `jobs` at a
+    time, the biggest first; meanwhile() once they are started; on_level(level) when both
+    members of a level are in. Returns the levels left unfinished at the deadline."""
+    todo = [(name, level) for level in levels for name in MEMBERS
+            if not member_path(cache, name, level).exists()]
+    shares = thread_shares(todo, threads) if todo else {}
+    todo.sort(key=lambda job: -WORK[job])
+    running: dict = {}
+    done_levels = set()
+
+    def check_levels():
+        for level in levels:
+            if level not in done_levels and all(member_path(cache, n, level).exists()
+                                                for n in MEMBERS):
+                done_levels.add(level)
+                on_level(level)
+
+    check_levels()
+    while todo or running or meanwhile:
+        while todo and len(running) < jobs:
+            name, level = todo.pop(0)
+            cmd = [sys.executable, str(Path(__file__).resolve()), "--member", name,
+                   "--level", level, "--threads", str(shares[(name, level)]),
+                   "--cache", str(cache)]
+            running[(name, level)] = subprocess.Popen(cmd)
+        if meanwhile:
+            meanwhile()
+            meanwhile = None
+        time.sleep(1.0)
+        for job, proc in list(running.items()):
+            if proc.poll() is not None:
+                del running[job]
+                if proc.returncode:
+                    print(f"{job} failed: {proc.returncode}", flush=True)
+        check_levels()
+        if deadline is not None and time.perf_counter() - t0 > deadline:
+            for job, proc in running.items():
+                print(f"deadline: stopping {job}", flush=True)
+                proc.kill()
+            break
+    return [level for level in levels if level not in done_levels]
+
+
+def table(out: dict) -> None:
+    model = out.get("model")
+    print(f"\nF_n = {out['normal_load_N']:.0f} N, b = {out['face_mm']:g} mm, {POSITIONS} "
+          "positions over a base pitch. Mesh stiffness (N/(mm·µm)) at each position, "
+          "its mean (c_γα) and c' (one line wholly in the zone, alone).")
+    print(f"{'':27} {'c_γα':>6} {'c_prime':>7}  per position" + " " * 40 + "dofs (pinion, gear)")
+    for level, r in out["fe"].items():
+        for variant in ("coupled", "uncoupled"):
+            v = r[variant]
+            mesh = r["mesh"]
+            print(f"FE {level:17} {variant[:5]:5} {v['mesh_stiffness']:6.2f} "
+                  f"{v['single_stiffness'] or float('nan'):7.2f}  "
+                  + " ".join(f"{p['stiffness']:5.2f}" for p in v["positions"])
+                  + (f"  {mesh['pinion']['dofs']}, {mesh['gear']['dofs']}"
+                     if variant == "coupled" else ""))
+    if model:
+        print(f"{'model':27} {model['mesh_stiffness']:6.2f} "
+              f"{model['single_stiffness'] or float('nan'):7.2f}  "
+              + " ".join(f"{v:5.2f}" for v in model["stiffness"] if v is not None))
+        print(f"{'ISO 6336-1 (Method B)':27} {model['iso_mesh_stiffness']:6.2f} "
+              f"{model['iso_single_stiffness']:7.2f}")
+    ps = out.get("plane_strain")
+    if ps:
+        for name, v in ps.items():
+            print(f"plane strain, {name} at r = {v['radius']:.2f} mm, stiffer than converged: "
+                  + ", ".join(f"{lv} {x['stiffer_than_converged']:+.2%}"
+                              for lv, x in v["levels"].items() if lv != "converged"))
+
+
+def main() -> None:
+    ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+    ap.add_argument("--levels", nargs="*", default=[SMOKE], choices=list(LEVELS),
+                    help="the FE levels to compute (none: only --model/--plane-strain "
+                         "added to the JSON's levels)")
+    ap.add_argument("--threads", type=int, default=os.cpu_count() or 1)
+    ap.add_argument("--jobs", type=int, default=2)
+    ap.add_argument("--cache", type=Path, default=Path("/tmp/fe_helical"))
+    ap.add_argument("--json", type=Path, default=JSON_OUT)
+    ap.add_argument("--npz", type=Path, help="also the members' compliances (npz)")
+    ap.add_argument("--deadline", type=float, help="seconds: stop the jobs left after it")
+    ap.add_argument("--model", action="store_true", help="the model's figures too")
+    ap.add_argument("--plane-strain", action="store_true",
+                    help="the sections' plane-strain convergence too")
+    ap.add_argument("--member", choices=MEMBERS, help=argparse.SUPPRESS)
+    ap.add_argument("--level", choices=list(LEVELS), help=argparse.SUPPRESS)
+    args = ap.parse_args()
+    t0 = time.perf_counter()
+    pair = the_pair()
+    if args.member:
+        compute_member(pair, args.member, args.level, args.threads, args.cache)
+        return
+    geo = geometry(pair, SMOKE)
+    p, g = pair.pinion, pair.gear
+    out = dict(benchmark="fe_helical_stiffness", issue="50 item 6", case=CASE,
+               machine=dict(platform=platform.platform(), python=platform.python_version(),
+                            cpus=os.cpu_count(), threads=args.threads, jobs=args.jobs),
+               E=206000.0, nu=0.3, normal_load_N=normal_load(pair), face_mm=geo.face,
+               base_helix_deg=math.degrees(p.base_helix_angle),
+               transverse_contact_ratio=(geo.zone[1] - geo.zone[0]) / geo.pinion.base_pitch,
+               overlap_ratio=geo.face * geo.tan_base_helix / geo.pinion.base_pitch,
+               zone_roll_mm=list(geo.zone), base_pitch_mm=geo.pinion.base_pitch,
+               positions=POSITIONS, levels={k: LEVELS[k] for k in args.levels},
+               reference=REFERENCE, smoke=SMOKE, fe={}, unfinished=[])
+    if args.json.exists():                 # levels computed before stay unless redone
+        old = json.loads(args.json.read_text())
+        out["fe"] = {k: v for k, v in old.get("fe", {}).items() if k not in args.levels}
+        out["levels"] = {**{k: LEVELS.get(k, v) for k, v in old.get("levels", {}).items()},
+                         **out["levels"]}
+        for key in ("model", "plane_strain", "machine", "seconds") if not args.levels \
+                else ("model", "plane_strain"):
+            if key in old:
+                out[key] = old[key]
+        if not args.levels:
+            out["unfinished"] = old.get("unfinished", [])
+
+    def write():
+        if args.levels or "seconds" not in out:
+            out["seconds"] = time.perf_counter() - t0
+        out["status"] = (
+            f"reference level {REFERENCE!r} in" if REFERENCE in out["fe"] else
+            f"SMOKE ONLY, not a reference: levels {sorted(out['fe'])} (the smoke level "
+            f"{SMOKE!r} and its check); the reference level {REFERENCE!r} comes from the "
+            "16-core run (the module's docstring)")
+        args.json.parent.mkdir(parents=True, exist_ok=True)
+        args.json.write_text(json.dumps(out, indent=1, default=float))
+
+    def on_level(level):
+        members = {name: load_member(args.cache, name, level) for name in MEMBERS}
+        out["fe"][level] = level_results(pair, level, members)
+        r = out["fe"][level]
+        print(f"{level}: c_γα {r['coupled']['mesh_stiffness']:.3f} "
+              f"(uncoupled {r['uncoupled']['mesh_stiffness']:.3f}), c' "
+              f"{r['coupled']['single_stiffness']:.3f} N/(mm·µm); "
+              f"{time.perf_counter() - t0:.0f} s", flush=True)
+        write()
+
+    def plane_strain():
+        print("plane strain of the sections ...", flush=True)
+        out["plane_strain"] = plane_strain_convergence(
+            pair, [lv for lv in ("light", "coarse", "medium") if lv in out["levels"]])
+
+    if args.levels:
+        unfinished = run_jobs(args.levels, args.threads, args.jobs, args.cache, args.deadline,
+                              on_level, t0, plane_strain if args.plane_strain else None)
+        out["unfinished"] = unfinished
+    elif args.plane_strain:
+        plane_strain()
+    if args.model:
+        out["model"] = model_results()
+    write()
+    if args.npz:
+        arrays = {}
+        for level in out["fe"]:
+            for name in MEMBERS:
+                if member_path(args.cache, name, level).exists():
+                    d = np.load(member_path(args.cache, name, level))
+                    for key in ("matrix", "depth", "roll", "surface"):
+                        arrays[f"{level}/{name}/{key}"] = d[key]
+        np.savez_compressed(args.npz, **arrays)
+    table(out)
+    print(f"\n{time.perf_counter() - t0:.0f} s; wrote {args.json}"
+          + (f"; unfinished: {out['unfinished']}" if out["unfinished"] else ""))
+
+
+if __name__ == "__main__":
+    main()
