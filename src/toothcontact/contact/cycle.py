@@ -38,6 +38,9 @@ log = logging.getLogger(__name__)
 LOAD_SHARING_RULE = ("the normal load split among the tooth pairs in contact (rigid_contact): "
                      "by their lengths in contact where all are contact lines (one rigid "
                      "approach, the same stiffness per mm of line), equally otherwise")
+#: how many times the separation search's grid is made twice as fine where a position has
+#: no point of its pairs facing the other flank (parallel_cycle)
+SEARCH_REFINEMENTS = 2
 #: allowance (mm) for a pair's grid minimum lying above its true minimum
 CELL_GAP = 0.02
 #: gap (mm) up to which the fit patch reaches: about half the default approach, where the
@@ -140,10 +143,7 @@ def parallel_cycle(mesh, pinion: Flank, gear: Flank, normal_load: float,
     all positions and pairs at once."""
     start = time.perf_counter()
     (u0, u1), (v0, v1) = pinion.domain
-    grid = np.meshgrid(np.linspace(u0, u1, settings.grid[0]), np.linspace(v0, v1, settings.grid[1]),
-                       indexing="ij")
     pitch = mesh.driver_pitch
-    half = ((u1 - u0) / (settings.grid[0] - 1), (v1 - v0) / (settings.grid[1] - 1))
     phis = mesh_positions(pitch, settings.positions, settings.phase)
     pairs = np.array(settings.pairs)
     pinion_frames = Frame.stack([[mesh.pinion_frame(phi, j) for j in pairs] for phi in phis])
@@ -155,14 +155,24 @@ def parallel_cycle(mesh, pinion: Flank, gear: Flank, normal_load: float,
     P, J = P.ravel(), J.ravel()
     delta = np.zeros(len(phis))
     # the whole grid once (turning the gear shifts every separation alike, so the least ones
-    # stay among the best grid points); the lag is then solved on those points only
-    field = separation(pinion, gear, pinion_frames[P, J], gear_frames(P, J, delta[P]),
-                       grid[0].ravel(), grid[1].ravel()).s
-    best_u, best_v, best_s = lowest(field, *grid)
-    facing = np.isfinite(best_s[:, 0])
-    lonely = [math.degrees(phis[p]) for p in range(len(phis)) if not facing[P == p].any()]
-    if lonely:
+    # stay among the best grid points); the lag is then solved on those points only. A
+    # grid too coarse for the flank (a long worm's few samples per turn) may put no point
+    # of a position's pairs in front of the other flank: it is refined, SEARCH_REFINEMENTS
+    # times at most, each time twice as fine along both parameters
+    for refinement in range(SEARCH_REFINEMENTS + 1):
+        counts = [(n - 1) * 2 ** refinement + 1 for n in settings.grid]
+        grid = np.meshgrid(np.linspace(u0, u1, counts[0]), np.linspace(v0, v1, counts[1]),
+                           indexing="ij")
+        field = separation(pinion, gear, pinion_frames[P, J], gear_frames(P, J, delta[P]),
+                           grid[0].ravel(), grid[1].ravel()).s
+        best_u, best_v, best_s = lowest(field, *grid)
+        facing = np.isfinite(best_s[:, 0])
+        lonely = [math.degrees(phis[p]) for p in range(len(phis)) if not facing[P == p].any()]
+        if not lonely:
+            break
+    else:
         raise ValueError(f"no tooth pair faces another at roll {lonely[0]:.3f} deg")
+    half = ((u1 - u0) / (counts[0] - 1), (v1 - v0) / (counts[1] - 1))
     P, J, best_u, best_v = P[facing], J[facing], best_u[facing], best_v[facing]
     (ua, ub), (va, vb) = pinion.domain
 
