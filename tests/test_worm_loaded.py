@@ -41,6 +41,27 @@ def test_a_line_contact_under_a_tiny_torque_solves_every_contact():
                if r["bem_status"] == "solved")
 
 
+def test_a_four_start_worm_whose_pattern_runs_past_its_tip_solves_every_contact():
+    """A 4-start ZI worm at 4 deg lead with a 52-tooth bronze wheel, 60 N·m: its rigid
+    pattern reaches 3.97 mm past the worm's tip edge, and the field sized on it missed the
+    flank pair (2-3 pairs unsolved at roll ±15 deg). Fitted to the flanks' material: every
+    contact solved, none on a false edge."""
+    raw = {"kind": "worm",
+           "worm": {"form": "ZI", "starts": 4, "normal_module": "1.5 mm",
+                    "lead_angle": "4 deg", "pressure_angle": "20 deg", "length": "40 mm"},
+           "wheel": {"teeth": 52}, "wheel_material": {"E": "98 GPa", "nu": 0.35},
+           "load": {"output_torque": "60 N*m"},
+           "analysis": {"positions": 6, "pressure_grid": 48, "positions_check": False,
+                        "subsurface": False}}
+    result = worm_geometry_case(parse_case(raw))
+    rows = result.sections["positions"]
+    assert {round(r["roll_deg"], 6) for r in rows} >= {-15.0, 15.0}
+    assert result.sections["summary"]["bem_failed_contacts"] == 0
+    assert all(r["bem_status"] in ("solved", "unloaded") for r in rows)
+    assert all(r["edge_pressure_at"] != "beyond_surface" for r in rows
+               if r["bem_status"] == "solved")
+
+
 def test_the_worm_shafts_deflection_places_the_worm_as_it_bends():
     """[worm.shaft]: the mesh force on the worm is the frictionless normal force at its pitch
     point (its axial part F_t2 = 2·T2/d2, radial F_n·sin α_n, tangential F_t2·tan γ: the
