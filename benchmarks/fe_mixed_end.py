@@ -214,11 +214,9 @@ def main(argv=None):
     if not args.quick:
         best = {}
         for b in ALL:
-            fine = results[(b, max(REFINES), SIZE, LENGTH)]
-            big = results[(b, 1.0, max(SIZES), LENGTH)]
-            small = results[(b, 1.0, SIZE, LENGTH)]
-            best[b] = {k: fine["mean_last"][k] + big["mean_last"][k] - small["mean_last"][k]
-                       for k in fine["mean_last"]}
+            best[b] = fr.best_estimate(*(results[key]["mean_last"] for key in (
+                (b, max(REFINES), SIZE, LENGTH), (b, 1.0, max(SIZES), LENGTH),
+                (b, 1.0, SIZE, LENGTH))))
         print(f"best estimate (refine {max(REFINES)} at size {SIZE:.0f} + size "
               f"{max(SIZES):.0f} - {SIZE:.0f} at refine 1):")
         for b, v in best.items():

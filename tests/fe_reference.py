@@ -27,7 +27,7 @@ __all__ = [
     "graded_axis", "block_mesh", "stiffness", "love_rectangle_uz",
     "BlockSolver", "SurfaceResult", "PunchResult",
     "surface_displacement", "surface_displacements", "flat_punch_line_load",
-    "CylinderResult", "cylinder_end_line_load", "mixed_end_line_load",
+    "CylinderResult", "cylinder_end_line_load", "mixed_end_line_load", "best_estimate",
 ]
 
 
@@ -735,3 +735,10 @@ def mixed_end_line_load(radius=84.0, load=None, length=None, b_runs_on=True,
     del C_b
     return _line_contact(C_a, xa, y, ix, iy, radius, load, length, b, False, tol, outer_max,
                          dofs_a + dofs_b, dict(A=dofs_a, B=dofs_b))
+
+
+def best_estimate(fine: dict, big: dict, small: dict) -> dict:
+    """A free end's ratios (mean_last) extrapolated to the finest mesh on the largest block:
+    the finest mesh at the base block size plus the change from the base size to the
+    largest at the coarse mesh (the two converge separately)."""
+    return {k: fine[k] + big[k] - small[k] for k in fine}
