@@ -675,12 +675,8 @@ def cylinder_end_line_load(radius=84.0, load=None, length=None, end_free=True, n
     CylinderResult.
     """
     E_star = E / (1 - nu**2)
-    load = np.pi * E_star / (4 * radius) if load is None else float(load)
-    b = np.sqrt(4 * load * radius / (np.pi * E_star))
-    length = 10 * b if length is None else float(length)
-    depth = 2 * length if depth is None else depth
-    width = 2 * length if width is None else width
-    run_on = 2 * length if run_on is None else run_on
+    load, b, length, depth, width, run_on = _line_defaults(E_star, radius, load, length,
+                                                           depth, width, run_on)
     lo, hi = (-length - run_on, 0.0) if end_free else (-length / 2, run_on)
     x, y, z = _line_axes(b, lo, hi, length, depth, width, run_on, refine, growth, ends,
                          y_reach)
@@ -688,6 +684,18 @@ def cylinder_end_line_load(radius=84.0, load=None, length=None, end_free=True, n
     C, dofs = _top_compliance(x, y, z, E, nu, ix, iy, sym_x0=not end_free)
     return _line_contact(C, x, y, ix, iy, radius, load, length, b, not end_free, tol,
                          outer_max, dofs)
+
+
+def _line_defaults(E_star, radius, load, length, depth, width, run_on):
+    """A line contact's load (N/mm; default: a Hertz half-width of 1 mm on E_star), its
+    half-width b, length (default 10 b) and block sizes (default twice the length), mm."""
+    load = np.pi * E_star / (4 * radius) if load is None else float(load)
+    b = np.sqrt(4 * load * radius / (np.pi * E_star))
+    length = 10 * b if length is None else float(length)
+    depth = 2 * length if depth is None else depth
+    width = 2 * length if width is None else width
+    run_on = 2 * length if run_on is None else run_on
+    return load, b, length, depth, width, run_on
 
 
 def mixed_end_line_load(radius=84.0, load=None, length=None, b_runs_on=True,
@@ -716,12 +724,8 @@ def mixed_end_line_load(radius=84.0, load=None, length=None, b_runs_on=True,
     """
     c_a, c_b = (1 - nu_a**2) / E_a, (1 - nu_b**2) / E_b
     E_star = 1 / (c_a + c_b)
-    load = np.pi * E_star / (4 * radius) if load is None else float(load)
-    b = np.sqrt(4 * load * radius / (np.pi * E_star))
-    length = 10 * b if length is None else float(length)
-    depth = 2 * length if depth is None else depth
-    width = 2 * length if width is None else width
-    run_on = 2 * length if run_on is None else run_on
+    load, b, length, depth, width, run_on = _line_defaults(E_star, radius, load, length,
+                                                           depth, width, run_on)
     axes = [_line_axes(b, -length - run_on, hi, length, depth, width, run_on, refine,
                        growth, ends, y_reach) for hi in (0.0, run_on if b_runs_on else 0.0)]
     (xa, y, z), (xb, yb, zb) = axes
