@@ -16,7 +16,7 @@ import numpy as np
 
 from ..analytic.hertz import RelativeCurvature, relative_curvature
 from ..assembly import Frame
-from ..surfaces.base import Flank
+from ..surfaces.base import GUESS_SAMPLES, Flank
 from .rays import RayHits, intersect
 
 
@@ -128,14 +128,15 @@ def _restarted_near(hits: RayHits, flank: Flank, x, y, local, direction) -> RayH
     k, j = np.nonzero(lost)
     points, lines = local[k, j], np.broadcast_to(direction, local.shape)[k, j]
     u0, v0 = flank.parameters_near(points)
-    # only lines passing within a grid cell of that sample (most lost lines miss the
+    # only lines passing within a cell of that sample's grid (most lost lines miss the
     # flank: beyond a worm wheel's hob reach no surface exists)
     (ua, ub), (va, vb) = flank.domain
     r, r_u, r_v = (np.stack(np.broadcast_arrays(*c), axis=-1)
                    for c in flank.tangents(u0, v0))
     offset = r - points
     off_line = offset - np.sum(offset * lines, axis=-1, keepdims=True) * lines
-    cell = (np.linalg.norm(r_u, axis=-1) * (ub - ua) + np.linalg.norm(r_v, axis=-1) * (vb - va)) / 32
+    cell = (np.linalg.norm(r_u, axis=-1) * (ub - ua)
+            + np.linalg.norm(r_v, axis=-1) * (vb - va)) / (GUESS_SAMPLES - 1)
     near = np.linalg.norm(off_line, axis=-1) <= cell
     k, j, points, lines, u0, v0 = k[near], j[near], points[near], lines[near], u0[near], v0[near]
     again = intersect(flank, points, lines, u0, v0)

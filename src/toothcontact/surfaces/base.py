@@ -27,6 +27,9 @@ def dot(a, b):
     return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
 
 
+#: samples per parameter of the grid Flank.parameters_near starts from
+GUESS_SAMPLES = 33
+
 class Flank:
     """Base class of the exact flanks.
 
@@ -71,12 +74,12 @@ class Flank:
 
     def parameters_near(self, points):
         """Starting parameters (u, v) for points near the flank (own frame): those of the
-        nearest point of a 33 × 33 grid over the domain. Flanks with a closed-form guess
-        override this."""
+        nearest point of a GUESS_SAMPLES × GUESS_SAMPLES grid over the domain. Flanks with a
+        closed-form guess override this."""
         from scipy.spatial import cKDTree
 
         if getattr(self, "_guess_tree", None) is None:
-            u, v = self.grid(33, 33)
+            u, v = self.grid(GUESS_SAMPLES, GUESS_SAMPLES)
             self._guess_tree = (cKDTree(np.stack(self.point(u, v), axis=-1).reshape(-1, 3)),
                                 u.ravel(), v.ravel())
         tree, u, v = self._guess_tree
