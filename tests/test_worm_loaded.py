@@ -62,6 +62,30 @@ def test_a_four_start_worm_whose_pattern_runs_past_its_tip_solves_every_contact(
                if r["bem_status"] == "solved")
 
 
+def test_a_set_whose_contacts_sit_on_the_wheels_tip_corner_is_answered():
+    """A thin 1-start ZN worm (m 1 mm, 14.6 deg lead: d1 = 4 mm) on a 50-tooth wheel at
+    42 N·m: its contacts sit on the wheel's tip corner, whose default rounding turns the
+    flank less than the worm's flank does, so no line along the common normal meets the
+    wheel there. The rigid stage had refused the legal case ('no contact could be found',
+    exit 2); such a contact is now its Hertz ellipse, its rigid pattern not measured
+    (null), and the loaded stage says per contact why it could not solve."""
+    raw = {"kind": "worm",
+           "worm": {"form": "ZN", "starts": 1, "normal_module": "1 mm",
+                    "lead_angle": "14.6 deg", "pressure_angle": "20 deg", "length": "40 mm"},
+           "wheel": {"teeth": 50}, "wheel_material": {"E": "98 GPa", "nu": 0.35},
+           "load": {"output_torque": "42 N*m"},
+           "analysis": {"positions": 3, "pressure_grid": 32, "positions_check": False,
+                        "subsurface": False}}
+    result = worm_geometry_case(parse_case(raw))
+    rows = result.sections["positions"]
+    assert any(r["rigid_pattern_area_mm2"] is None for r in rows)
+    assert all(r["rigid_pattern_area_mm2"] is None or r["rigid_pattern_area_mm2"] > 0.0
+               for r in rows if r.get("rigid_contact", True))
+    failed = [r for r in rows if r["bem_status"] == "failed"]
+    assert all(r["bem_reason"] for r in failed)
+    assert all(math.isfinite(r["p_max_MPa"]) for r in rows)
+
+
 def test_the_worm_shafts_deflection_places_the_worm_as_it_bends():
     """[worm.shaft]: the mesh force on the worm is the frictionless normal force at its pitch
     point (its axial part F_t2 = 2·T2/d2, radial F_n·sin α_n, tangential F_t2·tan γ: the

@@ -344,8 +344,38 @@ def _pair_results(pinion, gear, pf, gf, roll_deg, pairs, delta, cp: ContactPoint
     height = np.minimum(_profile_height(pinion, p_uv), _profile_height(gear, g_uv))
     area = B <= settings.approach / (0.5 * height) ** 2
     line = area | np.array([e is None or e.a > 0.5 * f for e, f in zip(ellipses, face)], bool)
-    point, along = np.flatnonzero(~line), np.flatnonzero(line)
+    centre = np.zeros((len(A), 2))
+    length = np.array([2.0 * e.a if e is not None else 0.0 for e in ellipses])
+    width = np.zeros(len(A))
     margins = [dict() for _ in range(len(A))]
+    along = np.flatnonzero(line)
+    if along.size:
+        # an area runs along the face (e1) over the whole profile height
+        direction = np.where(area, 0.0, angle)
+        across = np.where(area, np.maximum(B, settings.approach / (0.75 * height) ** 2), B)
+        lines = contact_lines(pinion, gear, pf[along], gf[along], planes_at(planes, along),
+                              (p_uv[0][along], p_uv[1][along]), (g_uv[0][along], g_uv[1][along]),
+                              direction[along], gaps[along], across[along], face[along],
+                              settings.approach, 2 * max(settings.field_grid, 100) + 1)
+        measured = np.isfinite(lines.length)
+        # a line whose field cannot be laid (its lines along the common normal miss a
+        # flank: a worm wheel's tip corner) is its Hertz ellipse where it has one, else a
+        # line over the shorter face
+        for k in along[~measured]:
+            line[k], area[k] = ellipses[k] is None, False
+            length[k] = face[k] if ellipses[k] is None else length[k]
+        along, lines_at = along[measured], np.flatnonzero(measured)
+        length[along], width[along] = lines.length[lines_at], lines.width[lines_at]
+        centre[along] = lines.centre[lines_at]
+        angle = np.where(area, 0.0, angle)
+        # a contact line's place on the face is its middle (on a flat line, round-off alone
+        # puts the least separation anywhere along it)
+        middle = planes_at(planes, along).at(centre[along, :1], centre[along, 1:])
+        points = points.copy()
+        points[along, 2] = pf[along].to_local(middle)[:, 0, 2]
+        for k, i in zip(along, lines_at):
+            margins[k] = lines.margins[i]
+    point = np.flatnonzero(~line)
     found = {}
     for name, flank, frames, uv in (("pinion", pinion, pf, p_uv), ("gear", gear, gf, g_uv)):
         ends = edge_margins(flank, frames[point], planes_at(planes, point),
@@ -356,26 +386,6 @@ def _pair_results(pinion, gear, pf, gf, roll_deg, pairs, delta, cp: ContactPoint
     for i, k in enumerate(point):
         margins[k] = {name: float(value[i]) for name, value in found.items()
                       if np.isfinite(value[i])}
-    centre = np.zeros((len(A), 2))
-    length = np.array([2.0 * e.a if e is not None else 0.0 for e in ellipses])
-    width = np.zeros(len(A))
-    if along.size:
-        # an area runs along the face (e1) over the whole profile height
-        direction = np.where(area, 0.0, angle)
-        across = np.where(area, np.maximum(B, settings.approach / (0.75 * height) ** 2), B)
-        lines = contact_lines(pinion, gear, pf[along], gf[along], planes_at(planes, along),
-                              (p_uv[0][along], p_uv[1][along]), (g_uv[0][along], g_uv[1][along]),
-                              direction[along], gaps[along], across[along], face[along],
-                              settings.approach, 2 * max(settings.field_grid, 100) + 1)
-        length[along], width[along], centre[along] = lines.length, lines.width, lines.centre
-        angle = np.where(area, 0.0, angle)
-        # a contact line's place on the face is its middle (on a flat line, round-off alone
-        # puts the least separation anywhere along it)
-        middle = planes_at(planes, along).at(centre[along, :1], centre[along, 1:])
-        points = points.copy()
-        points[along, 2] = pf[along].to_local(middle)[:, 0, 2]
-        for i, k in enumerate(along):
-            margins[k] = lines.margins[i]
     rows = []
     for k in range(len(A)):
         own = margins[k]

@@ -210,19 +210,22 @@ SAMPLES = 25
 def gap_fields(pinion: Flank, gear: Flank, pinion_frames: Frame, gear_frames: Frame,
                planes: TangentPlanes, pinion_uv, gear_uv, half: np.ndarray,
                shape, centre: np.ndarray | None = None, snap: bool = False,
-               far: float = FAR, turn: np.ndarray | None = None) -> list[GapField]:
+               far: float = FAR, turn: np.ndarray | None = None,
+               missing_ok: bool = False) -> list[GapField | None]:
     """The gap fields of K contacts (see gap_samples) on `shape` points (one (nx, ny) for
-    all, or one per contact, (K, 2)); snap: see FieldSamples.field."""
+    all, or one per contact, (K, 2)); snap: see FieldSamples.field; missing_ok: see
+    gap_samples (None for such a contact)."""
     samples = gap_samples(pinion, gear, pinion_frames, gear_frames, planes, pinion_uv,
-                          gear_uv, half, centre, far, turn)
+                          gear_uv, half, centre, far, turn, missing_ok=missing_ok)
     shapes = np.broadcast_to(np.asarray(shape, int), (len(samples), 2))
-    return [s.field(n, snap=snap) for s, n in zip(samples, shapes)]
+    return [None if s is None else s.field(n, snap=snap) for s, n in zip(samples, shapes)]
 
 
 def gap_samples(pinion: Flank, gear: Flank, pinion_frames: Frame, gear_frames: Frame,
                 planes: TangentPlanes, pinion_uv, gear_uv, half: np.ndarray,
                 centre: np.ndarray | None = None, far: float = FAR,
-                turn: np.ndarray | None = None, fit: bool = False) -> list[FieldSamples]:
+                turn: np.ndarray | None = None, fit: bool = False,
+                missing_ok: bool = False) -> list[FieldSamples | None]:
     """The gap samples of K contacts (frames and planes stacked (K,), parameters (K,)), each
     over centre[k] + [-half[k, 0], half[k, 0]] × [-half[k, 1], half[k, 1]] mm (centre (K, 2)
     in the plane from the contact point, default 0; the contact must lie inside): all of
@@ -235,7 +238,10 @@ def gap_samples(pinion: Flank, gear: Flank, pinion_frames: Frame, gear_frames: F
     itself, halved each time (FIT_TRIES times at most); with `fit`, a box that reaches
     well past both flanks' material (both inside their domains, connected to the contact)
     is laid again over that material's extent and a margin (fitted_box): the field is
-    placed and sized from the flanks' own extents, not from a pattern alone."""
+    placed and sized from the flanks' own extents, not from a pattern alone. A contact
+    whose lines still miss a flank (a worm wheel's tip corner, whose rounding does not turn
+    as far as the worm's flank: a line along the common normal passes the corner) raises
+    ValueError, or with missing_ok is None."""
     half = np.array(half, float).reshape(-1, 2)
     turn = np.zeros(len(half)) if turn is None else np.asarray(turn, float).reshape(-1)
     centre = np.zeros_like(half) if centre is None else np.array(centre, float).reshape(-1, 2)
@@ -250,6 +256,8 @@ def gap_samples(pinion: Flank, gear: Flank, pinion_frames: Frame, gear_frames: F
                 half[todo], centre[todo], far, turn[todo])):
             if found is None:                        # no line met both flanks
                 if attempt == FIT_TRIES:
+                    if missing_ok:
+                        continue
                     raise ValueError("no line of the gap field meets both flanks")
                 again[k] = (np.zeros(2), 0.5 * half[k])
                 continue
@@ -540,19 +548,22 @@ def smooth_fill(values: np.ndarray, known: np.ndarray) -> np.ndarray:
 def contact_fields(cycle, rows, shape, margin=1.3, semi_axes: np.ndarray | None = None,
                    largest_cell: float | None = None, snap: bool = False,
                    boxes: np.ndarray | None = None, far: float = FAR,
-                   along_pattern: bool = False) -> list[GapField]:
+                   along_pattern: bool = False, missing_ok: bool = False
+                   ) -> list[GapField | None]:
     """The gap fields of the given rows of a contact cycle (see contact_samples for the
     boxes, `far` and along_pattern) on `shape` points: (nx, ny) for every field, or an int
     n: n² points each, on cells as square as `square_cells` makes them (no longer than
     `largest_cell`, mm, where it can). snap: face ends on cell boundaries
-    (FieldSamples.field)."""
-    return [s.field(shape, largest_cell, snap) for s in
-            contact_samples(cycle, rows, margin, semi_axes, boxes, far, along_pattern)]
+    (FieldSamples.field). missing_ok: see gap_samples."""
+    return [None if s is None else s.field(shape, largest_cell, snap) for s in
+            contact_samples(cycle, rows, margin, semi_axes, boxes, far, along_pattern,
+                            missing_ok=missing_ok)]
 
 
 def contact_samples(cycle, rows, margin=1.3, semi_axes: np.ndarray | None = None,
                     boxes: np.ndarray | None = None, far: float = FAR,
-                    along_pattern: bool = False, fit: bool = False) -> list[FieldSamples]:
+                    along_pattern: bool = False, fit: bool = False,
+                    missing_ok: bool = False) -> list[FieldSamples | None]:
     """The gap samples of the given rows of a contact cycle, each over the bounding box of
     an ellipse about the centre of its pattern along its A axis (cycle.pattern_centre: the
     contact point, or a contact line's middle; A axis along the row's axis angle; across
@@ -565,14 +576,14 @@ def contact_samples(cycle, rows, margin=1.3, semi_axes: np.ndarray | None = None
     that turns from e1 by more than TURN_LEAST (field_turns; boxes are then in the turned
     axes): an oblique contact line (a helical pair's) then crosses its field's length
     instead of its width, whose cells it can make fine across it. fit: boxes fitted to the
-    flanks' material (gap_samples)."""
+    flanks' material; missing_ok: see gap_samples."""
     rows = np.atleast_1d(np.asarray(rows, int))
     turn = field_turns(cycle, rows) if along_pattern else np.zeros(len(rows))
     if boxes is not None:
         boxes = np.asarray(boxes, float).reshape(-1, 2, 2)
         half = 0.5 * (boxes[:, :, 1] - boxes[:, :, 0])
         return _samples(cycle, rows, half, 0.5 * (boxes[:, :, 1] + boxes[:, :, 0]), far, turn,
-                        fit)
+                        fit, missing_ok)
     if semi_axes is None:
         semi_axes = pattern_semi_axes(cycle, rows)
     a, b = np.asarray(semi_axes, float).reshape(-1, 2).T
@@ -590,7 +601,7 @@ def contact_samples(cycle, rows, margin=1.3, semi_axes: np.ndarray | None = None
     # the contact point stays inside the field where its semi-axes are held below the
     # pattern's (a far field's reach)
     along = np.clip(along, -CENTRE_SHARE * a, CENTRE_SHARE * a)
-    return _samples(cycle, rows, half, along[:, None] * direction, far, turn, fit)
+    return _samples(cycle, rows, half, along[:, None] * direction, far, turn, fit, missing_ok)
 
 
 #: the share of a field's semi-axis its centre may lie from the contact point
@@ -617,14 +628,16 @@ def field_turns(cycle, rows) -> np.ndarray:
 
 
 def _samples(cycle, rows: np.ndarray, half: np.ndarray, centre: np.ndarray, far: float,
-             turn: np.ndarray, fit: bool = False) -> list[FieldSamples]:
+             turn: np.ndarray, fit: bool = False, missing_ok: bool = False
+             ) -> list[FieldSamples | None]:
     """The gap samples of the rows over the boxes centre ± half ((K, 2), mm, in axes turned
     by `turn`; see contact_samples)."""
     uv = {m: (np.asarray(getattr(cycle.contacts, f"{m}_u"))[rows],
               np.asarray(getattr(cycle.contacts, f"{m}_v"))[rows]) for m in ("pinion", "gear")}
     return gap_samples(cycle.pinion, cycle.gear, cycle.pinion_frames[rows],
                        cycle.gear_frames[rows], planes_at(cycle.planes, rows), uv["pinion"],
-                       uv["gear"], half, centre=centre, far=far, turn=turn, fit=fit)
+                       uv["gear"], half, centre=centre, far=far, turn=turn, fit=fit,
+                       missing_ok=missing_ok)
 
 
 #: a flank edge is snapped to a cell boundary where its crossings of the field's lines lie
@@ -731,12 +744,18 @@ class RigidPattern:
     exceeds the contact's least separation by at most the approach, on both flanks'
     material. area (mm²); along_face and across_face (mm): its extents along e1 (the
     pinion's face direction) and e2 in the tangent plane, cell centres plus one cell;
-    cut: a flank edge bounds it (a pattern cell next to no material)."""
+    cut: a flank edge bounds it (a pattern cell next to no material). All None where no
+    field on both flanks could be laid about the contact (UNMEASURED)."""
 
-    area: float
-    along_face: float
-    across_face: float
-    cut: bool
+    area: float | None
+    along_face: float | None
+    across_face: float | None
+    cut: bool | None
+
+
+#: the rigid pattern of a contact about which no field meets both flanks (a worm wheel's
+#: tip corner, whose rounding does not turn as far as the worm's flank)
+UNMEASURED = RigidPattern(None, None, None, None)
 
 
 def rigid_patterns(cycle, points: int, margin: float = 1.25, growths: int = 3) -> list[RigidPattern]:
@@ -746,7 +765,8 @@ def rigid_patterns(cycle, points: int, margin: float = 1.25, growths: int = 3) -
     enlarged by `margin`; a field the pattern reaches the side of is enlarged 1.6
     times, up to `growths` times (where a grown batch cannot be followed on the flanks, each
     row is measured on the field it had). All rows' fields are solved in one batch. A row
-    kept beyond the approach (rigid_contact false) has no pattern (zero)."""
+    kept beyond the approach (rigid_contact false) has no pattern (zero); one about which
+    no field meets both flanks is UNMEASURED."""
     from scipy.ndimage import binary_dilation
 
     rows, approach = cycle.rows, cycle.settings.approach
@@ -766,7 +786,7 @@ def rigid_patterns(cycle, points: int, margin: float = 1.25, growths: int = 3) -
     for attempt in range(growths + 1):
         try:
             solved = contact_fields(cycle, todo, (points, points), margins[todo],
-                                    semi_axes[todo])
+                                    semi_axes[todo], missing_ok=True)
         except ValueError:
             if attempt == 0:
                 raise
@@ -775,6 +795,9 @@ def rigid_patterns(cycle, points: int, margin: float = 1.25, growths: int = 3) -
             solved = [previous[k] for k in todo]
             attempt = growths
         for k, field in zip(todo, solved):
+            if field is None:                    # no field on both flanks: not measured
+                out[k] = UNMEASURED
+                continue
             previous[k] = field
             below = rows[k]["separation_mm"] + approach - field.gap
             pattern = field.material & (below >= 0)

@@ -27,6 +27,8 @@ Units: mm.
 
 from __future__ import annotations
 
+import math
+
 from dataclasses import dataclass
 
 import numpy as np
@@ -69,17 +71,24 @@ def contact_lines(pinion: Flank, gear: Flank, pinion_frames: Frame, gear_frames:
     """The contact lines of K contacts (frames and planes stacked (K,), parameters, the A
     axis `angle` from e1 (rad), the separation (mm), B (1/mm) and the shorter flank's face
     length (mm), all (K,)), each measured at `approach` (mm) on a field of `points` points
-    along the line."""
+    along the line. A contact whose field cannot be laid (field.gap_samples: its lines
+    miss a flank) is not measured: NaN length, width and centre, no margins."""
     along = planes.direction(angle)
     aligned = TangentPlanes(planes.point, planes.normal, along, np.cross(planes.normal, along))
     half = np.stack([2.0 * face, 3.0 * np.sqrt(approach / B)], axis=-1)
     fields = gap_fields(pinion, gear, pinion_frames, gear_frames, aligned, pinion_uv, gear_uv,
-                        half, (points, ACROSS_POINTS))
+                        half, (points, ACROSS_POINTS), missing_ok=True)
     cos, sin = np.cos(angle), np.sin(angle)
     domains = {f"{member}_{name}": limits for member, flank in (("pinion", pinion), ("gear", gear))
                for name, limits in zip(("u", "v"), flank.domain)}
     lengths, widths, centres, margins = [], [], [], []
     for k, field in enumerate(fields):
+        if field is None:
+            lengths.append(math.nan)
+            widths.append(math.nan)
+            centres.append((math.nan, math.nan))
+            margins.append({})
+            continue
         rel = field.gap - separation[k]
         cells, inside = _line_cells(field, rel, approach)
         if inside.any() and rel[inside].min() < 0.0:   # the least gap on the flanks is
