@@ -41,19 +41,26 @@ def test_a_line_contact_under_a_tiny_torque_solves_every_contact():
                if r["bem_status"] == "solved")
 
 
+def bronze_wheel_set(worm: dict, teeth: int, torque: str, **analysis):
+    """A worm set (20 deg, 40 mm long worm) on a bronze wheel of `teeth` under `torque`,
+    analysed without the positions check and the subsurface stresses."""
+    return parse_case({"kind": "worm",
+                       "worm": {"pressure_angle": "20 deg", "length": "40 mm", **worm},
+                       "wheel": {"teeth": teeth},
+                       "wheel_material": {"E": "98 GPa", "nu": 0.35},
+                       "load": {"output_torque": torque},
+                       "analysis": {"positions_check": False, "subsurface": False,
+                                    **analysis}})
+
+
 def test_a_four_start_worm_whose_pattern_runs_past_its_tip_solves_every_contact():
     """A 4-start ZI worm at 4 deg lead with a 52-tooth bronze wheel, 60 N·m: its rigid
     pattern reaches 3.97 mm past the worm's tip edge, and the field sized on it missed the
     flank pair (2-3 pairs unsolved at roll ±15 deg). Fitted to the flanks' material: every
     contact solved, none on a false edge."""
-    raw = {"kind": "worm",
-           "worm": {"form": "ZI", "starts": 4, "normal_module": "1.5 mm",
-                    "lead_angle": "4 deg", "pressure_angle": "20 deg", "length": "40 mm"},
-           "wheel": {"teeth": 52}, "wheel_material": {"E": "98 GPa", "nu": 0.35},
-           "load": {"output_torque": "60 N*m"},
-           "analysis": {"positions": 6, "pressure_grid": 48, "positions_check": False,
-                        "subsurface": False}}
-    result = worm_geometry_case(parse_case(raw))
+    result = worm_geometry_case(bronze_wheel_set(
+        {"form": "ZI", "starts": 4, "normal_module": "1.5 mm", "lead_angle": "4 deg"},
+        52, "60 N*m", positions=6, pressure_grid=48))
     rows = result.sections["positions"]
     assert {round(r["roll_deg"], 6) for r in rows} >= {-15.0, 15.0}
     assert result.sections["summary"]["bem_failed_contacts"] == 0
@@ -69,14 +76,9 @@ def test_a_set_whose_contacts_sit_on_the_wheels_tip_corner_is_answered():
     wheel there. The rigid stage had refused the legal case ('no contact could be found',
     exit 2); such a contact is now its Hertz ellipse, its rigid pattern not measured
     (null), and the loaded stage says per contact why it could not solve."""
-    raw = {"kind": "worm",
-           "worm": {"form": "ZN", "starts": 1, "normal_module": "1 mm",
-                    "lead_angle": "14.6 deg", "pressure_angle": "20 deg", "length": "40 mm"},
-           "wheel": {"teeth": 50}, "wheel_material": {"E": "98 GPa", "nu": 0.35},
-           "load": {"output_torque": "42 N*m"},
-           "analysis": {"positions": 3, "pressure_grid": 32, "positions_check": False,
-                        "subsurface": False}}
-    result = worm_geometry_case(parse_case(raw))
+    result = worm_geometry_case(bronze_wheel_set(
+        {"form": "ZN", "starts": 1, "normal_module": "1 mm", "lead_angle": "14.6 deg"},
+        50, "42 N*m", positions=3, pressure_grid=32))
     rows = result.sections["positions"]
     assert any(r["rigid_pattern_area_mm2"] is None for r in rows)
     assert all(r["rigid_pattern_area_mm2"] is None or r["rigid_pattern_area_mm2"] > 0.0

@@ -21,6 +21,26 @@ RUNNING_IN_GROUPS = {"St": "steel", "V": "steel", "GTS": "steel", "GGG": "steel"
                      "NV": "hardened", "NV(nitrocar)": "hardened"}
 
 
+def _running_in(group: str, amount: float, sigma_Hlim: float, velocity: float,
+                rates: tuple[float, float, tuple[float, float], float]) -> float:
+    """A running-in allowance (µm) of a deviation `amount` (µm) by ISO 6336-1's pattern:
+    rates = (steel's factor over σ_Hlim, grey cast iron's factor, its caps (µm) above 5 and
+    above 10 m/s, surface-hardened steel's factor); the steel's cap is 80 µm times its
+    factor over σ_Hlim above 5 m/s and half that above 10 m/s, hardened steel's 40 times
+    its factor."""
+    steel, cast, (cast_cap, cast_fast_cap), hardened = rates
+    if group == "hardened":
+        return min(hardened * amount, 40.0 * hardened)
+    if group == "cast_iron":
+        allowance = cast * amount
+        return (allowance if velocity <= 5.0
+                else min(allowance, cast_cap if velocity <= 10.0 else cast_fast_cap))
+    allowance = steel / sigma_Hlim * amount
+    if velocity <= 5.0:
+        return allowance
+    return min(allowance, 80.0 * steel / (1.0 if velocity <= 10.0 else 2.0) / sigma_Hlim)
+
+
 def profile_running_in(group: str, deviation: float, sigma_Hlim: float,
                        velocity: float) -> float:
     """y_α (µm), the running-in allowance of a base pitch (or profile form) deviation
@@ -28,15 +48,7 @@ def profile_running_in(group: str, deviation: float, sigma_Hlim: float,
     (ISO 6336-1:2006, 8.3.3): steels and pearlitic cast irons 160/σ_Hlim·f_pb, at most
     12800/σ_Hlim above 5 m/s and 6400/σ_Hlim above 10 m/s; grey cast iron 0.275·f_pb, at
     most 22 and 11 µm; surface-hardened and nitrided steels 0.075·f_pb, at most 3 µm."""
-    if group == "hardened":
-        return min(0.075 * deviation, 3.0)
-    if group == "cast_iron":
-        allowance = 0.275 * deviation
-        return allowance if velocity <= 5.0 else min(allowance, 22.0 if velocity <= 10.0 else 11.0)
-    allowance = 160.0 / sigma_Hlim * deviation
-    if velocity <= 5.0:
-        return allowance
-    return min(allowance, (12800.0 if velocity <= 10.0 else 6400.0) / sigma_Hlim)
+    return _running_in(group, deviation, sigma_Hlim, velocity, (160.0, 0.275, (22.0, 11.0), 0.075))
 
 
 def lead_running_in(group: str, misalignment: float, sigma_Hlim: float,
@@ -45,15 +57,7 @@ def lead_running_in(group: str, misalignment: float, sigma_Hlim: float,
     (ISO 6336-1:2006, 7.6.3): steels and pearlitic cast irons 320/σ_Hlim·F_βx, at most
     25600/σ_Hlim above 5 m/s and 12800/σ_Hlim above 10 m/s; grey cast iron 0.55·F_βx, at
     most 45 and 22 µm; surface-hardened and nitrided steels 0.15·F_βx, at most 6 µm."""
-    if group == "hardened":
-        return min(0.15 * misalignment, 6.0)
-    if group == "cast_iron":
-        allowance = 0.55 * misalignment
-        return allowance if velocity <= 5.0 else min(allowance, 45.0 if velocity <= 10.0 else 22.0)
-    allowance = 320.0 / sigma_Hlim * misalignment
-    if velocity <= 5.0:
-        return allowance
-    return min(allowance, (25600.0 if velocity <= 10.0 else 12800.0) / sigma_Hlim)
+    return _running_in(group, misalignment, sigma_Hlim, velocity, (320.0, 0.55, (45.0, 22.0), 0.15))
 
 
 def running_in_tip_relief(sigma_Hlim: float) -> float:
