@@ -27,6 +27,11 @@ it, "uncoupled": the same with the compliance between different pairs' lines dro
 pair's teeth deflect alone, as the model's do), which isolates what the bodies' coupling
 of the teeth does.
 
+Variants "light_transverse" and "medium_transverse": the same sections with the load's
+axial part dropped (fe_pair_helical.member_compliance, axial=False), what the model's
+transverse slices see: with the uncoupled variant they isolate the two load paths the model
+lacks (tests/test_helical_stiffness_fe.py; 3 minutes here on 2 cores).
+
 Levels (LEVELS: the section's sizes at the flank / over the loaded tooth / far, their
 growth per mm, as fe_face_load's; z-layers; strips): light and light_fine_layers (the
 layers halved: the z-convergence), coarse and medium (the section refined: the reference,
@@ -98,6 +103,10 @@ LEVELS = {
     "coarse": dict(h_patch=0.3, h_tooth=0.9, h_far=15.0, growth=0.5, layer=2.0, strip=2.0),
     "medium": dict(h_patch=0.15, h_tooth=0.6, h_far=15.0, growth=0.5, layer=2.0, strip=2.0),
 }
+#: the same sections with the load's axial part dropped (fe_pair_helical.member_compliance,
+#: axial=False): what the model's transverse slices see, which isolates the axial load path
+LEVELS.update({f"{level}_transverse": dict(LEVELS[level], axial=False)
+               for level in ("light", "medium")})
 #: each member's factor work (Tflop: measured for light, light_fine_layers, coarse and the
 #: medium pinion, the medium gear's extrapolated): the jobs' order and their BLAS threads
 WORK = {("pinion", "tiny"): 0.025, ("gear", "tiny"): 0.033,
@@ -105,6 +114,8 @@ WORK = {("pinion", "tiny"): 0.025, ("gear", "tiny"): 0.033,
         ("pinion", "light_fine_layers"): 0.36, ("gear", "light_fine_layers"): 0.51,
         ("pinion", "coarse"): 1.04, ("gear", "coarse"): 1.28,
         ("pinion", "medium"): 1.89, ("gear", "medium"): 2.0}
+WORK.update({(name, f"{level}_transverse"): WORK[(name, level)]
+             for name in ("pinion", "gear") for level in ("light", "medium")})
 REFERENCE = "medium"
 SMOKE = "light"
 MEMBERS = ("pinion", "gear")

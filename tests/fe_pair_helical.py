@@ -337,13 +337,15 @@ def member_compliance(geo: HelicalPairGeometry, name: str, h_patch: float,
                       h_tooth: float, h_far: float, growth: float, layer: float,
                       bell_width: float = 0.6, gauss: int = 3, threads: int = 1,
                       E: float = ft.E_STEEL, nu: float = ft.NU_STEEL, intorder: int = 6,
-                      log=print) -> MemberHelical:
+                      axial: bool = True, log=print) -> MemberHelical:
     """One member's ("pinion" or "gear") compliance between geo's segments. Section sizes
     as fe_tooth.section_mesh (h_patch along the whole active flank), z-planes every
     `layer` mm at most with the strips' edges among them, the whole face; `threads` BLAS
     threads for the factor's large fronts; the load's bell `bell_width` mm across the
     profile, integrated at `intorder` on the facets; `gauss` points per layer for the
-    read-outs."""
+    read-outs. axial=False drops the load's axial part (sin β_b of it) and reads the
+    displacement along the normal's transverse part only: what a model of transverse
+    slices sees (a diagnostic of the axial load path through the tooth and the body)."""
     from skfem import FacetBasis, LinearForm, asm
 
     t0 = time.perf_counter()
@@ -365,7 +367,7 @@ def member_compliance(geo: HelicalPairGeometry, name: str, h_patch: float,
 
     @LinearForm
     def traction(v, w):
-        return -(w.n[0] * v[0] + w.n[1] * v[1] + w.n[2] * v[2]) * w.g
+        return -(w.n[0] * v[0] + w.n[1] * v[1] + axial * w.n[2] * v[2]) * w.g
 
     cols = []
     for seg in geo.segments:
@@ -411,7 +413,8 @@ def member_compliance(geo: HelicalPairGeometry, name: str, h_patch: float,
             c, s = np.cos(turn), np.sin(turn)
             P = np.vstack([c * centre[:, 0] - s * centre[:, 1],
                            s * centre[:, 0] + c * centre[:, 1], zq])
-            N = np.vstack([c * n3[:, 0] - s * n3[:, 1], s * n3[:, 0] + c * n3[:, 1], n3[:, 2]])
+            N = np.vstack([c * n3[:, 0] - s * n3[:, 1], s * n3[:, 0] + c * n3[:, 1],
+                           axial * n3[:, 2]])
             probe = T.basis.probes(P)
             loads = np.flatnonzero(line_of == line)
             vals = (probe @ U[:, loads]).reshape(3, len(zq), len(loads))

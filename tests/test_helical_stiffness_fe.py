@@ -16,8 +16,9 @@ the FE's own convergence (coarse to medium section, and the z-layers halved, eac
 and the spur reference's agreement with the model (single-pair stiffness +2.9 %,
 tests/test_face_load_fe.py), with the helical lines' oblique load on the slices, which the
 spur pair does not test, given as much again. The model misses it by far (+57 %): that test is an expected failure (strict, so that a model that meets
-it shows), and the next states the gap and how much of it the bodies' coupling of the
-teeth, which the model has not, accounts for.
+it shows). The FE taken apart says why: with the load's axial part dropped and each pair's
+teeth deflecting alone (the model's own assumptions) it is the model's within 8 %; the
+axial load path and the bodies' coupling of the teeth each take 12-22 % off.
 
 The geometry and a smoke run of the FE tooling on the tiny level are checked here too.
 """
@@ -164,11 +165,10 @@ def test_the_fe_reference_is_converged_to_2_percent(fe):
 
 
 @pytest.mark.xfail(strict=True, reason=(
-    "the model's teeth deflect apart: one tooth's load bends the gear body under its "
-    "neighbours too (in FE a neighbour's centre line moves 0.30 (pinion) and 0.40 (gear) "
-    "of the loaded tooth's own deflection, plane strain), which takes 20 % off the mesh "
-    "stiffness where two lines carry; and its single lines are stiffer than FE's: model "
-    "24.0 against FE 15.3 (+57 %)"))
+    "the model has two load paths of the FE's not: the normal load's axial part (sin β_b of "
+    "it) bending the tooth and the gear body out of their plane, which takes 15 % off the "
+    "FE's mesh stiffness, and the bodies' coupling of different pairs' teeth, which takes "
+    "16-20 % off (see the next two tests): model 24.0 against FE 15.3 (+57 %)"))
 def test_the_models_helical_mesh_stiffness_is_the_fes_within_8_percent(fe, model):
     """The model's mean mesh stiffness over the cycle (its c_γα counterpart) against the
     FE's mean over its positions (both evenly over one cycle): not met, see the reason and
@@ -189,6 +189,44 @@ def test_the_models_helical_mesh_stiffness_is_40_to_70_percent_above_the_fes(fe,
     uncoupled = reference(variant="uncoupled")
     assert 0.70 < fe["mesh_stiffness"] / uncoupled["mesh_stiffness"] < 0.90
     assert uncoupled["mesh_stiffness"] == pytest.approx(model["iso_mesh_stiffness"], rel=0.10)
+
+
+def test_the_models_transverse_slices_are_the_fes_under_the_loads_transverse_part(model):
+    """What the model models, checked: its slices are transverse sections loaded along the
+    normal's transverse part (compliance.ToothCompliance: the share cos²β_b of the normal
+    load bends them) and deflect apart (no load from one pair's teeth to another's). The FE
+    with the load's axial part dropped and the compliance between different pairs' lines
+    dropped is that model's counterpart: medium level 22.45 N/(mm·µm) against the model's
+    24.01 (+7.0 %), within the 8 % this file holds the model to; the light level 22.86."""
+    transverse = reference("medium_transverse", "uncoupled")
+    assert model["mesh_stiffness"] == pytest.approx(transverse["mesh_stiffness"], rel=0.08)
+    light = reference("light_transverse", "uncoupled")
+    assert light["mesh_stiffness"] == pytest.approx(transverse["mesh_stiffness"], rel=0.02)
+
+
+def test_the_two_load_paths_the_model_lacks_are_what_separates_it_from_the_fe(fe):
+    """The shortfall taken apart on the reference level (mesh stiffness, N/(mm·µm)):
+    - the load's axial part (sin β_b = 0.243 of F_n along the axis, which a transverse
+      slice does not carry: the tooth and the gear body, on a bore at half the root radius,
+      bending out of their plane; far more on the 75-tooth gear, whose centre-line
+      deflection under a whole line's load it raises 44 % against the pinion's 12 % on the
+      light level): uncoupled 22.45 without it, 19.15 with it (-14.7 %); c' 14.41 and
+      12.05 (-16.4 %);
+    - the bodies' coupling of different pairs' teeth (light level: a neighbouring line moves
+      0.21 (pinion) and 0.46 (gear) of the loaded line's centre-line deflection under the
+      load's transverse part; the rim's torsion between the bore and the root circle is 44 %
+      and 28 % of that):
+      transverse part alone 22.45 uncoupled, 18.87 coupled (-16 %); with the axial part
+      19.15 and 15.31 (-20 %).
+    Each takes 12-22 % off: neither is within the 8 % the model is held to, so the model
+    needs both (the next piece of work on issue 50)."""
+    transverse = {v: reference("medium_transverse", v) for v in ("coupled", "uncoupled")}
+    full = {v: reference(variant=v) for v in ("coupled", "uncoupled")}
+    axial = full["uncoupled"]["mesh_stiffness"] / transverse["uncoupled"]["mesh_stiffness"]
+    assert 0.78 < axial < 0.88
+    assert 0.78 < fe["single_stiffness"] / transverse["coupled"]["single_stiffness"] < 0.88
+    for v in (transverse, full):
+        assert 0.78 < v["coupled"]["mesh_stiffness"] / v["uncoupled"]["mesh_stiffness"] < 0.88
 
 
 def test_only_the_fe_has_a_single_pair_stiffness_and_it_is_isos_within_15_percent(fe, model):
