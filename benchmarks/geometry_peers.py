@@ -179,7 +179,7 @@ def stats(d: np.ndarray) -> dict:
 
 # --- the spur gear -------------------------------------------------------------------------------
 def spur_reference():
-    from toothcontact.modify import FlankModifications, LeadCrown
+    from toothcontact.surfaces.modify import FlankModifications, LeadCrown
     from toothcontact.surfaces.generation import generate_side
     from toothcontact.surfaces.involute import CylindricalGear
 
@@ -514,7 +514,7 @@ def run_spur(tmp: Path, rows: list) -> None:
         t_build, solid = timed(build, repeat=3)
         t_step, _ = timed(lambda: solid.exportStep(str(tmp / "cqg_spur.step")), repeat=3)
         dev_crowned = spur_deviation(solid.wrapped, gear, mods, form)
-        from toothcontact.modify import FlankModifications
+        from toothcontact.surfaces.modify import FlankModifications
         dev = spur_deviation(solid.wrapped, gear, FlankModifications(), form)
         rows.append(row("cq_gears", "spur", "SpurGear (no crowning option)", t_build, t_step,
                         dev, "deviation from the UNcrowned involute (it cannot crown); "

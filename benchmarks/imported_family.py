@@ -79,7 +79,7 @@ def own_pair(folder: Path, crowned: bool):
 def run(pinion_path, gear_path, deviation_um, slope, positions, pinion_turn, gear_start):
     """One mesh cycle: its rows, cycle time and the files' bound (µrad)."""
     from toothcontact.analytic.hertz import compliance
-    from toothcontact.assembly import Misalignment, ParallelMesh
+    from toothcontact.surfaces.placement import Misalignment, ParallelMesh
     from toothcontact.contact.cycle import CycleSettings
     from toothcontact.contact.imported import chordal_error, imported_cycle
     from toothcontact.mesh import load_surface
@@ -89,7 +89,7 @@ def run(pinion_path, gear_path, deviation_um, slope, positions, pinion_turn, gea
         pinion = pinion.turned(pinion_turn)
     base_radius = 90.0 * math.cos(math.radians(20.0))
     bound = 1e6 * (chordal_error(pinion) + chordal_error(gear) + 1e-3 * sum(deviation_um)) / base_radius
-    mesh = ParallelMesh.of_layout(20, 60, 120.0, math.radians(20.0),
+    mesh = ParallelMesh(20, 60, 120.0, math.radians(20.0),
                                   Misalignment(slope=slope), gear_start=gear_start)
     start = time.perf_counter()
     rows = imported_cycle(mesh, pinion, gear, 8000.0 / math.cos(math.radians(20.0)),

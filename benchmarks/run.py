@@ -128,11 +128,11 @@ def _mesh_path():
     z = 20 gear, all teeth, tessellated to 1.2 µm) against a five-tooth gear sector."""
     from toothcontact import cad, gearset
     from toothcontact.analytic.hertz import compliance
-    from toothcontact.assembly import Misalignment, ParallelMesh
+    from toothcontact.surfaces.placement import Misalignment, ParallelMesh
     from toothcontact.case import parse_case
     from toothcontact.contact.cycle import CycleSettings
     from toothcontact.contact.imported import chordal_error, imported_cycle
-    from toothcontact.mesh import TriangleSurface
+    from toothcontact.surfaces.triangles import TriangleSurface
 
     spur = parse_case({"kind": "spur", "teeth": [20, 60], "module": "3 mm",
                        "pressure_angle": "20 deg", "face_width": "30 mm",
@@ -151,7 +151,7 @@ def _mesh_path():
     gear._samples, pinion._samples, pinion.mesh.vertex_normals  # noqa: B018
     chordal_error(pinion), chordal_error(gear)
     t3 = time.perf_counter()
-    mesh = ParallelMesh.of_layout(20, 60, 120.0, pair.working_pressure_angle,
+    mesh = ParallelMesh(20, 60, 120.0, pair.working_pressure_angle,
                                   Misalignment(slope=0.0008), gear_start=math.pi)
     C_E = compliance(206e3, 0.3, 206e3, 0.3)
     timings = {}
@@ -174,7 +174,7 @@ def _solids():
     import tempfile
 
     from toothcontact import cad
-    from toothcontact.modify import FlankModifications, LeadCrown
+    from toothcontact.surfaces.modify import FlankModifications, LeadCrown
     from toothcontact.surfaces.involute import CylindricalGear
     from toothcontact.surfaces.wheel import WormWheelFlank
     from toothcontact.surfaces.worm import WormFlank

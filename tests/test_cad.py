@@ -7,7 +7,7 @@ import numpy as np
 import pytest
 
 from toothcontact import cad
-from toothcontact.modify import FlankModifications, LeadCrown, TipRelief
+from toothcontact.surfaces.modify import FlankModifications, LeadCrown, TipRelief
 from toothcontact.surfaces.generation import generate_ring_side, generate_side
 from toothcontact.surfaces.involute import CylindricalGear
 

@@ -13,11 +13,12 @@ import trimesh
 from toothcontact import cad, gearset
 from toothcontact.analyses import analyse
 from toothcontact.analytic.hertz import compliance, hertz_line
-from toothcontact.assembly import Misalignment, ParallelMesh
+from toothcontact.surfaces.placement import Misalignment, ParallelMesh
 from toothcontact.case import CaseError, load_case, parse_case
 from toothcontact.contact.cycle import CycleSettings
 from toothcontact.contact.imported import chordal_error, imported_cycle
-from toothcontact.mesh import TriangleSurface, load_surface
+from toothcontact.mesh import load_surface
+from toothcontact.surfaces.triangles import TriangleSurface
 
 # unthinned teeth (no backlash): the files' teeth stand where the exact analysis puts them
 # (a thinned pinion is turned forward by its thinning there, not in the files)
@@ -183,7 +184,7 @@ def body(name: str, folder: Path, tolerance: float) -> TriangleSurface:
 
 def peer_cycle(pinion, gear, slope=0.0, positions=3, turn=0.0):
     """The mesh path on a pair of data/peers (tooth 0 of both on +x, faces 0..30)."""
-    mesh = ParallelMesh.of_layout(20, 60, 120.0, math.radians(20.0), Misalignment(slope=slope),
+    mesh = ParallelMesh(20, 60, 120.0, math.radians(20.0), Misalignment(slope=slope),
                                   gear_start=math.pi)
     return imported_cycle(mesh, pinion.turned(turn) if turn else pinion, gear, 8513.4, C_E,
                           CycleSettings(positions=positions))
@@ -325,7 +326,7 @@ def test_own_pair_transmission_error_flat_as_the_exact_one(uncrowned_own):
     (pinion, gear), exact = uncrowned_own
     te_exact = [r["transmission_error_urad"] for r in exact["positions"]]
     assert max(te_exact) - min(te_exact) < 0.1
-    mesh = ParallelMesh.of_layout(20, 60, 120.0, math.radians(20.0), gear_start=math.pi - math.radians(6.0))
+    mesh = ParallelMesh(20, 60, 120.0, math.radians(20.0), gear_start=math.pi - math.radians(6.0))
     rows = imported_cycle(mesh, pinion.turned(-math.radians(18.0)), gear, 8513.4, C_E,
                           CycleSettings(positions=5))
     finite_rows(rows)

@@ -8,7 +8,7 @@ import pytest
 
 from toothcontact import gearset
 from toothcontact.analytic.hertz import compliance
-from toothcontact.assembly import WormMesh, WormMisalignment
+from toothcontact.surfaces.placement import WormMesh, WormMisalignment
 from toothcontact.case import load_case
 from toothcontact.contact.cycle import CycleSettings, parallel_cycle
 from toothcontact.runner import bundled_cases_dir

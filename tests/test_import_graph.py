@@ -1,6 +1,6 @@
 """The package's import graph (every import, at module level or inside a function) has no
 circle: data flows one way, case -> flanks -> placement -> contact -> loaded -> result ->
-report/pictures (DESIGN.md)."""
+report/pictures (docs/DESIGN.md)."""
 
 import ast
 from pathlib import Path
@@ -75,3 +75,51 @@ def test_the_import_graph_has_no_circle():
 def test_the_walk_sees_a_circle():
     """The walk finds a circle where there is one (so the test above can fail)."""
     assert cycles({"a": {"b"}, "b": {"c"}, "c": {"a"}, "d": {"a"}}) == [["a", "b", "c"]]
+
+
+def packages(graph: dict[str, set[str]]) -> dict[str, set[str]]:
+    """The graph of the package's parts: each subpackage (toothcontact.contact, ...) or
+    top-level module one node, its modules' imports merged."""
+
+    def part(module: str) -> str:
+        return ".".join(module.split(".")[:2])
+
+    out: dict[str, set[str]] = {}
+    for name, targets in graph.items():
+        out.setdefault(part(name), set()).update(part(t) for t in targets)
+    return {name: targets - {name} for name, targets in out.items()}
+
+
+def test_the_packages_have_no_circle_between_them():
+    """No subpackage imports, through any module, one that imports it back (surfaces/
+    importing modify, which imported surfaces/jet, was such a circle, which the module
+    graph does not show)."""
+    assert cycles(packages(imports())) == []
+
+
+#: what each lower layer may import from the package (besides its own modules)
+LOWER_LAYERS = {
+    "toothcontact.analytic": set(),
+    "toothcontact.surfaces": set(),
+    "toothcontact.contact": {"toothcontact.surfaces", "toothcontact.analytic",
+                             "toothcontact.parallel"},
+}
+
+
+def test_the_contact_engine_and_the_surfaces_import_nothing_above_them():
+    """contact/ and surfaces/ (and analytic/) import none of the layers above them: not the
+    case schema, the gear set, the analyses, the runner or the views (issue 54), so that the
+    solver is used and tested without a case file."""
+    parts = packages(imports())
+    for layer, allowed in LOWER_LAYERS.items():
+        assert parts[layer] <= allowed, f"{layer} imports {sorted(parts[layer] - allowed)}"
+
+
+def test_the_package_graph_sees_a_layer_broken():
+    """The merged graph keeps an import from a lower layer to an upper one (so the test above
+    can fail)."""
+    graph = {"toothcontact.contact.cycle": {"toothcontact.case"},
+             "toothcontact.contact.field": {"toothcontact.contact.cycle"},
+             "toothcontact.case": set()}
+    assert packages(graph) == {"toothcontact.contact": {"toothcontact.case"},
+                               "toothcontact.case": set()}

@@ -6,7 +6,7 @@ import numpy as np
 import pytest
 from scipy.optimize import brentq
 
-from toothcontact.modify import EndRelief, FlankModifications, LeadCrown, ProfileCrown, TipRelief
+from toothcontact.surfaces.modify import EndRelief, FlankModifications, LeadCrown, ProfileCrown, TipRelief
 from toothcontact.surfaces.generation import generate_side
 from toothcontact.surfaces.involute import CylindricalGear
 from toothcontact.surfaces.modified import ModifiedFlank

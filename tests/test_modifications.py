@@ -13,7 +13,7 @@ import pytest
 from toothcontact import cad, gearset
 from toothcontact.analyses import analyse
 from toothcontact.case import CaseError, parse_case
-from toothcontact.modify import FlankModifications, RootRelief, Topography, Twist
+from toothcontact.surfaces.modify import FlankModifications, RootRelief, Topography, Twist
 from toothcontact.surfaces.involute import CylindricalGear
 
 FACE = 30.0
@@ -119,7 +119,7 @@ def test_a_linear_relief_start_is_blended_with_its_slope():
     (C1: the drop's first derivative continuous, so the loaded pressure at a relief's start
     converges with the grid); outside the blend it is the line, at the relief's end the
     amount; a blend of 0 is the kink; a parabolic relief has none."""
-    from toothcontact.modify import relief_ramp
+    from toothcontact.surfaces.modify import relief_ramp
 
     h = 0.1
     xs = np.linspace(-0.3, 1.0, 1301)
@@ -286,7 +286,7 @@ def test_a_k_chart_is_the_surface_its_traces_were_measured_on():
     grid (pressures within 0.1 %, TE within 0.005 µm). Traces
     that disagree where they cross are averaged there, with a note; a K-chart beside a grid
     is refused."""
-    from toothcontact.modify import k_chart_grid
+    from toothcontact.surfaces.modify import k_chart_grid
 
     spec = k_chart()
     pair = gearset.gear_pair(parse_case(spur({"k_chart": spec})))

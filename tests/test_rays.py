@@ -6,7 +6,7 @@ import math
 import numpy as np
 
 from toothcontact import gearset
-from toothcontact.assembly import Misalignment, ParallelMesh
+from toothcontact.surfaces.placement import Misalignment, ParallelMesh
 from toothcontact.case import parse_case
 from toothcontact.contact import rays
 
@@ -20,7 +20,7 @@ def whole_grid_rays(helix_deg: float = 0.0, slope: float = 0.0):
     the normals of a 41 × 41 grid of pinion flank points at 7 positions of three tooth pairs,
     onto the gear flank, in its frame: (gear flank, points, directions, u0, v0)."""
     pair = gearset.gear_pair(parse_case({**CASE, "helix_angle": f"{helix_deg} deg"}))
-    mesh = ParallelMesh(pair, Misalignment(slope=slope))
+    mesh = pair.placed(Misalignment(slope=slope))
     pinion = gearset.working_flank(pair.pinion, pair.pinion_modifications, 1)
     gear = gearset.working_flank(pair.gear, pair.gear_modifications, mesh.gear_side)
     u, v = pinion.grid(41, 41)

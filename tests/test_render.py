@@ -12,7 +12,7 @@ from matplotlib.colors import rgb_to_hsv, to_rgb
 from typer.testing import CliRunner
 
 from toothcontact import analyses, plots, render
-from toothcontact.assembly import Frame, rotation
+from toothcontact.surfaces.placement import Frame, rotation
 from toothcontact.case import parse_case
 from toothcontact.cli import app
 

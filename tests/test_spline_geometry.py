@@ -7,7 +7,7 @@ import pytest
 from scipy.optimize import brentq
 
 from toothcontact.analytic.spline import max_crown_radius_for_fit
-from toothcontact.modify import FlankModifications, LeadCrown
+from toothcontact.surfaces.modify import FlankModifications, LeadCrown
 from toothcontact.surfaces.modified import ModifiedFlank
 from toothcontact.surfaces.spline import InvoluteSpline
 

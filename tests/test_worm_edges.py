@@ -143,7 +143,7 @@ def test_the_case_says_how_the_edges_are_broken():
 def test_a_contact_on_the_worms_rounding_is_reported_as_such(saba):
     """The contact engine sees the worm's and the wheel's roundings as broken edges
     (Flank.breaks): where they start in each flank's own parameter, toward the tip."""
-    from toothcontact.assembly import WormMesh
+    from toothcontact.surfaces.placement import WormMesh
     from toothcontact.contact.cycle import CycleSettings, parallel_cycle
     from toothcontact.contact.loaded import edge_breaks
     from toothcontact.analytic.hertz import compliance

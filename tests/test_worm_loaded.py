@@ -98,7 +98,7 @@ def test_the_worm_shafts_deflection_places_the_worm_as_it_bends():
     from toothcontact.analyses import worm as kind
     from toothcontact.analytic import worm_efficiency
     from toothcontact.analyses.result import Result
-    from toothcontact.assembly import Frame, WormMesh, WormMisalignment, rotation
+    from toothcontact.surfaces.placement import Frame, WormMesh, WormMisalignment, rotation
 
     case = saba(worm={"shaft": {"bearings": ["-40 mm", "40 mm"], "diameter": "8 mm"}},
                 load={"output_torque": "4.84 N*m"})

@@ -13,8 +13,16 @@ import tomllib
 from pathlib import Path
 from typing import Annotated, Any, Literal, get_args
 
-from pydantic import (AfterValidator, BaseModel, BeforeValidator, ConfigDict, Field,
-                      ValidationError, field_validator, model_validator)
+from pydantic import (
+    AfterValidator,
+    BaseModel,
+    BeforeValidator,
+    ConfigDict,
+    Field,
+    ValidationError,
+    field_validator,
+    model_validator,
+)
 
 from . import units
 
@@ -29,7 +37,8 @@ ABSOLUTE_ZERO = -273.15
 
 def quantity(kind: str, *, positive: bool = False, nonzero: bool = False,
              allow_inf: bool = False, low: float | None = None, high: float | None = None):
-    """A float field given as text with a unit of `kind` (see units.KINDS), within the
+    """The validator of a float field (Annotated[float, quantity(...)]) given as text with a
+    unit of `kind` (see units.KINDS), within the
     kind's physical range: finite (unless `allow_inf`), at most `largest` in magnitude (or
     `high`, core units), at least `smallest` in magnitude if `positive` or `nonzero`, and
     at least `low` (core units)."""
@@ -55,22 +64,24 @@ def quantity(kind: str, *, positive: bool = False, nonzero: bool = False,
             raise ValueError(f"{value!r} must be at least {units.show(low, kind)}")
         return number
 
-    return Annotated[float, BeforeValidator(convert)]
+    return BeforeValidator(convert)
 
 
-Length = quantity("length", positive=True)
-Radius = quantity("length", nonzero=True, allow_inf=True)
+Length = Annotated[float, quantity("length", positive=True)]
+SignedLength = Annotated[float, quantity("length")]
+SignedTorque = Annotated[float, quantity("torque")]
+Radius = Annotated[float, quantity("length", nonzero=True, allow_inf=True)]
 #: a lead crown's radius: up to 1e9 mm (1 µm over a 100 mm face is 1.25e6 mm)
-CrownRadius = quantity("length", positive=True, high=1e9)
-Force = quantity("force", positive=True)
-Modulus = quantity("stress", positive=True)
-Torque = quantity("torque", positive=True)
-Angle = quantity("angle")
-Slope = quantity("slope")
-InverseLength = quantity("inverse_length", positive=True)
-Viscosity = quantity("viscosity", positive=True)
-Temperature = quantity("temperature", low=ABSOLUTE_ZERO + 1e-9)
-Stiffness = quantity("stiffness", positive=True)
+CrownRadius = Annotated[float, quantity("length", positive=True, high=1e9)]
+Force = Annotated[float, quantity("force", positive=True)]
+Modulus = Annotated[float, quantity("stress", positive=True)]
+Torque = Annotated[float, quantity("torque", positive=True)]
+Angle = Annotated[float, quantity("angle")]
+Slope = Annotated[float, quantity("slope")]
+InverseLength = Annotated[float, quantity("inverse_length", positive=True)]
+Viscosity = Annotated[float, quantity("viscosity", positive=True)]
+Temperature = Annotated[float, quantity("temperature", low=ABSOLUTE_ZERO + 1e-9)]
+Stiffness = Annotated[float, quantity("stiffness", positive=True)]
 Poisson = Annotated[float, Field(gt=-1.0, lt=0.5, description="Poisson's ratio in (-1, 0.5)")]
 Factor = Annotated[float, Field(gt=0.0, le=1e6, description="a positive number")]
 Friction = Annotated[float, Field(gt=0.0, lt=1.0, description="a friction coefficient in (0, 1)")]
@@ -126,7 +137,7 @@ class CaseInfo(Model):
 
 
 #: a flank's thermal contact coefficient sqrt(λρc), W·s^0.5/(m²·K) (the flash temperature)
-ThermalCoefficient = quantity("thermal_contact_coefficient", positive=True)
+ThermalCoefficient = Annotated[float, quantity("thermal_contact_coefficient", positive=True)]
 THERMAL_DESCRIPTION = ("sqrt(λρc) for the flash temperature, e.g. '12.7 kW*s^0.5/(m^2*K)' "
                        "(default: steel's)")
 
@@ -182,7 +193,7 @@ class GearMaterial(Model):
     E: Modulus | None = Field(None, description="Young's modulus, e.g. '206 GPa' (default "
                                                 "steel's)")
     nu: Poisson | None = Field(None, description="Poisson's ratio (default 0.3)")
-    density: quantity("density", positive=True) | None = Field(
+    density: Annotated[float, quantity("density", positive=True)] | None = Field(
         None, description="e.g. '7830 kg/m^3' (default: steel's 7830, a cast iron's 7200): "
                           "the gears' masses in ISO 6336-1's dynamic factor")
     treatment: Literal[TREATMENT_NAMES] | None = Field(
@@ -324,7 +335,7 @@ class RatingSpec(Model):
     pinion_cycles: Cycles | None = Field(
         None, description="load cycles of each pinion tooth, e.g. 1e9 (default: from life "
                           "and the speed, else the endurance limit, Z_NT = Y_NT = 1)")
-    life: quantity("time", positive=True) | None = Field(
+    life: Annotated[float, quantity("time", positive=True)] | None = Field(
         None, description="required life at the case's speed, e.g. '20000 h': the load "
                           "cycles N_L = 60·n·L_h")
     limited_pitting: bool = Field(False, description="some pitting accepted (ISO 6336-2 "
@@ -343,7 +354,7 @@ class RatingSpec(Model):
 
 
 #: a flank's arithmetic mean roughness Ra (mm), given with [operation]
-Roughness = quantity("length", positive=True, high=0.1)
+Roughness = Annotated[float, quantity("length", positive=True, high=0.1)]
 ROUGHNESS_FIELD = Field(None, description="the flanks' arithmetic mean roughness, e.g. "
                                           "'0.4 um' (with [operation]: the friction "
                                           "coefficient and the specific film)")
@@ -370,7 +381,7 @@ class OperationSpec(Running):
     temperature where known (default: ISO/TS 6336-20's estimate from the flash temperature)
     and how the mesh is lubricated (its factor X_S in that estimate)."""
 
-    pinion_speed: quantity("rotational_speed", positive=True) = Field(
+    pinion_speed: Annotated[float, quantity("rotational_speed", positive=True)] = Field(
         description="the pinion's speed, e.g. '3000 rpm'")
 
 
@@ -378,7 +389,7 @@ class WormOperationSpec(Running):
     """How a worm set runs: the worm's speed, the oil's temperature and the teeth's bulk
     temperature where known (default: the oil's)."""
 
-    worm_speed: quantity("rotational_speed", positive=True) = Field(
+    worm_speed: Annotated[float, quantity("rotational_speed", positive=True)] = Field(
         description="the worm's speed, e.g. '1450 rpm'")
 
 
@@ -463,9 +474,9 @@ class LubricantSpec(Model):
                                                 "'220 mm^2/s'")
     viscosity_100: Viscosity = Field(description="kinematic viscosity at 100 °C, e.g. "
                                                  "'19 mm^2/s'")
-    density: quantity("density", positive=True) | None = Field(
+    density: Annotated[float, quantity("density", positive=True)] | None = Field(
         None, description="at 15 °C, e.g. '890 kg/m^3' (default: the family's)")
-    pressure_viscosity: quantity("pressure_viscosity", positive=True) | None = Field(
+    pressure_viscosity: Annotated[float, quantity("pressure_viscosity", positive=True)] | None = Field(
         None, description="α, e.g. '1.8e-8 1/Pa' (default: the family's typical)")
     friction_coefficient: Friction | None = Field(
         None, description="a fixed mesh friction coefficient (default: ISO/TR 14179-2's, "
@@ -569,7 +580,7 @@ class CrownDesignCase(GearPairGeometry):
     slope_B: Slope | None = Field(None, description="total slope at end B (an off-centre crown only)")
     radius: CrownRadius | None = Field(None, description="check this crown radius instead of designing")
     center_from_B: Length | None = Field(None, description="crown centre of a checked crown")
-    edge_clearance: quantity("length") = Field(0.0, description="margin kept to each end")
+    edge_clearance: SignedLength = Field(0.0, description="margin kept to each end")
     allowable_stress: Modulus | None = None
     material: Material
     gear_material: Material | None = None
@@ -600,7 +611,7 @@ class CrownSpec(Model):
     radius: CrownRadius | None = None
     height: Length | None = None
     shape: Literal["circular", "parabolic"] = "circular"
-    center: quantity("length") = Field(0.0, description="from mid-face toward end B")
+    center: SignedLength = Field(0.0, description="from mid-face toward end B")
 
     @model_validator(mode="after")
     def _one(self):
@@ -618,19 +629,19 @@ class ReliefSpec(Model):
     """A tip relief, or a root relief: a drop growing from its start toward the tip (the
     form circle)."""
 
-    amount: quantity("length", low=0.0) = Field(
+    amount: Annotated[float, quantity("length", low=0.0)] = Field(
         description="drop at the tip (a root relief's: at the form circle), e.g. '10 um'; "
                     "'0 um' for none (a sweep's baseline)")
     start_diameter: Length = Field(description="diameter where the relief begins")
     shape: Literal["linear", "parabolic"] = "linear"
-    blend: quantity("length", low=0.0) | None = Field(
+    blend: Annotated[float, quantity("length", low=0.0)] | None = Field(
         None, description="a linear relief's start blended over this length of the profile "
                           "(roll length), e.g. '0.5 mm'; default 0.2 of the relief's length; "
                           "'0 mm' for a sharp kink")
 
 
 class TipEdgeSpec(Model):
-    radius: quantity("length", low=0.0) | None = Field(
+    radius: Annotated[float, quantity("length", low=0.0)] | None = Field(
         None, description="radius of the rounding that breaks the tip edge, e.g. '0.3 mm'; "
                           "'0 mm' for a sharp edge; with a chamfer, the rounding of the "
                           "chamfer's edge on the flank; none given: 0.1 normal modules, or "
@@ -638,7 +649,7 @@ class TipEdgeSpec(Model):
     chamfer: Length | None = Field(
         None, description="a tip chamfer instead of a rounding: its length along the flank "
                           "from the tip circle to its edge, e.g. '0.2 mm'")
-    angle: quantity("angle", positive=True) = Field(
+    angle: Annotated[float, quantity("angle", positive=True)] = Field(
         math.radians(30.0), description="the tip chamfer's angle to the flank, e.g. '30 deg'")
 
     @model_validator(mode="after")
@@ -652,7 +663,7 @@ class TipEdgeSpec(Model):
 class EndChamferSpec(Model):
     length: Length = Field(description="length along the face from each end face to the "
                                        "chamfer's edge on the flank, e.g. '0.5 mm'")
-    angle: quantity("angle", positive=True) = Field(
+    angle: Annotated[float, quantity("angle", positive=True)] = Field(
         math.radians(45.0), description="the chamfer's angle to the flank, e.g. '45 deg'")
     radius: Length | None = Field(
         None, description="the rounding of the chamfer's edge on the flank, e.g. '0.2 mm'; "
@@ -660,19 +671,19 @@ class EndChamferSpec(Model):
 
 
 class HelixSlopeSpec(Model):
-    amount: quantity("length") = Field(
+    amount: SignedLength = Field(
         description="f_Hβ: material removed at end B relative to end A, e.g. '12 um'; "
                     "negative removes it at end A")
 
 
 class ProfileSlopeSpec(Model):
-    amount: quantity("length") = Field(
+    amount: SignedLength = Field(
         description="f_Hα: material removed at the tip relative to the form circle, e.g. "
                     "'6 um'; negative removes it toward the root")
 
 
 class TwistSpec(Model):
-    amount: quantity("length") = Field(
+    amount: SignedLength = Field(
         description="the profile slope's change from end A to end B (flank twist), e.g. "
                     "'8 um'")
 
@@ -686,7 +697,7 @@ class TopographySpec(Model):
     `deviation_um`) or from a CSV file (its first row the diameters after a label cell, each
     next row a face position and its deviations, µm)."""
 
-    face: list[quantity("length")] | None = Field(
+    face: list[SignedLength] | None = Field(
         None, description="face positions from mid-face toward end B, increasing, e.g. "
                           "['-15 mm', '0 mm', '15 mm']")
     diameter: list[Length] | None = Field(None, description="diameters, increasing")
@@ -760,7 +771,7 @@ class KChartSpec(Model):
     (deviations in µm, positive removing material like a relief), turned into the flank's
     topography grid (Gordon's interpolation: the surface passes through every trace)."""
 
-    profile_face: list[quantity("length")] = Field(
+    profile_face: list[SignedLength] = Field(
         min_length=1, description="face positions of the profile traces, increasing")
     profile_diameter: list[Length] = Field(
         min_length=2, description="diameters along the profile traces, increasing")
@@ -768,7 +779,7 @@ class KChartSpec(Model):
         description="µm, one row per profile trace, one number per profile_diameter")
     lead_diameter: list[Length] = Field(
         min_length=1, description="diameters of the lead traces, increasing")
-    lead_face: list[quantity("length")] = Field(
+    lead_face: list[SignedLength] = Field(
         min_length=2, description="face positions along the lead traces, increasing")
     lead_um: list[list[float]] = Field(
         description="µm, one row per lead trace, one number per lead_face position")
@@ -859,7 +870,7 @@ class EndReliefSpec(Model):
     amount: Length = Field(description="drop at each face end, e.g. '8 um'")
     length: Length = Field(description="length from each end, e.g. '3 mm'")
     shape: Literal["linear", "parabolic"] = "linear"
-    blend: quantity("length", low=0.0) | None = Field(
+    blend: Annotated[float, quantity("length", low=0.0)] | None = Field(
         None, description="a linear relief's starts blended over this length of the face, "
                           "e.g. '1 mm'; default 0.2 of `length`; '0 mm' for a sharp kink")
 
@@ -868,10 +879,10 @@ class ShaftSpec(Model):
     """The member's shaft (shaft.py): bearings and diameters, positions along the axis from
     mid-face toward end B; the mesh force bends it and the body twists over the face."""
 
-    bearings: tuple[quantity("length"), quantity("length")] = Field(
+    bearings: tuple[SignedLength, SignedLength] = Field(
         description="the two bearing positions from mid-face, e.g. ['-80 mm', '40 mm']")
     diameter: Length | None = Field(None, description="one diameter everywhere, e.g. '40 mm'")
-    sections: list[tuple[quantity("length"), quantity("length"), Length]] = Field(
+    sections: list[tuple[SignedLength, SignedLength, Length]] = Field(
         [], description="a stepped shaft: [[from, to, diameter], ...] covering the bearings "
                         "and the face (the gear body a section of its own)")
     E: Modulus | None = Field(None, description="default: the member's material")
@@ -942,16 +953,16 @@ class ExportSpec(Model):
 class MisalignmentSpec(Model):
     slope: Slope = Field(0.0, description="tilt in the plane of action, rad; + closes end B")
     slope_normal: Slope = Field(0.0, description="tilt normal to the plane of action, rad")
-    center_distance_error: quantity("length") = Field(0.0, description="e.g. '0.02 mm'")
-    axial_shift: quantity("length") = Field(0.0, description="of the gear, e.g. '0.5 mm'")
+    center_distance_error: SignedLength = Field(0.0, description="e.g. '0.02 mm'")
+    axial_shift: SignedLength = Field(0.0, description="of the gear, e.g. '0.5 mm'")
 
 
 class DeflectionSpec(Model):
     """Pinion deflection along the face, toward the gear (positive closes the gap)."""
 
     slope: Slope = Field(0.0, description="linear: equivalent slope, rad")
-    bending: quantity("length") = Field(0.0, description="parabolic: value at the face ends")
-    table: list[tuple[quantity("length"), quantity("length")]] = Field(
+    bending: SignedLength = Field(0.0, description="parabolic: value at the face ends")
+    table: list[tuple[SignedLength, SignedLength]] = Field(
         [], description="[[face position, deflection], ...], e.g. [['-15 mm', '0 um']]")
 
 
@@ -1055,7 +1066,7 @@ class SpurCase(GearPairGeometry):
     hand: Literal["right", "left"] = Field("right", description="the pinion's hand")
     face_width: Length = Field(description="e.g. '30 mm'")
     center_distance: Length | None = None
-    backlash: quantity("length", low=0.0) | None = Field(
+    backlash: Annotated[float, quantity("length", low=0.0)] | None = Field(
         None, description="normal backlash j_bn the teeth are thinned for, half on each "
                           "member, e.g. '0.1 mm'; default ISO/TR 10064-2's least recommended "
                           "(2/3)(0.06 + 0.0005·a + 0.03·m_n) mm; '0 mm' for teeth as the rack "
@@ -1105,7 +1116,7 @@ class SplineCase(CaseInfo, ModuleOrPitch):
     root: Literal["flat", "fillet"] = "fillet"
     engaged_length: Length
     tooth_thickness: Length = Field(description="hub tooth thickness T_mod at the crown centre")
-    clearance: quantity("length") = Field(description="dT: sleeve space width minus T_mod")
+    clearance: SignedLength = Field(description="dT: sleeve space width minus T_mod")
     tip_edge: TipEdgeSpec | None = Field(
         None, description="the rounding of the hub's and the sleeve's tooth tips (radius); "
                           "none given: sharp tips")
@@ -1203,11 +1214,11 @@ class WheelSpec(Model):
 
 
 class WormMisalignmentSpec(Model):
-    center_distance_error: quantity("length") = Field(0.0, description="e.g. '0.05 mm'")
+    center_distance_error: SignedLength = Field(0.0, description="e.g. '0.05 mm'")
     shaft_angle_error: Slope = Field(0.0, description="crossing angle - 90 deg, rad")
-    wheel_axial_shift: quantity("length") = Field(0.0, description="along the wheel axis")
+    wheel_axial_shift: SignedLength = Field(0.0, description="along the wheel axis")
     worm_tilt: Slope = Field(0.0, description="worm shaft tilt about its mount, rad")
-    mount: quantity("length") = Field(0.0, description="the mount's axial position on the "
+    mount: SignedLength = Field(0.0, description="the mount's axial position on the "
                                                          "worm, from the mesh")
 
 
@@ -1223,7 +1234,7 @@ class SpringSpec(Model):
     stiffness: Stiffness = Field(description="spring rate, e.g. '30 N/mm'")
     d1: Length = Field(description="mesh to spring, along the worm shaft")
     d2: Length = Field(description="mount to mesh, along the worm shaft")
-    mount_moment: quantity("torque") = Field(description="moment held at the mount")
+    mount_moment: SignedTorque = Field(description="moment held at the mount")
 
 
 class WormCase(CaseInfo):
@@ -1305,12 +1316,12 @@ class AntiRattleSpring(Model):
     stiffness: Stiffness = Field(description="spring rate, e.g. '30 N/mm'")
     d1: Length = Field(description="mesh to spring, along the worm shaft")
     d2: Length = Field(description="mount to mesh, along the worm shaft")
-    mount_moment: quantity("torque") = Field(description="moment held at the mount, e.g. '3.3 N*m'")
-    output_torques: list[quantity("torque")] = Field(min_length=1,
+    mount_moment: SignedTorque = Field(description="moment held at the mount, e.g. '3.3 N*m'")
+    output_torques: list[SignedTorque] = Field(min_length=1,
                                                      description="wheel torques, e.g. ['0 N*m']")
     published_stiffness: Stiffness | None = Field(
         None, description="the source's spring rate, e.g. '30 N/mm'")
-    published_misalignment_at_no_torque: quantity("length") | None = Field(
+    published_misalignment_at_no_torque: SignedLength | None = Field(
         None, description="the source's eq (21) at no output torque, e.g. '-1.10 mm'")
     published_aligned_torque: Torque | None = Field(
         None, description="the output torque where the source's shaft is aligned, "
@@ -1336,7 +1347,7 @@ class PublishedFriction(Model):
 class PublishedEfficiency(Model):
     """An efficiency a source prints (or measured) at an output torque."""
 
-    output_torque: quantity("torque") = Field(description="e.g. '36 N*m'")
+    output_torque: SignedTorque = Field(description="e.g. '36 N*m'")
     eta: Efficiency
 
 
@@ -1448,7 +1459,7 @@ class ImportedCase(CaseInfo):
     pressure_angle: Angle = Field(math.radians(20.0),
                                   description="working transverse pressure angle (the plane "
                                               "of action the slopes refer to), default 20 deg")
-    base_helix_angle: quantity("angle", low=0.0, high=math.radians(60.0)) = Field(
+    base_helix_angle: Annotated[float, quantity("angle", low=0.0, high=math.radians(60.0))] = Field(
         0.0, description="for the normal load, 0 to 60 deg; 0 for spur")
     pinion_phase: Angle = Field(0.0, description="the pinion's turn from its file's position "
                                                  "at the start (default 0: a tooth on the "

@@ -5,7 +5,6 @@ from __future__ import annotations
 import os
 import shlex
 from pathlib import Path
-from typing import Optional
 
 import typer
 
@@ -80,8 +79,15 @@ class _Progress:
 
     def __init__(self, total: int | None, label: str):
         from rich.console import Console
-        from rich.progress import (BarColumn, MofNCompleteColumn, Progress, SpinnerColumn,
-                                   TextColumn, TimeElapsedColumn, TimeRemainingColumn)
+        from rich.progress import (
+            BarColumn,
+            MofNCompleteColumn,
+            Progress,
+            SpinnerColumn,
+            TextColumn,
+            TimeElapsedColumn,
+            TimeRemainingColumn,
+        )
 
         console = Console(stderr=True)
         columns = [SpinnerColumn(), TextColumn("{task.description}")]
@@ -141,7 +147,7 @@ def main(version: bool = typer.Option(False, "--version", callback=_version, is_
 @app.command()
 def run(case: Path = typer.Argument(..., help="case file (TOML), or the name of a bundled "
                                                "case (see `toothcontact cases`)"),
-        out: Optional[Path] = typer.Option(None, "--out", help="output folder [out/<case>]"),
+        out: Path | None = typer.Option(None, "--out", help="output folder [out/<case>]"),
         pictures: bool = typer.Option(True, "--pictures/--no-pictures",
                                       help="render the 3D pictures (spur, spline, worm)")):
     """Analyse CASE: writes result.json, report.md, report.html, plots and pictures.
@@ -179,11 +185,11 @@ def run(case: Path = typer.Argument(..., help="case file (TOML), or the name of 
 @app.command()
 def sweep(file: Path = typer.Argument(..., help="sweep file (TOML, kind = \"sweep\") or a "
                                                   "bundled sweep's name"),
-          out: Optional[Path] = typer.Option(None, "--out", help="output folder [out/<sweep>]"),
-          scheduler: Optional[str] = typer.Option(
+          out: Path | None = typer.Option(None, "--out", help="output folder [out/<sweep>]"),
+          scheduler: str | None = typer.Option(
               None, "--scheduler", help="an existing Dask scheduler, e.g. tcp://HOST:8786 "
                                         "[a local cluster]"),
-          workers: Optional[int] = typer.Option(None, "--workers", min=1,
+          workers: int | None = typer.Option(None, "--workers", min=1,
                                                 help="local workers [the machine's cores]"),
           resume: bool = typer.Option(False, "--resume",
                                       help="skip the samples an earlier run of OUT finished"),
@@ -224,9 +230,9 @@ def sweep(file: Path = typer.Argument(..., help="sweep file (TOML, kind = \"swee
 
 @app.command()
 def render(cases: list[Path] = typer.Argument(..., help="case files (TOML)"),
-           out: Optional[Path] = typer.Option(None, "--out",
+           out: Path | None = typer.Option(None, "--out",
                                               help="output folder; the pictures go to OUT/<case>/ [viz]"),
-           position: Optional[int] = typer.Option(None, "--position",
+           position: int | None = typer.Option(None, "--position",
                                                   help="mesh position of the pair picture "
                                                        "(0 = first roll angle) [nearest roll 0]"),
            exaggerate: float = typer.Option(1.0, "--exaggerate",
@@ -241,7 +247,7 @@ def render(cases: list[Path] = typer.Argument(..., help="case files (TOML)"),
         for case in cases:
             target = (out or Path("viz")) / case.stem
             progress.stage(case.stem)
-            written = _guarded(lambda: runner.render_case(
+            written = _guarded(lambda case=case, target=target: runner.render_case(
                 case, target, position, exaggerate,
                 lambda what: progress.stage(f"{case.stem}: {what}")))
             if written:
@@ -255,7 +261,7 @@ def render(cases: list[Path] = typer.Argument(..., help="case files (TOML)"),
 @app.command()
 def export(cases: list[Path] = typer.Argument(..., help="case files (TOML)"),
            fmt: str = typer.Option("both", "--format", help="step, stl or both"),
-           out: Optional[Path] = typer.Option(None, "--out", help="output folder [geometry/]")):
+           out: Path | None = typer.Option(None, "--out", help="output folder [geometry/]")):
     """Write the parts of each case as STEP/STL (B-spline solids of the exact flanks)."""
     from . import runner
 
@@ -264,7 +270,8 @@ def export(cases: list[Path] = typer.Argument(..., help="case files (TOML)"),
         _fail(f"--format: {fmt!r} is not one of step, stl, both", EXIT_BAD_INPUT)
     for case in cases:
         target = (out or Path("geometry")) / case.stem
-        record = _guarded(lambda: runner.export_case(case, target, formats))
+        record = _guarded(lambda case=case, target=target: runner.export_case(case, target,
+                                                                            formats))
         for name, part in record["parts"].items():
             _say(f"{case.stem}/{name}: {part['built']}, flank deviation "
                  f"{part['flank_deviation_um']:.3f} µm, valid {part['valid']} -> {target}")
@@ -273,29 +280,31 @@ def export(cases: list[Path] = typer.Argument(..., help="case files (TOML)"),
 @app.command()
 def cases():
     """List the bundled cases and sweeps."""
-    from . import case as schema, runner
-    from .sweep.sampling import plan
-
     from rich.console import Console
     from rich.table import Table
+
+    from . import case as schema
+    from . import runner
+    from .sweep.sampling import plan
 
     console = Console(width=200)
     listings = []
     rows = []
     for path in _guarded(runner.bundled_cases):
-        info, _ = _guarded(lambda: schema.load_case(path))
+        info, _ = _guarded(lambda path=path: schema.load_case(path))
         rows.append((path.stem, info.kind, info.title, str(path)))
     listings.append((("name", "kind", "title", "path"), rows,
                      "bundled cases (run one with `toothcontact run NAME`)"))
     rows = []
     for path in _guarded(runner.bundled_sweeps):
-        spec, raw, base = _guarded(lambda: runner.load_sweep(path))
-        rows.append((path.stem, str(len(_guarded(lambda: plan(spec, raw, base.parent)))),
+        spec, raw, base = _guarded(lambda path=path: runner.load_sweep(path))
+        samples = _guarded(lambda spec=spec, raw=raw, base=base: plan(spec, raw, base.parent))
+        rows.append((path.stem, str(len(samples)),
                      spec.title or "", str(path)))
     listings.append((("name", "samples", "title", "path"), rows,
                      "bundled sweeps (run one with `toothcontact sweep NAME`)"))
     if not console.is_terminal:        # piped or captured: one tab-separated line per entry
-        for headers, rows, _ in listings:
+        for _, rows, _ in listings:
             for row in rows:
                 typer.echo("\t".join(row))
         return

@@ -274,10 +274,10 @@ def check(case: dict, document: dict) -> list[str]:
 
 
 def _slope_invariants(case: dict, rows: list[dict]) -> list[str]:
-    """(rows: the pairs in contact) A slope moves a crowned pair's contact toward the end it closes (by about R·theta:
-    checked where that is over 1 mm) and puts an uncrowned pair's touching contacts in edge
-    contact there (where one runs clear of the tips by a module) and not at the other
-    end."""
+    """(rows: the pairs in contact) A slope moves a crowned pair's contact toward the end it
+    closes (by about R·theta: checked where that is over 1 mm) and puts an uncrowned pair's
+    touching contacts in edge contact there (where one runs clear of the tips by a module)
+    and not at the other end."""
     slope = float(case.get("misalignment", {}).get("slope", "0"))
     crown = case.get("pinion", {}).get("crown")
     face = float(case["face_width"].split()[0])

@@ -15,13 +15,26 @@ from pathlib import Path
 import numpy as np
 
 from .analytic.spur_mesh import SpurMesh
-from .case import (CrownSpec, EndChamferSpec, Member, SplineCase, SpurCase, TipEdgeSpec,
-                   WormCase)
-from .modify import (RELIEF_BLEND, Deflection, EndChamfer, EndRelief, FlankModifications,
-                     HelixSlope, LeadCrown, ProfileCrown, ProfileSlope, RootRelief, TipEdge,
-                     TipRelief, Topography, Twist)
+from .case import CrownSpec, EndChamferSpec, Member, SplineCase, SpurCase, TipEdgeSpec, WormCase
 from .surfaces.broken import BrokenEdgeFlank, BrokenWormFlank, ProfileEdgeBreak
 from .surfaces.involute import CylindricalGear, inv
+from .surfaces.modify import (
+    RELIEF_BLEND,
+    Deflection,
+    EndChamfer,
+    EndRelief,
+    FlankModifications,
+    HelixSlope,
+    LeadCrown,
+    ProfileCrown,
+    ProfileSlope,
+    RootRelief,
+    TipEdge,
+    TipRelief,
+    Topography,
+    Twist,
+)
+from .surfaces.placement import Misalignment, ParallelMesh
 from .surfaces.spline import InvoluteSpline
 from .surfaces.wheel import BlankError, WormWheelFlank
 from .surfaces.worm import WormFlank
@@ -75,6 +88,25 @@ class GearPair:
         (ISO 21771)."""
         return (self.operating_backlash * math.cos(self.working_pressure_angle)
                 * math.cos(self.pinion.base_helix_angle))
+
+    def placed(self, misalignment: Misalignment = Misalignment()) -> ParallelMesh:
+        """The pair in mesh (surfaces.placement.ParallelMesh) with `misalignment`: gear tooth
+        0 beside the space that holds pinion tooth 0, on the driven side; a thinned pinion
+        turned forward by its thinning (its working flank where the rack's would be), the
+        gear by the rest of half the backlash (the whole backlash on the back flanks); a
+        coaxial spline keeps its clearance centred: closing it is its lag."""
+        g = self.gear
+        pitch = 2.0 * math.pi / g.teeth
+        forward, close = 0.0, 0.0
+        if self.center_distance > 0.0:
+            p = self.pinion
+            forward = 0.5 * p.thinning / p.pitch_radius
+            r_w1 = self.operating_pitch_radius
+            close = (0.5 * self.operating_backlash - r_w1 * forward) / (r_w1 * g.teeth / p.teeth)
+        start = 0.5 * pitch - close if g.internal else math.pi - 0.5 * pitch + close
+        return ParallelMesh(self.pinion.teeth, g.teeth, self.center_distance,
+                            self.working_pressure_angle, misalignment, g.internal, start,
+                            forward)
 
     def transverse_mesh(self) -> SpurMesh:
         """The transverse line-of-action geometry (contact ratio, LPSTC, ...)."""
@@ -488,9 +520,9 @@ def modifications(member: Member, gear: CylindricalGear, name: str) -> FlankModi
         check_crown_span(crown, gear.face_width, f"{name}.crown")
     lo, hi = sorted((2 * gear.base_radius, 2 * gear.tip_radius))
     tip, root = member.tip_relief, member.root_relief
-    for field, relief in (("tip_relief", tip), ("root_relief", root)):
+    for key, relief in (("tip_relief", tip), ("root_relief", root)):
         if relief is not None and not lo < relief.start_diameter < hi:
-            raise ValueError(f"{name}.{field}.start_diameter: {relief.start_diameter:.4g} mm "
+            raise ValueError(f"{name}.{key}.start_diameter: {relief.start_diameter:.4g} mm "
                              f"must lie between the base diameter {lo:.4g} mm and the tip "
                              f"{hi:.4g} mm")
     if tip is not None and root is not None and \
@@ -578,12 +610,12 @@ def check_slopes(mods: FlankModifications, gear: CylindricalGear, name: str,
     w = np.linspace(-0.5 * gear.face_width, 0.5 * gear.face_width, SLOPE_SAMPLES)
     s = np.linspace(min(s_form, s_tip), max(s_form, s_tip), SLOPE_SAMPLES)
     W, S = np.meshgrid(w, s, indexing="ij")
-    for field in present:
-        drop = FlankModifications(**{field: getattr(mods, field)}).drop(
+    for modification in present:
+        drop = FlankModifications(**{modification: getattr(mods, modification)}).drop(
             W, S, gear.face_width, s_form, s_tip)
         along_face, along_profile = np.gradient(drop, w, s)
         steepest = float(np.max(np.hypot(along_face, along_profile)))
-        table = measured if field == "topography" else SLOPED[field]
+        table = measured if modification == "topography" else SLOPED[modification]
         if not steepest <= limit:
             raise ValueError(f"{name}.{table}: its drop turns the flank by up to "
                              f"{steepest:.3g} rad over the {gear.face_width:.4g} mm face and "
@@ -591,7 +623,7 @@ def check_slopes(mods: FlankModifications, gear: CylindricalGear, name: str,
                              f"at most {limit:g} rad, as a misalignment: a modification is a "
                              "small deviation from the involute and the helix")
         largest, most = float(np.max(np.abs(drop))), TILT_MODULES * gear.normal_module
-        if field in TILTS and not largest <= most:
+        if modification in TILTS and not largest <= most:
             raise ValueError(f"{name}.{table}: its drop reaches ±{largest:.4g} mm over the "
                              f"flank, beyond {TILT_MODULES:g} of the normal module "
                              f"({most:.4g} mm): a slope or twist corrects deviations of tens "
@@ -636,7 +668,7 @@ def k_chart(spec, gear: CylindricalGear, field: str) -> Topography:
     of traces disagree by more than K_CHART_CROSSING_UM where they cross."""
     import warnings
 
-    from .modify import k_chart_grid
+    from .surfaces.modify import k_chart_grid
 
     profile_roll = _rolls(spec.profile_diameter, gear, f"{field}.profile_diameter")
     lead_roll = _rolls(spec.lead_diameter, gear, f"{field}.lead_diameter")
@@ -644,7 +676,7 @@ def k_chart(spec, gear: CylindricalGear, field: str) -> Topography:
                                   spec.lead_face, spec.lead_um)
     if crossing > K_CHART_CROSSING_UM:
         warnings.warn(f"{field}: the profile and lead traces differ by up to {crossing:.2f} µm "
-                      "where they cross; the topography takes their mean there")
+                      "where they cross; the topography takes their mean there", stacklevel=2)
     return Topography(spec.lead_face, profile_roll, grid * 1e-3)
 
 

@@ -159,7 +159,7 @@ def mesh_cycle(result: dict, path: str | Path) -> Path:
         raise ValueError("mesh_cycle: the result has no 'positions' (no contact analysis)")
     by_tooth = result.get("kind") == "spline"
     roll, pair = _column(rows, "roll_deg"), _column(rows, "pair")
-    te, p_max = _column(rows, "transmission_error_urad"), _column(rows, "p_max_MPa")
+    p_max = _column(rows, "p_max_MPa")
     a, b, margin = _column(rows, "a_mm"), _column(rows, "b_mm"), _column(rows, "edge_margin_mm")
     # a pair kept only for the loaded contact (rigid_contact false) has no Hertz contact
     touching = np.array([r.get("rigid_contact", True) for r in rows], bool)
@@ -183,7 +183,7 @@ def mesh_cycle(result: dict, path: str | Path) -> Path:
 
     steps = np.diff(np.unique(x[np.isfinite(x)]))
     step = float(np.min(steps)) if len(steps) else 0.0
-    groups = [g for g in np.unique(group[np.isfinite(group)])]
+    groups = list(np.unique(group[np.isfinite(group)]))
 
     fig = _figure(7.4)
     (ax_te, ax_p), (ax_ab, ax_m) = fig.subplots(2, 2)

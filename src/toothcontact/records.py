@@ -100,7 +100,7 @@ class CaseResult:
     document: dict
 
     @classmethod
-    def from_document(cls, document: dict) -> "CaseResult":
+    def from_document(cls, document: dict) -> CaseResult:
         summary = document.get("summary") if isinstance(document.get("summary"), dict) else {}
         return cls(document["case"], document["kind"], document.get("title") or document["case"],
                    Summary(document["case"], dict(summary)),

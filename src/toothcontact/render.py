@@ -948,15 +948,15 @@ def position_rows(rows: list[dict], position: int | None) -> tuple[int, list[int
 def _nominal_mesh(case, parts):
     """The same set without misalignment (frames to measure the misalignment against), from
     the members the analysis generated."""
-    from .assembly import ParallelMesh, WormMesh
+    from .surfaces.placement import WormMesh
 
     if case.kind == "spur":
-        return ParallelMesh(parts)
+        return parts.placed()
     if case.kind == "spline":
         from .gearset import GearPair
 
-        return ParallelMesh(GearPair(parts.hub, parts.sleeve, parts.hub_modifications,
-                                     parts.sleeve_modifications, 0.0, case.pressure_angle))
+        return GearPair(parts.hub, parts.sleeve, parts.hub_modifications,
+                        parts.sleeve_modifications, 0.0, case.pressure_angle).placed()
     flank = case.load.flank if getattr(case, "load", None) is not None else "left"
     return WormMesh(parts.wheel[flank])
 
@@ -974,7 +974,7 @@ def exaggerated_frame(pinion, gear, pinion0, gear0, factor: float):
     `pinion0`, `gear0` at the same roll and lag; the driver stays where it is. Frames of a
     batch of one. (A rigid motion to the power `factor`: its rotation's angle and its
     translation times `factor`, exact for the small motions of a misalignment.)"""
-    from .assembly import Frame
+    from .surfaces.placement import Frame
 
     def relative(p, g):  # g in p's coordinates
         return p.R[0].T @ g.R[0], p.R[0].T @ (g.origin[0, 0] - p.origin[0, 0])
@@ -1039,7 +1039,7 @@ def pair_scene(result, case, name: str = "", position: int | None = None,
     pinion_frame = cycle.pinion_frames[np.array([k])]
     gear_frame = cycle.gear_frames[np.array([k])]
     if exaggerate != 1.0:
-        from .assembly import Frame
+        from .surfaces.placement import Frame
 
         mesh0 = _nominal_mesh(case, result.parts)
         phi, delta = math.radians(row["roll_deg"]), row["transmission_error_urad"] * 1e-6
@@ -1228,7 +1228,7 @@ def pressure_scene(result, case=None, name: str = "", patch: Patch | None = None
                      **_surface_props())
     crossed = edge_contacts([cycle.rows[k] for k in shown_rows], row_name(case, patch.member))
     edges = _patch_boundary(patch)
-    for edge, line in edges.items():
+    for line in edges.values():
         if len(line) < 2:
             continue
         plotter.add_mesh(pv.lines_from_points(warp(_lift(flank, line, lift))), color=INK,
@@ -1278,7 +1278,7 @@ def geometry_scene(case, parts, name: str = "", bodies: Members | None = None):
     """The members of a spur, spline or worm case without a load (`parts`, as its analysis
     generated them), placed in mesh at roll 0 (nominal, no lag)."""
     pv = _pyvista()
-    from .assembly import Frame
+    from .surfaces.placement import Frame
 
     bodies = bodies or members(pv, case.kind, parts)
     mesh = _nominal_mesh(case, parts)
@@ -1288,7 +1288,8 @@ def geometry_scene(case, parts, name: str = "", bodies: Members | None = None):
     plotter.add_mesh(driver, color=DRIVER_BODY, **_surface_props())
     plotter.add_mesh(driven, color=DRIVEN_BODY, **_surface_props(opacity=0.35))
     names = MEMBER_NAMES[case.kind]
-    _texts(plotter, _title(case, name, f"{names[0]} and {names[1]} ({names[1]} see-through) in mesh, nominal position"),
+    _texts(plotter, _title(case, name, f"{names[0]} and {names[1]} ({names[1]} see-through) "
+                                       "in mesh, nominal position"),
            ["geometry only: the case gives no load, so there is no contact analysis"])
     m = _module_of(case)
     if case.kind == "worm":

@@ -30,7 +30,7 @@ def provenance_of(path: Path) -> dict:
     import datetime
     import hashlib
 
-    return {"run_at_utc": datetime.datetime.now(datetime.timezone.utc).isoformat(
+    return {"run_at_utc": datetime.datetime.now(datetime.UTC).isoformat(
                 timespec="seconds"),
             "case_file": str(path), "case_sha256": hashlib.sha256(path.read_bytes()).hexdigest()}
 

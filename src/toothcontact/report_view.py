@@ -117,7 +117,6 @@ LABELS = {
     "self_locking": "self-locking", "eta_kim_aligned": "efficiency by Kim's eq (2), shaft aligned",
     "mu": "friction coefficient μ", "mu_aligned": "friction coefficient μ (aligned)",
     "found": "interference found at", "back_flanks": "back flanks touching at",
-    "Cp_sqrt_MPa": "elastic coefficient Cp",
     "helix_slope_um": "helix slope modification f_Hβ", "twist_um": "flank twist",
     "profile_slope_um": "profile slope modification f_Hα", "root_relief_um": "root relief",
 }
@@ -421,7 +420,8 @@ def key_results(document: dict) -> list[KeyResult]:
                                 if summary.get("K_H_beta_iso_C") is not None else "")))
     if summary and summary.get("mesh_stiffness_N_per_mm_um") is not None:
         out.append(KeyResult("mesh stiffness c_γα", f"{number(summary['mesh_stiffness_N_per_mm_um'])}"
-                             " N/(mm·µm)", f"ISO 6336-1 {number(summary.get('iso_mesh_stiffness_N_per_mm_um'))}"
+                             " N/(mm·µm)",
+                             f"ISO 6336-1 {number(summary.get('iso_mesh_stiffness_N_per_mm_um'))}"
                              + (f"; single pair {number(summary['single_stiffness_N_per_mm_um'])}"
                                 if summary.get("single_stiffness_N_per_mm_um") is not None else "")
                              + f"; ISO c' {number(summary.get('iso_single_stiffness_N_per_mm_um'))}"))

@@ -14,7 +14,8 @@ from pathlib import Path
 
 import numpy as np
 
-from . import analyses, case as schema, report, writing
+from . import analyses, report, writing
+from . import case as schema
 from .extras import missing_extra
 
 log = logging.getLogger(__name__)
@@ -223,7 +224,8 @@ def run_sweep(path: str | Path, out_dir: str | Path | None = None, *,
     `on_done` each finished record. Returns the statistics and the files written."""
     import shutil
 
-    from .sweep import run as sweep_run, statistics, store
+    from .sweep import run as sweep_run
+    from .sweep import statistics, store
     from .sweep.optimise import check_statistics, designs, optimise
     from .sweep.sampling import plan
 

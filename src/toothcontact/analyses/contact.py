@@ -270,8 +270,14 @@ def _edge_verdicts(cycle, rows: list[dict], summary: dict, result: Result) -> No
 def _edge_note(curved: bool) -> str:
     """What the edge figures mean (the summary's edge_pressure_note); `curved`: a worm
     set's contact lines, crossing the edges, judged by their line load."""
-    from ..contact.loaded import (CORNER_REACH, EDGE_LEAST_SHARE, EDGE_NEIGHBOURHOOD,
-                                  EDGE_PRESSURE_RATIO, EDGE_STRIP, END_LOAD_RATIO)
+    from ..contact.loaded import (
+        CORNER_REACH,
+        EDGE_LEAST_SHARE,
+        EDGE_NEIGHBOURHOOD,
+        EDGE_PRESSURE_RATIO,
+        EDGE_STRIP,
+        END_LOAD_RATIO,
+    )
 
     pressures = (f"edge_pressure_MPa is the pressure averaged over a {EDGE_STRIP} mm strip at "
                  "a sharp edge, the largest on the rounding at a rounded tip (a smooth "

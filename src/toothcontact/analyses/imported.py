@@ -17,9 +17,9 @@ from .result import Result
 def imported_case(case: schema.ImportedCase) -> Result:
     """A pair from the user's STL/STEP bodies: contact over the mesh cycle on the meshes
     (contact.imported). Reads the two body files (named and checked by the case)."""
-    from ..assembly import Misalignment, ParallelMesh
     from ..contact.imported import chordal_error, imported_cycle, teeth_per_turn
     from ..mesh import load_surface
+    from ..surfaces.placement import Misalignment, ParallelMesh
 
     bodies = {}
     for name in ("pinion", "gear"):
@@ -47,9 +47,9 @@ def imported_case(case: schema.ImportedCase) -> Result:
         bodies["pinion"] = bodies["pinion"].turned(case.pinion_phase)
     z1, z2 = case.pinion.teeth, case.gear.teeth
     m = case.misalignment
-    mesh = ParallelMesh.of_layout(z1, z2, case.center_distance, case.pressure_angle,
-                                  Misalignment(m.slope, m.slope_normal, m.center_distance_error,
-                                               m.axial_shift), gear_start=case.gear_phase)
+    mesh = ParallelMesh(z1, z2, case.center_distance, case.pressure_angle,
+                        Misalignment(m.slope, m.slope_normal, m.center_distance_error,
+                                     m.axial_shift), gear_start=case.gear_phase)
     pitch_radius = case.center_distance * z1 / (z1 + z2)
     wt = case.load.tangential_load or case.load.torque / pitch_radius
     normal_load = wt / (math.cos(case.pressure_angle) * math.cos(case.base_helix_angle))

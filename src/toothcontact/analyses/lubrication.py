@@ -85,7 +85,7 @@ def lubrication_sections(case, running: LubricatedPair, mesh, result: Result) ->
         row.update(_kinematics(motion, k, running.names))
         if loaded[k] is None:
             known = row.get("bem_status") == "unloaded"
-            row.update({key: None for key in LOADED_KEYS}, power_loss_W=0.0 if known else None)
+            row.update(dict.fromkeys(LOADED_KEYS), power_loss_W=0.0 if known else None)
             continue
         row.update(_lubricated(cycle, k, row, loaded[k], motion, across[k], fluid))
     _summary(case, running, result, fluid, nu, density_15)
@@ -179,7 +179,7 @@ def _lubricated(cycle, k: int, row: dict, contact, motion, across: np.ndarray, f
         # no relative radius across the contact (a flank turned onto an edge): neither
         # film nor ISO's μ holds there; a given μ still heats it
         if fluid.friction is None:
-            return {key: None for key in LOADED_KEYS}
+            return dict.fromkeys(LOADED_KEYS)
         radius = None
     else:
         radius = 0.5 / row["B_analytic_per_mm"]

@@ -195,7 +195,7 @@ def iso_rating_sections(case, pair, result: Result) -> None:
     for name, least in (("S_Hmin", rules.S_Hmin), ("S_Fmin", rules.S_Fmin)):
         if name not in rules.model_fields_set:
             assumptions.append(f"{name} = {least:g} (not given)")
-    symbols = {key: symbol for key, symbol in GIVEN_FACTORS.values()}
+    symbols = dict(GIVEN_FACTORS.values())
     summary.update(rating.values())
     summary["rating_factors_given"] = [symbols[key] for key in given]
     _flank_pressure(summary, result)
@@ -304,12 +304,12 @@ def duty_cycle_sections(case, result: Result, run_level) -> None:
         strengths = {
             "flank": (f"sigma_H_{name}_MPa", product(f"sigma_Hlim_{name}_MPa", "Z_L", "Z_v",
                                                      "Z_R", "Z_W", "Z_X"),
-                      lambda f: contact_cycles(material.treatment, f,
-                                               case.rating.limited_pitting)),
+                      lambda f, material=material: contact_cycles(
+                          material.treatment, f, case.rating.limited_pitting)),
             "root": (f"sigma_F_{name}_MPa", product(f"sigma_Flim_{name}_MPa", "Y_ST",
                                                     f"Y_delta_rel_T_{name}",
                                                     f"Y_R_rel_T_{name}", f"Y_X_{name}"),
-                     lambda f: root_cycles(material.treatment, f))}
+                     lambda f, material=material: root_cycles(material.treatment, f))}
         for kind, (stress_key, strength, cycles_of) in strengths.items():
             key = f"miner_sum_{kind}_{name}"
             if strength is None or any(r[stress_key] is None for r in rows):

@@ -6,7 +6,7 @@ from __future__ import annotations
 import math
 
 from .. import case as schema
-from ..analytic import crown, hertz, spline
+from ..analytic import hertz
 from ..case import CaseError
 from . import contact
 from .result import Check, Result
@@ -54,15 +54,15 @@ def spline_geometry_case(case: schema.SplineCase) -> Result:
 
 def _spline_contact(case: schema.SplineCase, pair, result: Result, phase: float = 0.0) -> None:
     """Every tooth of the spline under the angular misalignment: a coaxial pair of ratio 1
-    (assembly.ParallelMesh with zero centre distance), the sleeve tilted about the normal of
+    (surfaces.placement.ParallelMesh with zero centre distance), the sleeve tilted about the normal of
     tooth 0's plane of action; the lag closes the clearance."""
-    from ..assembly import Misalignment, ParallelMesh
     from ..contact.cycle import parallel_cycle
     from ..gearset import GearPair, working_flank
+    from ..surfaces.placement import Misalignment
 
     coaxial = GearPair(pair.hub, pair.sleeve, pair.hub_modifications, pair.sleeve_modifications,
                        0.0, case.pressure_angle)
-    mesh = ParallelMesh(coaxial, Misalignment(slope=case.misalignment))
+    mesh = coaxial.placed(Misalignment(slope=case.misalignment))
     hub = working_flank(pair.hub, pair.hub_modifications, 1)
     sleeve = working_flank(pair.sleeve, pair.sleeve_modifications, mesh.gear_side)
     wt = case.torque / (0.5 * pair.spline.pitch_diameter)

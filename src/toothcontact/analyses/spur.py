@@ -37,7 +37,7 @@ def spur_geometry_case(case: schema.SpurCase) -> Result:
                and getattr(getattr(case, name), kind).shape == "linear"
                and getattr(getattr(case, name), kind).blend is None]
     if blended:
-        from ..modify import RELIEF_BLEND
+        from ..surfaces.modify import RELIEF_BLEND
 
         result.notes.append(f"relief starts: {', '.join(blended)} blended over "
                             f"{RELIEF_BLEND:g} of the relief's length (the default; a ground "
@@ -297,12 +297,12 @@ def contact_cycle(case: schema.SpurCase, pair, phase: float = 0.0):
     """The pair's contact cycle under the case's load and misalignment (positions shifted by
     `phase` of a step), with the tooth pairs the loaded contact may bring in: the mesh, the
     cycle and (tangential load N, normal load N, the pair's Hertz compliance C_E)."""
-    from ..assembly import Misalignment, ParallelMesh
     from ..contact.cycle import parallel_cycle
     from ..gearset import working_flank
+    from ..surfaces.placement import Misalignment
 
     m = case.misalignment
-    mesh = ParallelMesh(pair, Misalignment(m.slope, m.slope_normal, m.center_distance_error,
+    mesh = pair.placed(Misalignment(m.slope, m.slope_normal, m.center_distance_error,
                                            m.axial_shift))
 
     pinion = working_flank(pair.pinion, pair.pinion_loaded_modifications, 1)

@@ -241,8 +241,8 @@ def _worm_contact(case: schema.WormCase, parts, result: Result, phase: float = 0
     """Contact of the loaded flank pair (`[load] flank`) over one mesh cycle, with seed 001's
     anti-rattle-spring tilt of the worm shaft when a spring is given; the mesh that placed
     it."""
-    from ..assembly import WormMesh, WormMisalignment
     from ..contact.cycle import parallel_cycle
+    from ..surfaces.placement import WormMesh, WormMisalignment
 
     worm, wheel = parts.worm[case.load.flank], parts.wheel[case.load.flank]
     torque = case.load.output_torque
@@ -311,9 +311,9 @@ def _shaft_bent(case: schema.WormCase, worm, wheel, normal_load: float, alpha_n:
     crossing angle. The `worm_shaft` section says how much; DIN 3996's limit on the
     deflection is not coded (its formula was not at hand: the references hold only that
     the standard bounds it)."""
-    from ..assembly import WormMesh, WormMisalignment
     from ..gearset import shaft_of
     from ..shaft import POINTS, beam_deflection
+    from ..surfaces.placement import WormMesh, WormMisalignment
 
     half = 0.5 * wheel.face_width
     try:

@@ -26,7 +26,7 @@ def worm_efficiency_case(case: schema.WormEfficiencyCase) -> Result:
     alpha_n = case.normal_pressure_angle
     result = Result()
     rows = []
-    for i, cond in enumerate(case.conditions or [None]):
+    for cond in case.conditions or [None]:
         if cond is None:
             Y_VISC, mu = 1.0, case.mu_zm if case.mu_zm is not None else worm_efficiency.mean_friction(
                 **case.din3996.model_dump())
@@ -93,7 +93,8 @@ def _published_checks(cond: schema.Condition, eta_z: float, gamma: float) -> lis
     at = f"at {cond.temperature:g} °C"
     checks = []
     if cond.published_eta_z is not None:
-        checks.append(Check(f"eta_z {at} matches the published value", abs(eta_z - cond.published_eta_z) <= 0.01,
+        checks.append(Check(f"eta_z {at} matches the published value",
+                            abs(eta_z - cond.published_eta_z) <= 0.01,
                             f"computed {eta_z:.3f}, published {cond.published_eta_z:.3f} (tolerance 0.01)",
                             "source"))
         if cond.published_mu_zm is not None:

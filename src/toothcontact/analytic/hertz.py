@@ -7,8 +7,8 @@ h = A·x² + B·y² with A <= B, so the long semi-axis a lies along x. Units: mm
 Sources:
 - Johnson, K.L., *Contact Mechanics*, Cambridge University Press 1985, §4.2, eqs (4.36)-(4.39)
   (exact ellipse from the complete elliptic integrals) and §4.1, eq (4.45) (line contact).
-- Young, W.C., *Roark's Formulas for Stress and Strain*, 6th ed. 1989, Table 33 case 4 (Table 14.1 in the 7th ed.), as
-  quoted in seed 003 (Wang & El-Bayoumy 2009) eqs (6)-(11).
+- Young, W.C., *Roark's Formulas for Stress and Strain*, 6th ed. 1989, Table 33 case 4
+  (Table 14.1 in the 7th ed.), as quoted in seed 003 (Wang & El-Bayoumy 2009) eqs (6)-(11).
 """
 
 from __future__ import annotations

@@ -6,7 +6,6 @@ from __future__ import annotations
 
 import math
 
-
 #: the least sum of the tangential speeds at the pitch point (m/s) for which ISO/TR
 #: 14179-2's μ is taken: an assumed bound, not from the standard's text (not at hand), which
 #: fits gears running in an elastohydrodynamic film (Schlenk's FZG tests ran at metres per

@@ -9,6 +9,6 @@ from .parts import SOLID_KINDS, build_parts
 from .wheel import WheelBody, build_wheel
 from .worm import WormBody, build_worm, worm_flank_deviation
 
-__all__ = ["GearBody", "RING_RIM_MODULES", "SOLID_KINDS", "build_parts", "WheelBody", "WormBody", "build_gear", "build_wheel",
-           "build_worm", "flank_deviation", "is_valid", "read_step", "tessellate", "volume",
-           "worm_flank_deviation", "write_mesh", "write_step"]
+__all__ = ["GearBody", "RING_RIM_MODULES", "SOLID_KINDS", "build_parts", "WheelBody", "WormBody",
+           "build_gear", "build_wheel", "build_worm", "flank_deviation", "is_valid", "read_step",
+           "tessellate", "volume", "worm_flank_deviation", "write_mesh", "write_step"]

@@ -98,7 +98,8 @@ def tessellate(shape, tolerance: float = 0.005, angular: float = 0.2):
         transform = location.Transformation()
         nodes = np.array([[*(lambda p: (p.X(), p.Y(), p.Z()))(
             triangulation.Node(i).Transformed(transform))] for i in range(1, triangulation.NbNodes() + 1)])
-        tris = np.array([triangulation.Triangle(i).Get() for i in range(1, triangulation.NbTriangles() + 1)]) - 1
+        tris = np.array([triangulation.Triangle(i).Get()
+                         for i in range(1, triangulation.NbTriangles() + 1)]) - 1
         if face.Orientation() == TopAbs_REVERSED:
             tris = tris[:, ::-1]
         vertices.append(nodes)

@@ -13,11 +13,21 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ..modify import FlankModifications
 from ..surfaces.involute import CylindricalGear
+from ..surfaces.modify import FlankModifications
 from ..surfaces.outline import ToothOutline
-from .loft import (LoftedBody, arc, chord_parameters, fused, generated_face, half_root_arc,
-                   interpolated, loft, patterned_wire, sector_closure)
+from .loft import (
+    LoftedBody,
+    arc,
+    chord_parameters,
+    fused,
+    generated_face,
+    half_root_arc,
+    interpolated,
+    loft,
+    patterned_wire,
+    sector_closure,
+)
 
 #: radial thickness of a ring gear's rim below its root circle, in normal modules
 RING_RIM_MODULES = 3.0

@@ -28,9 +28,9 @@ def interpolated(points: np.ndarray, params: np.ndarray):
     so corresponding curves share their knots and the loft stays compact."""
     from OCP.BRepBuilderAPI import BRepBuilderAPI_MakeEdge
     from OCP.GeomAPI import GeomAPI_Interpolate
-    from OCP.TColStd import TColStd_HArray1OfReal
-    from OCP.TColgp import TColgp_HArray1OfPnt
     from OCP.gp import gp_Pnt
+    from OCP.TColgp import TColgp_HArray1OfPnt
+    from OCP.TColStd import TColStd_HArray1OfReal
 
     array = TColgp_HArray1OfPnt(1, len(points))
     parameters = TColStd_HArray1OfReal(1, len(points))
@@ -153,8 +153,8 @@ def flank_deviation(body, per_interval: int = 2) -> float:
     `fit_u`, `fit_v`) to its B-spline faces, at points between the fitting points (profile)
     and between the sections (face width) of each segment."""
     from OCP.BRep import BRep_Tool
-    from OCP.ShapeAnalysis import ShapeAnalysis_Surface
     from OCP.gp import gp_Pnt
+    from OCP.ShapeAnalysis import ShapeAnalysis_Surface
 
     u = _between(body.fit_u, per_interval)
     worst = 0.0

@@ -24,7 +24,8 @@ def build_parts(case) -> dict:
                  "gear": (pair.gear, pair.gear_modifications)}
     elif case.kind == "spline":
         pair = gearset.spline_pair(case)
-        gears = {"hub": (pair.hub, pair.hub_modifications), "sleeve": (pair.sleeve, pair.sleeve_modifications)}
+        gears = {"hub": (pair.hub, pair.hub_modifications),
+                 "sleeve": (pair.sleeve, pair.sleeve_modifications)}
     else:
         raise ValueError(f"kind {case.kind!r} has no solids; solids exist for {SOLID_KINDS}")
     return {name: build_gear(gear, mods, teeth=_sector(case, gear)) for name, (gear, mods) in gears.items()}

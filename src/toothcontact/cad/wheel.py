@@ -15,8 +15,17 @@ import numpy as np
 
 from ..surfaces.outline import polar
 from ..surfaces.wheel import WormWheelFlank
-from .loft import (LoftedBody, arc, chord_parameters, generated_face, half_root_arc,
-                   interpolated, loft, patterned_wire, sector_closure)
+from .loft import (
+    LoftedBody,
+    arc,
+    chord_parameters,
+    generated_face,
+    half_root_arc,
+    interpolated,
+    loft,
+    patterned_wire,
+    sector_closure,
+)
 
 
 class WheelBody(LoftedBody):

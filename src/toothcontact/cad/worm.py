@@ -21,6 +21,7 @@ import numpy as np
 from ..surfaces.worm import WormFlank
 from .loft import chord_parameters, interpolated
 
+
 @dataclass
 class WormBody:
     """A built worm: the OCP solid and its two exact flanks (left, right)."""
@@ -39,11 +40,10 @@ class WormBody:
 
 def build_worm(left: WormFlank, right: WormFlank, profile_points: int = 17) -> WormBody:
     """Solid worm of `left.length`, centred at z = 0, with all its starts."""
+    from OCP.BOPAlgo import BOPAlgo_GlueFull
     from OCP.BRepAlgoAPI import BRepAlgoAPI_Common, BRepAlgoAPI_Fuse
     from OCP.BRepPrimAPI import BRepPrimAPI_MakeCylinder
     from OCP.gp import gp_Ax2, gp_Dir, gp_Pnt
-
-    from OCP.BOPAlgo import BOPAlgo_GlueFull
     from OCP.TopTools import TopTools_ListOfShape
 
     rf, ra = left.root_diameter / 2, left.domain[0][1]
@@ -73,13 +73,12 @@ def _swept_thread(left: WormFlank, right: WormFlank, n: int, z0: float, turns: i
     lines from a form circle above the root down to it) at z0,
     a whole number of leads below the thread centred at z = 0, turned by `angle`, swept along
     `turns` turns of a helix."""
-    from OCP.BRepBuilderAPI import (BRepBuilderAPI_MakeEdge, BRepBuilderAPI_MakeWire,
-                                    BRepBuilderAPI_Transform)
+    from OCP.BRepBuilderAPI import BRepBuilderAPI_MakeEdge, BRepBuilderAPI_MakeWire, BRepBuilderAPI_Transform
     from OCP.BRepOffsetAPI import BRepOffsetAPI_MakePipeShell
     from OCP.gp import gp_Ax1, gp_Dir, gp_Pnt, gp_Trsf, gp_Vec
     from OCP.TopoDS import TopoDS
 
-    (r0, ra), root = left.domain[0], left.root_diameter / 2
+    (r0, _), root = left.domain[0], left.root_diameter / 2
     (r_left, z_left), (r_right, z_right) = left.axial_section(n), right.axial_section(n)
     pts_left = np.column_stack([r_left, 0 * r_left, z_left])
     pts_right = np.column_stack([r_right, 0 * r_right, z_right])
@@ -145,9 +144,9 @@ def worm_flank_deviation(body: WormBody, nu: int = 7, nv: int = 13) -> float:
     10 % of its length from the edges) to the solid's boundary faces, both flanks."""
     from OCP.BRepBuilderAPI import BRepBuilderAPI_MakeVertex
     from OCP.BRepExtrema import BRepExtrema_DistShapeShape
+    from OCP.gp import gp_Pnt
     from OCP.TopAbs import TopAbs_SHELL
     from OCP.TopExp import TopExp_Explorer
-    from OCP.gp import gp_Pnt
 
     shell = TopExp_Explorer(body.solid, TopAbs_SHELL).Current()
     worst = 0.0

@@ -543,18 +543,18 @@ class StructureOperator:
         self._gather, self._spread = gather, gather.T
         self._split = np.cumsum(sizes)[:-1]
 
-    def window(self, rows: slice, cols: slice) -> "StructureOperator":
+    def window(self, rows: slice, cols: slice) -> StructureOperator:
         """The operator on the part [rows, cols] of the grid (for loads there alone)."""
         return self._part((rows, cols), self.cell)
 
-    def coarsened(self, steps: tuple[int, int]) -> "StructureOperator":
+    def coarsened(self, steps: tuple[int, int]) -> StructureOperator:
         """The operator on the grid taken every steps[0]-th cell along axis 0 and every
         steps[1]-th along axis 1 (cells steps[0]·steps[1] times larger), for a coarse first
         solve."""
         s0, s1 = steps
         return self._part((slice(None, None, s0), slice(None, None, s1)), self.cell * s0 * s1)
 
-    def _part(self, index: tuple[slice, slice], cell: float) -> "StructureOperator":
+    def _part(self, index: tuple[slice, slice], cell: float) -> StructureOperator:
         """The operator on the grid's cells [index], of area `cell` (mm²): the grid's own
         node weights there."""
         cells = np.arange(self.shape[0] * self.shape[1]).reshape(self.shape)[index]
@@ -569,7 +569,7 @@ class StructureOperator:
                                       zip(self.members, np.split(loads, self._split))])
         return (self._gather @ deflections).reshape(self.shape)
 
-    def face_loads(self) -> tuple["FaceLoad", ...]:
+    def face_loads(self) -> tuple[FaceLoad, ...]:
         """Where the grid's cells sit along each member's face and at what load radius (the
         members in order); of a whole grid's operator (a window or a coarsened grid keeps
         the whole grid's members)."""

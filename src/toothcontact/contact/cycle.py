@@ -25,8 +25,8 @@ from dataclasses import dataclass, fields, replace
 import numpy as np
 
 from ..analytic.hertz import hertz_line, hertz_point
-from ..assembly import Frame
 from ..surfaces.base import Flank
+from ..surfaces.placement import Frame
 from .ellipse import arc_to_edge, edge_margins
 from .field import EaseOff, ease_off, rigid_patterns
 from .line import contact_lines
@@ -139,7 +139,7 @@ def parallel_cycle(mesh, pinion: Flank, gear: Flank, normal_load: float,
     """One entry per mesh position and tooth pair in contact (see module docstring).
 
     `mesh` places the driver ("pinion": a pinion or a worm) and the driven member ("gear":
-    a gear or a worm wheel): assembly.ParallelMesh or assembly.WormMesh. The search runs on
+    a gear or a worm wheel): surfaces.placement.ParallelMesh or WormMesh. The search runs on
     all positions and pairs at once."""
     start = time.perf_counter()
     (u0, u1), (v0, v1) = pinion.domain

@@ -1,4 +1,4 @@
-"""The contact ellipse held against the flank's edges (DESIGN.md principle 4).
+"""The contact ellipse held against the flank's edges (docs/DESIGN.md principle 4).
 
 The ellipse lies in the common tangent plane; each of its boundary points is carried onto a
 flank along the common normal, and its parameters are compared with the flank's domain.
@@ -12,8 +12,8 @@ from __future__ import annotations
 
 import numpy as np
 
-from ..assembly import Frame
 from ..surfaces.base import Flank
+from ..surfaces.placement import Frame
 from .local import TangentPlanes
 from .rays import intersect
 

@@ -28,8 +28,8 @@ from functools import lru_cache
 
 import numpy as np
 
-from ..assembly import Frame
 from ..surfaces.base import Flank
+from ..surfaces.placement import Frame
 from .local import TangentPlanes, face_length, heights, planes_at, turned
 from .rays import RayHits
 from .search import separation

@@ -13,7 +13,7 @@ temperatures are equal (Blok, 1937). Units: W/m², m/s, mm, W·s^0.5/(m²·K), K
 
 from __future__ import annotations
 
-from typing import Callable
+from collections.abc import Callable
 
 import numpy as np
 from scipy.ndimage import map_coordinates

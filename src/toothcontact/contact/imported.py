@@ -40,8 +40,8 @@ from dataclasses import dataclass
 import numpy as np
 
 from ..analytic.hertz import hertz_line, hertz_point
-from ..assembly import ParallelMesh
-from ..mesh import TriangleSurface
+from ..surfaces.placement import ParallelMesh
+from ..surfaces.triangles import TriangleSurface
 from .cycle import CycleSettings, mesh_positions
 
 #: band (mm) of the gear's reach beyond its outer radius in which pinion flanks are probed
@@ -257,8 +257,8 @@ class _Least:
 
 def _least_across(profile: _Profiles, gap: np.ndarray, part: np.ndarray) -> _Least:
     """The least separation of every profile from the separations `gap` of its points
-    (whose closest points lie squarely on the gear's faces `part`, -1: on a crease): the vertex of the parabola
-    through its least point and the nearest point on either side at least DISTINCT away
+    (whose closest points lie squarely on the gear's faces `part`, -1: on a crease): the
+    vertex of the parabola through its least point and the nearest point on either side at least DISTINCT away
     (sections cross edges that nearly meet at the face ends), held between them; the least
     point itself at a profile's end, where the parabola does not open upward, or where the
     three points' closest points are not on one face of the gear (the gap has a kink where
@@ -681,10 +681,10 @@ def _add_profile_margins(rows: list[dict], placed: list[list[_Placed]], bodies: 
                          edges: dict) -> None:
     """Each row's margins to both bodies' tip circles (and form circles where known), then
     its least margin (`edge_margin_mm`, any edge) and whether a face end cuts its pattern
-    (`edge_contact`, `edge_contact_at`: the face end that cuts most): the length along the body's transverse profile from the
-    contact (the least of a line's ends and least point) to the circle (walked on the mesh
-    for all rows at once, to within each body's chordal error of the circle), less the
-    ellipse's reach along it."""
+    (`edge_contact`, `edge_contact_at`: the face end that cuts most): the length along the
+    body's transverse profile from the contact (the least of a line's ends and least point)
+    to the circle (walked on the mesh for all rows at once, to within each body's chordal
+    error of the circle), less the ellipse's reach along it."""
     flat = [c for group in placed for c in group]
     owner = np.repeat(np.arange(len(placed)), [len(group) for group in placed])
     for name, surface in bodies.items():

@@ -56,7 +56,7 @@ class ContactMotion:
 
 def contact_motion(mesh, cycle, driver_speed: float) -> ContactMotion:
     """The motion at every row of `cycle` (contact.cycle.ContactCycle) placed by `mesh`
-    (assembly.ParallelMesh or WormMesh), the driver turning at `driver_speed` (rpm) the way
+    (surfaces.placement.ParallelMesh or WormMesh), the driver turning at `driver_speed` (rpm) the way
     the mesh turns it; the gear at its row's transmission error."""
     omega = driver_speed * 2.0 * math.pi / 60.0
     point, normal = cycle.planes.point, cycle.planes.normal
@@ -64,8 +64,8 @@ def contact_motion(mesh, cycle, driver_speed: float) -> ContactMotion:
     for k, row in enumerate(cycle.rows):
         phi, pair = math.radians(row["roll_deg"]), row["pair"]
         delta = float(cycle.gear_turn[k])
-        placements = {"pinion": lambda t: mesh.pinion_frame(t, pair),
-                      "gear": lambda t: mesh.gear_frame(t, pair, delta)}
+        placements = {"pinion": lambda t, pair=pair: mesh.pinion_frame(t, pair),
+                      "gear": lambda t, pair=pair, delta=delta: mesh.gear_frame(t, pair, delta)}
         for name, frame in placements.items():
             here, ahead, behind = frame(phi), frame(phi + TURN_STEP), frame(phi - TURN_STEP)
             dR = (ahead.R - behind.R) / (2.0 * TURN_STEP)

@@ -28,13 +28,12 @@ Units: mm.
 from __future__ import annotations
 
 import math
-
 from dataclasses import dataclass
 
 import numpy as np
 
-from ..assembly import Frame
 from ..surfaces.base import Flank
+from ..surfaces.placement import Frame
 from .ellipse import arc_to_edge
 from .field import FAR, GapField, gap_fields
 from .local import TangentPlanes, planes_at

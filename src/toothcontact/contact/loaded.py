@@ -30,19 +30,26 @@ A contact that spans too few cells across its field is solved again on a narrowe
 
 from __future__ import annotations
 
-import math
 import dataclasses
+import math
 from dataclasses import dataclass
 
 import numpy as np
 
 from ..parallel import parallel_map
 from .compliance import FaceLoad, PairCompliance
-from .field import (LOADED_FAR, FieldSamples, GapField, contact_samples, is_face_end,
-                    pattern_semi_axes)
+from .field import LOADED_FAR, FieldSamples, GapField, contact_samples, is_face_end, pattern_semi_axes
 from .local import face_length
-from .pressure import (ContactSolution, EdgeLoad, FreeEnd, Grid, GridEdgeError,
-                       ObliqueFreeEnd, free_end_factor, solve_shared)
+from .pressure import (
+    ContactSolution,
+    EdgeLoad,
+    FreeEnd,
+    Grid,
+    GridEdgeError,
+    ObliqueFreeEnd,
+    free_end_factor,
+    solve_shared,
+)
 
 #: width (mm) of the strip at an edge over which the edge pressure is averaged
 EDGE_STRIP = 0.1
@@ -451,13 +458,14 @@ def chamfered_ends(field: GapField, chamfers: dict[str, float], before: float = 
 def end_load_ratio(field: GapField, s: ContactSolution, member: str, end: str,
                    chamfer: float | None = None, mean: float | None = None) -> float:
     """A face end's load ratio (END_LOAD_RATIO): the load per mm of face in the last
-    EDGE_STRIP of the member's flank before its end `end` ("A" or "B") over `mean` (N per
-    mm of face: its position's load over the face width, the share the end would carry of
-    an even spread), or without one over the contact's mean load per mm of face over its
-    extent in contact; 0 where the end is not in the field. With a `chamfer` (where its rounded edge starts, mm from mid-face either way) the
-    strip is the last EDGE_STRIP before that start, and the stretch of the contact beyond
-    it, on the rounded edge (the stretch its loaded cells cover wholly: within a cell, where
-    the contact ends is not known), is added to the strip's width.
+    EDGE_STRIP of the member's flank before its end `end` ("A" or "B") over `mean` (N per mm
+    of face: its position's load over the face width, the share the end would carry of an
+    even spread), or without one over the contact's mean load per mm of face over its extent
+    in contact; 0 where the end is not in the field. With a `chamfer` (where its rounded
+    edge starts, mm from mid-face either way) the strip is the last EDGE_STRIP before that
+    start, and the stretch of the contact beyond it, on the rounded edge (the stretch its
+    loaded cells cover wholly: within a cell, where the contact ends is not known), is added
+    to the strip's width.
 
     Distances along the face are the member's own (its face coordinate's distance from the
     end over that coordinate's gradient in the field's plane, mm), whatever the field's
@@ -654,7 +662,7 @@ def loaded_cycle(cycle, C_E: float, points: int = 128, teeth: PairCompliance | N
 
     for ks, answer in zip(groups, parallel_map(position, len(groups))):
         if isinstance(answer, str):
-            failed.update({k: answer for k in ks})
+            failed.update(dict.fromkeys(ks, answer))
             continue
         for k, (field, faces, solution, summary) in zip(ks, answer):
             if solution is not None:
@@ -1075,7 +1083,8 @@ def _share(pairs: list[_Pair], load: float, E_star: float) -> list[ContactSoluti
             if pairs[0].structure is not None:
                 coarse = _precise_enough([p.grid(coarse=True) for p in pairs], loads, E_star,
                                          tol=COARSE_TOLERANCE)
-                if any([p.sharpen(s, p.steps) for p, s in zip(pairs, coarse)]):
+                sharpened = [p.sharpen(s, p.steps) for p, s in zip(pairs, coarse)]   # every one
+                if any(sharpened):
                     continue
                 starts = [p.refined(s) for p, s in zip(pairs, coarse)]
                 loads = np.array([0.0 if s is None else s.load_N for s in coarse])
@@ -1094,17 +1103,19 @@ def _share(pairs: list[_Pair], load: float, E_star: float) -> list[ContactSoluti
                     outgrown.append(error)
             if len(outgrown) == len(exc.reached):
                 if wide is None:
-                    raise outgrown[0]
+                    raise outgrown[0] from exc
                 return _widened(pairs, wide)
             continue
         except RuntimeError:
             if wide is None:
                 raise
             return _widened(pairs, wide)
-        if any([pair.sharpen(s) for pair, s in zip(pairs, solutions)]):
+        sharpened = [pair.sharpen(s) for pair, s in zip(pairs, solutions)]       # every one
+        if any(sharpened):
             continue
         found_on = [pair.field for pair in pairs]
-        if not any([pair.narrow(s) for pair, s in zip(pairs, solutions)]):
+        narrowed = [pair.narrow(s) for pair, s in zip(pairs, solutions)]
+        if not any(narrowed):
             return solutions
         wide = (solutions, found_on)
         loads = np.array([0.0 if s is None else s.load_N for s in solutions])

@@ -15,8 +15,8 @@ from dataclasses import dataclass
 import numpy as np
 
 from ..analytic.hertz import RelativeCurvature, relative_curvature
-from ..assembly import Frame
 from ..surfaces.base import GUESS_SAMPLES, Flank
+from ..surfaces.placement import Frame
 from .rays import RayHits, intersect
 
 

@@ -156,7 +156,7 @@ class InfluenceOperator:
         self._inverse: dict = {}
         self._parts: dict = {}
 
-    def part(self, shape: tuple[int, int]) -> "InfluenceOperator":
+    def part(self, shape: tuple[int, int]) -> InfluenceOperator:
         """The operator of a part of this grid, `shape` cells (its coefficients taken from
         this operator's; kept for the next call with the same shape)."""
         shape = (int(shape[0]), int(shape[1]))
@@ -590,7 +590,7 @@ class FreeEnd:
     weight: float
     reach_mm: float
 
-    def shifted(self, rows: slice, cols: slice) -> "FreeEnd":
+    def shifted(self, rows: slice, cols: slice) -> FreeEnd:
         """The same end on a part of the grid starting at (rows.start, cols.start)."""
         start = (rows, cols)[self.axis].start or 0
         return FreeEnd(self.axis, self.index - start, self.side, self.weight, self.reach_mm)
@@ -599,7 +599,7 @@ class FreeEnd:
         """Weights of the `count` cells inward from the end (step mm each): see end_taper."""
         return end_taper((np.arange(count) + 0.5) * step / self.reach_mm)
 
-    def add_mirror(self, u: np.ndarray, p: np.ndarray, op: "InfluenceOperator",
+    def add_mirror(self, u: np.ndarray, p: np.ndarray, op: InfluenceOperator,
                    spacing: tuple[float, float], single: bool) -> None:
         """Adds the mirror term of the pressure p (MPa, the grid's shape) to the displacement
         u (mm for E* = 1 MPa, the grid's shape; in place), `op` the grid's half-space."""
@@ -660,13 +660,13 @@ class ObliqueFreeEnd:
     weight: float
     reach_mm: float
 
-    def shifted(self, rows: slice, cols: slice) -> "ObliqueFreeEnd":
+    def shifted(self, rows: slice, cols: slice) -> ObliqueFreeEnd:
         """The same end on a part of the grid starting at (rows.start, cols.start)."""
         i0, j0 = rows.start or 0, cols.start or 0
         return ObliqueFreeEnd(self.a, self.b, self.c + self.a * i0 + self.b * j0,
                               self.weight, self.reach_mm)
 
-    def add_mirror(self, u: np.ndarray, p: np.ndarray, op: "InfluenceOperator",
+    def add_mirror(self, u: np.ndarray, p: np.ndarray, op: InfluenceOperator,
                    spacing: tuple[float, float], single: bool) -> None:
         """Adds the mirror term of the pressure p (MPa, the grid's shape) to the displacement
         u (mm for E* = 1 MPa, the grid's shape; in place), `op` the grid's half-space."""
@@ -810,7 +810,7 @@ class _System:
         busy[contact] = busy[join] = True
         return error / float(u[self.m].max()), approach, busy
 
-    def windowed(self, windows: list) -> tuple["_System", np.ndarray]:
+    def windowed(self, windows: list) -> tuple[_System, np.ndarray]:
         """The system on the windows ((rows, cols) slices per grid, None to leave a grid
         out), and the flat indices of its cells in this system's vector."""
         grids, ops, inside = [], [], []

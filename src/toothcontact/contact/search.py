@@ -1,10 +1,10 @@
-"""Contact by surface separation over the mesh cycle (DESIGN.md principle 3).
+"""Contact by surface separation over the mesh cycle (docs/DESIGN.md principle 3).
 
 At a mesh position the separation of a pinion flank point is the distance, along the pinion
 flank's normal, to the gear flank (negative = overlap). The gear is turned back by the
 transmission error until the least separation over all tooth pairs is zero; the pinion point
 where it is least is the contact point. Every function works on a batch: frames stacked
-over mesh positions and tooth pairs (assembly.Frame.stack), parameters broadcast against
+over mesh positions and tooth pairs (surfaces.placement.Frame.stack), parameters broadcast against
 them. Units: mm, rad.
 """
 
@@ -14,8 +14,8 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ..assembly import Frame
 from ..surfaces.base import Flank
+from ..surfaces.placement import Frame
 from .rays import intersect
 
 
@@ -79,8 +79,8 @@ def refine_minima(pinion: Flank, gear: Flank, pinion_frames: Frame, gear_frames:
     """The pinion points of least separation near (start_u, start_v), for a batch of K pairs
     (frames stacked (K,)): a quadratic is fitted to the separation on a 5 × 5 patch
     (half-sizes `half`) and the patch moves to its least point in the flank's domain (on an
-    edge where the separation falls toward it), shrinking each time. The best point seen (patch points and the final fitted minimum)
-    is returned for each pair."""
+    edge where the separation falls toward it), shrinking each time. The best point seen
+    (patch points and the final fitted minimum) is returned for each pair."""
     (u0, u1), (v0, v1) = pinion.domain
     lo, hi = np.array([u0, v0]), np.array([u1, v1])
     centre = np.stack([start_u, start_v], axis=-1).astype(float)          # (K, 2)

@@ -166,7 +166,7 @@ class _Mesh:
     velocity: float | None
     softer: float | None
     groups: dict
-    tolerances: "_Tolerances"
+    tolerances: _Tolerances
 
     @property
     def eps_g(self) -> float:

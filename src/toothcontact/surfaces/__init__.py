@@ -1,1 +1,1 @@
-"""Exact tooth flanks as parametric surfaces r(u, v) (DESIGN.md principle 1)."""
+"""Exact tooth flanks as parametric surfaces r(u, v) (docs/DESIGN.md principle 1)."""

@@ -49,7 +49,7 @@ class Flank:
     def point(self, u, v):  # pragma: no cover - interface
         raise NotImplementedError
 
-    def evaluate(self, u, v, order: int = 2) -> "FlankSample":
+    def evaluate(self, u, v, order: int = 2) -> FlankSample:
         """Points and exact derivatives at arrays of (u, v) (broadcast together); with
         order 1 only the first derivatives (r_uu, r_uv, r_vv are None)."""
         U, V = Jet.variables(u, v, order)
@@ -87,7 +87,7 @@ class Flank:
         shape = np.shape(points)[:-1]
         return u[index].reshape(shape), v[index].reshape(shape)
 
-    def breaks(self) -> "FlankBreaks":
+    def breaks(self) -> FlankBreaks:
         """Where the flank's edges are broken and its modifications bend it (none here)."""
         return FlankBreaks()
 

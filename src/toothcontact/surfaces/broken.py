@@ -39,10 +39,9 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ..modify import EndChamfer, arc_drop, broken_edge_drop
 from .base import Flank, FlankBreaks
 from .jet import Jet, cos_sin, value, where
-
+from .modify import EndChamfer, arc_drop, broken_edge_drop
 
 #: past its edge a rounding's drop levels off over this share of its radius (see the module)
 LEVEL_OFF = 0.25
@@ -76,7 +75,7 @@ class ProfileEdgeBreak:
 
     @classmethod
     def across(cls, flank: Flank, edge: str, radius: float, turn: float,
-               chamfer: float | None = None, angle: float | None = None) -> "ProfileEdgeBreak":
+               chamfer: float | None = None, angle: float | None = None) -> ProfileEdgeBreak:
         """The break of `flank`'s u edge `edge` ("u0" or "u1") by a rounding of `radius`
         (mm), the surface across the edge turned by `turn` (rad) from the flank; with
         `chamfer` (mm along the flank from the edge) and `angle` (rad), a chamfer whose edge

@@ -155,7 +155,7 @@ class CylindricalGear:
         """Roll angle t = sqrt(r²/rb² - 1) of the involute point at `radius`."""
         return np.sqrt(np.asarray(radius, float) ** 2 / self.base_radius**2 - 1.0)
 
-    def flank(self, side: int, form_radius: float | None = None) -> "InvoluteFlank":
+    def flank(self, side: int, form_radius: float | None = None) -> InvoluteFlank:
         """The exact flank of tooth 0 on `side` (+1 or -1), from the form radius (default
         the base circle, or the root for a ring) to the tip."""
         return InvoluteFlank(self, side, form_radius)
@@ -175,7 +175,8 @@ class InvoluteFlank(Flank):
             raise ValueError("side must be +1 or -1")
         self.gear, self.side = gear, side
         rb = gear.base_radius
-        inner, outer = sorted((gear.tip_radius, form_radius or (gear.root_radius_value if gear.internal else rb)))
+        inner, outer = sorted((gear.tip_radius,
+                               form_radius or (gear.root_radius_value if gear.internal else rb)))
         inner = max(inner, rb)
         if outer <= inner:
             raise ValueError(f"the tip radius {gear.tip_radius:.4g} mm does not clear the base "

@@ -25,7 +25,7 @@ class Jet:
             np.asarray(x, dtype=float) for x in (f, u, v, uu, uv, vv))
 
     @classmethod
-    def variables(cls, u, v, order: int = 2) -> tuple["Jet", "Jet"]:
+    def variables(cls, u, v, order: int = 2) -> tuple[Jet, Jet]:
         """The surface parameters themselves: u (du/du = 1) and v (dv/dv = 1). With order 1
         the second derivatives are not carried (None): about half the work, for searches
         that need only tangents."""
@@ -40,7 +40,7 @@ class Jet:
         return self.uu is None
 
     # --- composition with a scalar function: phi(f) given phi, phi', phi'' at f ---------
-    def _chain(self, p0, p1, p2) -> "Jet":
+    def _chain(self, p0, p1, p2) -> Jet:
         if self.uu is None:
             return _new(p0, p1 * self.u, p1 * self.v, None, None, None)
         return _new(p0, p1 * self.u, p1 * self.v, p2 * self.u * self.u + p1 * self.uu,
@@ -85,7 +85,7 @@ class Jet:
 
     __rmul__ = __mul__
 
-    def reciprocal(self) -> "Jet":
+    def reciprocal(self) -> Jet:
         r = 1.0 / self.f
         return self._chain(r, -r * r, 2 * r * r * r)
 
@@ -103,7 +103,7 @@ class Jet:
         p = float(exponent)
         return self._chain(self.f**p, p * self.f ** (p - 1), p * (p - 1) * self.f ** (p - 2))
 
-    def cos_sin(self) -> tuple["Jet", "Jet"]:
+    def cos_sin(self) -> tuple[Jet, Jet]:
         c, s = np.cos(self.f), np.sin(self.f)
         return _sin_cos(self, c, -s), _sin_cos(self, s, c)
 

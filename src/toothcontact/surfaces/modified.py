@@ -6,9 +6,9 @@ import math
 
 import numpy as np
 
-from ..modify import FlankModifications
 from .base import Flank, FlankBreaks
 from .involute import InvoluteFlank
+from .modify import FlankModifications
 
 
 class ModifiedFlank(Flank):

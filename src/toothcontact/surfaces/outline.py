@@ -18,11 +18,11 @@ from functools import cached_property
 
 import numpy as np
 
-from ..modify import FlankModifications
 from .base import Flank
 from .generation import GeneratedSide, generate_ring_side, generate_side
 from .involute import CylindricalGear
 from .modified import ModifiedFlank
+from .modify import FlankModifications
 
 
 def polar(radius: float, angle: float, z: float) -> tuple[float, float, float]:

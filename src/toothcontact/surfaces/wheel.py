@@ -671,9 +671,9 @@ class WormWheelFlank(Flank):
         """Samples of the generating floor at the face positions of `trim` (see `_fit_tip`):
         the hob root where the whole strip between the lowered trim and the trim samples
         generates (taken as so when its lower end does: its upper end does, and a pole in
-        between would flip the sheet's side), else the highest radius in that strip where it does not (a scan in `steps`
-        steps, then bisection), raised where it binds by the largest second difference of
-        its binding runs and 2^-30 of the hob depth."""
+        between would flip the sheet's side), else the highest radius in that strip where it
+        does not (a scan in `steps` steps, then bisection), raised where it binds by the
+        largest second difference of its binding runs and 2^-30 of the hob depth."""
         root, depth = self._rho_root, self._rho_tip - self._rho_root
         every = np.arange(trim.size)
         if np.all(generates(lowered, every)):  # the same sheet at both ends of every strip

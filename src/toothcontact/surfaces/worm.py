@@ -157,7 +157,7 @@ class WormFlank(Flank):
     @classmethod
     def from_lead_angle(cls, form: str, starts: int, lead_angle: float, *,
                         axial_module: float | None = None, normal_module: float | None = None,
-                        **kwargs) -> "WormFlank":
+                        **kwargs) -> WormFlank:
         """Build from the lead angle gamma (rad) at d1 and mx (mm) or mn = mx·cos(gamma) (mm):
         d1 = z1·mx / tan(gamma). Other keywords as in the constructor."""
         if (axial_module is None) == (normal_module is None):
@@ -270,8 +270,9 @@ class WormFlank(Flank):
         top = min(self.axial_pitch, r1 * tau + r1 * math.sqrt(1 + sg * sg * tau * tau) / abs(sg))
         thickness = lambda e: self._zn(r1, e) + self._half_s  # noqa: E731
         if not thickness(0.0) * thickness(top) < 0:
-            raise ValueError(f"ZN: no straight normal-section line at {math.degrees(self.pressure_angle):.4g} deg "
-                             f"gives the thread thickness pi·mx/2 at d1 with a lead angle of "
+            raise ValueError(f"ZN: no straight normal-section line at "
+                             f"{math.degrees(self.pressure_angle):.4g} deg gives the thread "
+                             f"thickness pi·mx/2 at d1 with a lead angle of "
                              f"{math.degrees(self.lead_angle):.4g} deg")
         self._eta1 = brentq(thickness, 0.0, top, xtol=1e-15, rtol=4 * np.finfo(float).eps)
         b = self._eta1 - r1 * tau
@@ -341,8 +342,8 @@ class WormFlank(Flank):
             i = past[np.argmax(R[past])]  # the outermost point past the profile
             j = i + 1 if i + 1 < t.size and R[i + 1] > R[i] else i - 1
             if 0 <= j < t.size and g[j] <= 0:
-                t_cross = brentq(lambda s: float(reach(np.array(s), curve)), t[i], t[j],
-                                 xtol=1e-14)
+                t_cross = brentq(lambda s, curve=curve: float(reach(np.array(s), curve)),
+                                 t[i], t[j], xtol=1e-14)
                 form = max(form, float(projected(*curve(np.array(t_cross)))[0]))
             else:
                 form = max(form, float(R[i]))

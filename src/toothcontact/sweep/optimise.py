@@ -20,6 +20,7 @@ import numpy as np
 
 from ..case import CaseError
 from .spec import PROBABILITIES, Optimise
+
 #: COBYQA's first and last trust-region radius on the [0, 1] scaled variables
 INITIAL_RADIUS, FINAL_RADIUS = 0.25, 0.01
 

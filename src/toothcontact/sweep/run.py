@@ -6,8 +6,8 @@ whatever the workers and the order they finish in."""
 
 from __future__ import annotations
 
-import logging
 import contextlib
+import logging
 import math
 import subprocess
 import sys
@@ -149,7 +149,7 @@ class Workers:
             raise self._failure
         return self._client
 
-    def __enter__(self) -> "Workers":
+    def __enter__(self) -> Workers:
         return self
 
     def release(self) -> None:

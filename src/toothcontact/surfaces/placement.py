@@ -1,4 +1,5 @@
-"""Where the gears sit: rigid frames of a pair in mesh, with misalignment.
+"""Where the gears sit: rigid frames of a pair in mesh, with misalignment, from numbers
+(the layout), so that the contact engine below needs no case or gear set.
 
 World frame of a parallel-axis pair: the pinion turns about the z axis through the origin,
 its tooth 0 on +x at roll angle 0; the gear's centre lies on the x axis (at +a for an
@@ -13,8 +14,6 @@ from dataclasses import dataclass
 from functools import cached_property
 
 import numpy as np
-
-from .gearset import GearPair
 
 
 def rotation(axis, angle: float) -> np.ndarray:
@@ -34,14 +33,14 @@ class Frame:
     origin: np.ndarray
 
     @classmethod
-    def stack(cls, frames) -> "Frame":
+    def stack(cls, frames) -> Frame:
         """Frames in a nested list (shape S) as one stacked frame of batch shape S."""
         R = np.array([f.R for f in np.ravel(frames)])
         origin = np.array([f.origin for f in np.ravel(frames)])
         shape = np.shape(frames)
         return cls(R.reshape(shape + (3, 3)), origin.reshape(shape + (1, 3)))
 
-    def __getitem__(self, index) -> "Frame":
+    def __getitem__(self, index) -> Frame:
         """The stacked frames at `index` (batch axes only)."""
         return Frame(self.R[index], self.origin[index])
 
@@ -74,49 +73,26 @@ class Misalignment:
 
 
 class ParallelMesh:
-    """A spur/helical pair in mesh: the frames of both members at any pinion angle."""
+    """A spur/helical pair (or a coaxial spline) in mesh: the frames of both members at any
+    pinion angle, from the pair's layout: tooth counts, centre distance (mm; 0 for a
+    coaxial spline), working pressure angle (rad, for the plane of action the slopes refer
+    to), the gear's angle at phi1 = 0 and the pinion's (rad). gearset.GearPair.placed
+    gives them for a designed pair; an imported pair's come from its case."""
 
-    def __init__(self, pair: GearPair, misalignment: Misalignment = Misalignment()):
-        g = pair.gear
-        # gear tooth 0 beside the space that holds pinion tooth 0, on the driven side; a
-        # thinned pinion turned forward by its thinning (its working flank where the rack's
-        # would be), the gear by the rest of half the backlash (the whole backlash on the
-        # back flanks); a coaxial spline keeps its clearance centred: closing it is its lag
-        pitch = 2.0 * math.pi / g.teeth
-        forward, close = 0.0, 0.0
-        if pair.center_distance > 0.0:
-            p = pair.pinion
-            forward = 0.5 * p.thinning / p.pitch_radius
-            r_w1 = pair.operating_pitch_radius
-            close = (0.5 * pair.operating_backlash - r_w1 * forward) / (r_w1 * g.teeth / p.teeth)
-        self._place(pair.pinion.teeth, g.teeth, g.internal, pair.center_distance,
-                    pair.working_pressure_angle, misalignment,
-                    0.5 * pitch - close if g.internal else math.pi - 0.5 * pitch + close, forward)
-
-    @classmethod
-    def of_layout(cls, pinion_teeth: int, gear_teeth: int, centre_distance: float,
-                  working_pressure_angle: float, misalignment: Misalignment = Misalignment(),
-                  internal: bool = False, gear_start: float = 0.0) -> "ParallelMesh":
-        """A pair known by its layout only (bodies from elsewhere, e.g. imported meshes):
-        tooth counts, centre distance (mm), working pressure angle (rad, for the plane of
-        action the slopes refer to) and the gear's angle at phi1 = 0 (rad)."""
-        mesh = cls.__new__(cls)
-        mesh._place(pinion_teeth, gear_teeth, internal, centre_distance, working_pressure_angle,
-                    misalignment, gear_start)
-        return mesh
-
-    def _place(self, z1, z2, internal, centre_distance, alpha, misalignment, gear_start,
-               pinion_start=0.0):
+    def __init__(self, pinion_teeth: int, gear_teeth: int, centre_distance: float,
+                 working_pressure_angle: float, misalignment: Misalignment = Misalignment(),
+                 internal: bool = False, gear_start: float = 0.0, pinion_start: float = 0.0):
         self.misalignment = misalignment
         self.pinion_start = pinion_start
-        self.pinion_teeth, self.gear_teeth, self.internal = z1, z2, internal
-        self.ratio = z1 / z2
+        self.pinion_teeth, self.gear_teeth, self.internal = pinion_teeth, gear_teeth, internal
+        self.ratio = pinion_teeth / gear_teeth
         a = centre_distance + misalignment.center_distance_error
         self.center = np.array([-a if internal else a, 0.0, misalignment.axial_shift])
         self.gear_start = gear_start
         self.gear_side = -1 if internal else 1
         # line of action at the pitch point: the normal of pinion flank side +1 there (it faces
         # +y and, as the tooth narrows toward its tip, leans outward by the pressure angle)
+        alpha = working_pressure_angle
         self.line_of_action = np.array([math.sin(alpha), math.cos(alpha), 0.0])
         self.plane_normal = np.cross(self.line_of_action, [0.0, 0.0, 1.0])
         self._tilt = self._tilt_rotation()

@@ -1,4 +1,4 @@
-"""Flank modifications and deflections as normal displacements (DESIGN.md principle 2).
+"""Flank modifications and deflections as normal displacements (docs/DESIGN.md principle 2).
 
 Each modification is a drop (material removed, mm) as a function of the face position w
 (mm from mid-face, positive toward end B) and the roll length s = rb·t (mm along the
@@ -15,7 +15,7 @@ from dataclasses import dataclass, fields
 
 import numpy as np
 
-from .surfaces.jet import Jet, value, where
+from .jet import Jet, value, where
 
 SHAPES = ("circular", "parabolic")
 
@@ -297,7 +297,7 @@ class TipEdge:
     @classmethod
     def on(cls, radius: float, base_radius: float, tip_radius: float,
            internal: bool = False, chamfer: float | None = None,
-           angle: float | None = None) -> "TipEdge":
+           angle: float | None = None) -> TipEdge:
         """The rounding of `radius` (mm) on a flank of base radius and tip radius (mm); on a
         ring (internal) the tip is the flank's inner end. With `chamfer` (mm along the flank
         from the tip) and `angle` (rad): a chamfer whose edge is rounded by `radius`."""
