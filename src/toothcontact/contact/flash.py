@@ -17,6 +17,7 @@ from collections.abc import Callable
 
 import numpy as np
 from scipy.ndimage import map_coordinates
+from scipy.signal import oaconvolve
 
 #: a steel's thermal contact coefficient sqrt(λρc) (W·s^0.5/(m²·K)): λ = 45 W/(m·K),
 #: ρ = 7850 kg/m³, c = 460 J/(kg·K)
@@ -27,14 +28,12 @@ STEEL_CONTACT_COEFFICIENT = float(np.sqrt(45.0 * 7850.0 * 460.0))
 Velocity = Callable[[np.ndarray, np.ndarray], tuple[np.ndarray, np.ndarray]]
 
 
-def _upstream_weights(n: int, step: float) -> np.ndarray:
-    """(n, n) weights W[j, m] = ∫ over cell m upstream of cell j's centre of
-    (s_j - σ)^-1/2 dσ (m^0.5) on cells of `step` (m), the surface moving toward +s."""
-    j = np.arange(n)[:, None]
-    m = np.arange(n)[None, :]
-    far = np.clip((j - m + 0.5) * step, 0.0, None)
-    near = np.clip((j - m - 0.5) * step, 0.0, None)
-    return 2.0 * (np.sqrt(far) - np.sqrt(near))
+def _upstream_kernel(n: int, step: float) -> np.ndarray:
+    """(n,) weights k[i] = ∫ over the cell i cells upstream of a cell's centre of
+    (s - σ)^-1/2 dσ (m^0.5) on cells of `step` (m), the surface moving toward +s: a cell's
+    rise is Σ_m q[m]·k[j - m], a causal convolution along the path."""
+    i = np.arange(n)
+    return 2.0 * (np.sqrt((i + 0.5) * step) - np.sqrt(np.clip((i - 0.5) * step, 0.0, None)))
 
 
 def surface_rise(flux: np.ndarray, x: np.ndarray, y: np.ndarray, velocity: Velocity,
@@ -63,7 +62,10 @@ def surface_rise(flux: np.ndarray, x: np.ndarray, y: np.ndarray, velocity: Veloc
     xs, ys = S * d[0] - T * d[1], S * d[1] + T * d[0]
     sampled = map_coordinates(flux, [(xs - x[0]) / dx, (ys - y[0]) / dy], order=1,
                               cval=0.0)
-    heated = sampled.T @ _upstream_weights(len(s), step * 1e-3).T    # (nt, ns)
+    # each path's rise: its flux convolved with the upstream kernel (by FFT: a long line
+    # contact's paths run to thousands of cells)
+    heated = oaconvolve(sampled.T, _upstream_kernel(len(s), step * 1e-3)[None, :],
+                        axes=1)[:, :len(s)]                                  # (nt, ns)
     ux, uy = velocity(xs, ys)
     speed = (ux * d[0] + uy * d[1]).T
     inside = sampled.T > 0.0
