@@ -30,7 +30,7 @@ def run_one(raw: dict) -> dict:
     from toothcontact import families
     from toothcontact.analyses import analyse
     from toothcontact.case import CaseError, parse_case
-    from toothcontact.report import result_document
+    from toothcontact.views.report import result_document
 
     start = time.perf_counter()
     record = {"title": raw["title"], "kind": raw["kind"], "design": raw}

@@ -93,7 +93,8 @@ def fe_job(body, refine, size, length=LENGTH):
 
 def ours(end_free, dx, dy, length=LENGTH):
     """Our half-space solver on the cylinder: ratios as for the FE (b = B)."""
-    from toothcontact.contact.pressure import FreeEnd, Grid, free_end_factor, solve_shared
+    from toothcontact.contact.influence import FreeEnd, free_end_factor
+    from toothcontact.contact.pressure import Grid, solve_shared
 
     t = time.perf_counter()
     nx = int(round(length / dx))

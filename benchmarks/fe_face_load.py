@@ -109,7 +109,7 @@ def case(slope: float, positions: int = POSITIONS) -> dict:
 def model_strips() -> np.ndarray:
     """The model's load_distribution strips (mm): 20 between 0.1 mm from each face end."""
     from toothcontact.analyses.spur import FACE_STRIPS
-    from toothcontact.contact.loaded import EDGE_STRIP
+    from toothcontact.contact.edge_loads import EDGE_STRIP
 
     end = 20.0 - EDGE_STRIP
     return np.linspace(-end, end, FACE_STRIPS + 1)

@@ -125,7 +125,8 @@ def ours(body, dx, dy, length=LENGTH, weight=None, reach=None):
     mid-length, a cosine to 0 at the contact's far end; 4 length: untapered over the
     contact); weight: the end's weight instead of the members' (the weight scan)."""
     from toothcontact.contact.loaded import _merged
-    from toothcontact.contact.pressure import FreeEnd, Grid, free_end_factor, solve_shared
+    from toothcontact.contact.influence import FreeEnd, free_end_factor
+    from toothcontact.contact.pressure import Grid, solve_shared
 
     t = time.perf_counter()
     weights = member_weights()
@@ -240,7 +241,7 @@ def main(argv=None):
     for row in reach_rows:
         print(f"{row['body']:7s} reach {row['reach']:5.1f} "
               + " ".join(f"{row['mean_last'][f'{c}b']:8.4f}" for c in ENDS))
-    from toothcontact.contact.pressure import free_end_factor
+    from toothcontact.contact.influence import free_end_factor
 
     weights = member_weights()
     scan_weights = np.round(np.arange(0.6, 2.01, 0.1), 2)

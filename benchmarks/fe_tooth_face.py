@@ -16,7 +16,7 @@ Deflections are per unit load, along the load's normal, at the point where the l
 action crosses the tooth's centre line ("centre": the model's reference; the primary
 measure), or the patch's work-conjugate mean less the half-space compression to the
 half-thickness that the contact solver adds to the model ("surface": Weber's flattening,
-pressure.InfluenceOperator with a reference depth, plus φ times the mirrored patch at the
+influence.InfluenceOperator with a reference depth, plus φ times the mirrored patch at the
 end face; sensitive to how finely the indentation is meshed).
 
 Compared (each tooth, radius, mesh):

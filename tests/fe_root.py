@@ -8,7 +8,6 @@ inside the surface. Shares nothing with rating.root but the gear's outline."""
 
 from __future__ import annotations
 
-import math
 
 import numpy as np
 from fe_tooth import E_STEEL, NU_STEEL, _facet_index, section_mesh, tooth_section

@@ -414,7 +414,7 @@ def halfspace_strip(width: float, depth: float, E: float, nu: float) -> float:
     """Plane strain: a unit line load (N/mm) spread evenly over a strip `width` (mm) wide on
     a half-space; the strip's mean surface displacement less the mean displacement at
     `depth` (mm) below its points (mm per N/mm): Weber's contact flattening to a depth, as
-    the contact solver measures the compression (pressure.InfluenceOperator, `reference`).
+    the contact solver measures the compression (influence.InfluenceOperator, `reference`).
     Boussinesq's point force integrated along the infinite line (the differences converge),
     then over the strip (the mean of ln|x - x'| over it is ln(width) - 3/2)."""
     G = E / (2.0 * (1.0 + nu))
@@ -442,7 +442,7 @@ def halfspace_patch(width: float, length: float, depth: float, E: float, nu: flo
     """A unit force (N) spread evenly over a width × length (mm) rectangle on a half-space;
     at the receiving rectangle of the same size `offset` mm away along `length` (0: the
     loaded one), its mean surface displacement less the mean displacement at `depth` (mm)
-    below its points (mm per N), as pressure.InfluenceOperator with a reference depth
+    below its points (mm per N), as influence.InfluenceOperator with a reference depth
     measures the compression: Love's rectangle (Boussinesq integrated) at the surface,
     Boussinesq by Gauss quadrature at depth."""
     G = E / (2.0 * (1.0 + nu))
@@ -1023,12 +1023,12 @@ def face_study(gear, radii=(30.0,), h_patch=0.3, h_tooth=1.2, h_far=6.0, growth=
     model's reference), 'surface' the patch's work-conjugate mean less the half-space
     compression from the surface to the half-thickness (Weber's flattening, which the
     contact solver adds to the model: halfspace_strip / halfspace_patch, at the end face
-    plus φ times the mirrored patch's, pressure.free_end_factor). See
+    plus φ times the mirrored patch's, influence.free_end_factor). See
     benchmarks/fe_tooth_face.py for the reported quantities."""
     import time
 
     from toothcontact.contact.compliance import ToothCompliance, end_layer
-    from toothcontact.contact.pressure import free_end_factor
+    from toothcontact.contact.influence import free_end_factor
 
     t0 = time.perf_counter()
     width, length = patch

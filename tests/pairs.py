@@ -4,7 +4,7 @@ import math
 
 from toothcontact import gearset
 from toothcontact.analytic.hertz import compliance
-from toothcontact.surfaces.placement import Misalignment, ParallelMesh
+from toothcontact.surfaces.placement import Misalignment
 from toothcontact.case import parse_case
 from toothcontact.contact.cycle import CycleSettings, parallel_cycle
 

@@ -6,7 +6,7 @@ import tomllib
 import numpy as np
 import pytest
 
-from toothcontact import gearset
+from toothcontact import worm_gearset
 from toothcontact.analytic.hertz import compliance
 from toothcontact.surfaces.placement import WormMesh, WormMisalignment
 from toothcontact.case import load_case
@@ -19,7 +19,7 @@ SETTINGS = CycleSettings(positions=1, grid=(11, 81), pairs=(-1, 0, 1))
 
 def contact(name, misalignment=WormMisalignment(), settings=SETTINGS):
     case, _ = load_case(bundled_cases_dir() / f"{name}.toml")
-    parts = gearset.worm_set(case)
+    parts = worm_gearset.worm_set(case)
     mesh = WormMesh(parts.wheel["left"], misalignment)
     return parallel_cycle(mesh, parts.worm["left"], parts.wheel["left"], 500.0, STEEL_BRONZE,
                           settings).rows
@@ -43,7 +43,7 @@ def test_a_two_start_worm_meshes_periodically_over_one_start_pitch():
     one pitch."""
     def rows_at(mesh_type):
         case, _ = load_case(bundled_cases_dir() / "worm_eps_oversized_hob.toml")
-        parts = gearset.worm_set(case)
+        parts = worm_gearset.worm_set(case)
         mesh = mesh_type(parts.wheel["left"], WormMisalignment(centre_distance_error=0.05))
         rows = parallel_cycle(mesh, parts.worm["left"], parts.wheel["left"], 500.0,
                               STEEL_BRONZE, CycleSettings(positions=2, grid=(11, 81),
@@ -191,9 +191,10 @@ def small_identical_hob_set():
     the fields' samples, fields)."""
     from toothcontact.case import parse_case
     from toothcontact.contact.field import LOADED_FAR, contact_samples, pattern_semi_axes
-    from toothcontact.contact.loaded import CELL, _Pair, curved_lines, field_reach
+    from toothcontact.contact.edge_loads import curved_lines
+    from toothcontact.contact.loaded import CELL, _Pair, field_reach
 
-    parts = gearset.worm_set(parse_case(tomllib.loads(SMALL_IDENTICAL_HOB_SET)))
+    parts = worm_gearset.worm_set(parse_case(tomllib.loads(SMALL_IDENTICAL_HOB_SET)))
     cycle = parallel_cycle(WormMesh(parts.wheel["left"], WormMisalignment()), parts.worm["left"],
                            parts.wheel["left"], 2633.0, compliance(206000.0, 0.3, 98000.0, 0.35),
                            CycleSettings(positions=7, grid=(11, 41), pairs=(-1, 0, 1),
@@ -230,7 +231,8 @@ def test_a_loaded_field_widens_only_across_the_edges_its_contact_reached(
     across) bent the line further out each time: a before-stop ZN set's fields grew to
     90 mm on samples 4 mm apart, whose splines put 1448 MPa on a false edge (602 MPa once
     widened across alone)."""
-    from toothcontact.contact.loaded import _Pair, edge_breaks
+    from toothcontact.contact.edge_loads import edge_breaks
+    from toothcontact.contact.loaded import _Pair
 
     cycle, rows, reach, patterns, samples, fields = small_identical_hob_set
     k = int(np.argmax([r["contact_model"] == "line" for r in cycle.rows]))
@@ -291,7 +293,7 @@ def test_every_line_through_a_flanks_material_meets_it():
 
     from toothcontact.case import parse_case
 
-    parts = gearset.worm_set(parse_case(tomllib.loads(TWISTED_WHEEL_SET)))
+    parts = worm_gearset.worm_set(parse_case(tomllib.loads(TWISTED_WHEEL_SET)))
     cycle = parallel_cycle(WormMesh(parts.wheel["right"], WormMisalignment()),
                            parts.worm["right"], parts.wheel["right"], 1000.0,
                            compliance(206000.0, 0.3, 98000.0, 0.35),

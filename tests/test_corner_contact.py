@@ -11,8 +11,8 @@ import pytest
 
 from toothcontact.analyses import analyse
 from toothcontact.case import parse_case
-from toothcontact.report import result_document
-from toothcontact.report_view import view
+from toothcontact.views.report import result_document
+from toothcontact.views.report_view import view
 from toothcontact.runner import bundled_cases_dir
 
 QUICK = {"positions_check": False, "subsurface": False, "interference": False}

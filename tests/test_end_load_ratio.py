@@ -1,4 +1,4 @@
-"""A face end's load ratio (contact.loaded.end_load_ratio) against its closed form: a contact
+"""A face end's load ratio (contact.edge_loads.end_load_ratio) against its closed form: a contact
 band whose load per mm of face rises toward the end as q(s) = 1 + A·exp(s/λ) (s mm from the
 end, s < 0 on the flank), laid on fields turned every way to the grid, its contact line
 square or oblique to the face, the end's face coordinate in mm or in another unit.
@@ -23,7 +23,7 @@ import numpy as np
 import pytest
 
 from toothcontact.contact.field import GapField
-from toothcontact.contact.loaded import EDGE_STRIP, end_load_ratio
+from toothcontact.contact.edge_loads import EDGE_STRIP, end_load_ratio
 from toothcontact.contact.pressure import ContactSolution
 
 RISE, DECAY, LENGTH = 2.0, 0.3, 6.0

@@ -9,7 +9,7 @@ import pytest
 from toothcontact import families
 from toothcontact.analyses import analyse
 from toothcontact.case import parse_case
-from toothcontact.report import result_document
+from toothcontact.views.report import result_document
 
 #: without the positions check (a second pass of the same stages at midway positions, 40 %
 #: of this test's time); benchmarks/family.py runs its 510 designs with it

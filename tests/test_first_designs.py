@@ -8,7 +8,7 @@ import pytest
 from toothcontact import families
 from toothcontact.analyses import analyse
 from toothcontact.case import parse_case
-from toothcontact.report import result_document
+from toothcontact.views.report import result_document
 from toothcontact.runner import bundled_cases_dir
 
 

@@ -1,4 +1,4 @@
-"""Free face ends: the quarter-space correction of the half-space contact (pressure.FreeEnd,
+"""Free face ends: the quarter-space correction of the half-space contact (influence.FreeEnd,
 Guilbault's mirror pressure with a factor), checked against a direct sum of its own
 definition, against 3D finite elements of an elastic block with a free end (tests/
 fe_reference.py: a rigid flat strip punch on a block that ends flush with it, and on one
@@ -14,9 +14,10 @@ from types import SimpleNamespace
 import numpy as np
 import pytest
 
-from toothcontact.contact import pressure as P
+from toothcontact.contact import influence
 from toothcontact.contact.loaded import _member_ends, _merged
-from toothcontact.contact.pressure import FreeEnd, Grid, free_end_factor, solve_shared
+from toothcontact.contact.influence import FreeEnd, free_end_factor
+from toothcontact.contact.pressure import Grid, solve_shared
 
 E_STEEL, NU = 210000.0, 0.3
 E_BRONZE, NU_BRONZE = 98000.0, 0.35
@@ -43,7 +44,7 @@ def direct_mirror(p, end, dx, dy):
                 if taper[j] == 0.0:
                     continue
                 mirror = 2 * end.index - 1 - j
-                total += taper[j] * np.sum(P.rectangle_displacement(
+                total += taper[j] * np.sum(influence.rectangle_displacement(
                     (i - mirror) * dx, (k - np.arange(n1)) * dy, 0.5 * dx, 0.5 * dy) * p[j])
             u[i, k] = end.weight * taper[i] * total
     return u
@@ -57,7 +58,7 @@ def test_the_mirror_term_is_its_definition_and_symmetric(side):
     rng = np.random.default_rng(7)
     dx, dy = 0.2, 0.15
     end = FreeEnd(0, 3 if side == "low" else 11, side, 1.4, 1.5)
-    op = P.influence_operator((14, 5), dx, dy)
+    op = influence.influence_operator((14, 5), dx, dy)
     p = rng.random((14, 5))
     u = np.zeros_like(p)
     end.add_mirror(u, p, op, (dx, dy), single=False)
@@ -170,7 +171,7 @@ def test_a_hertz_line_contact_at_a_free_end_loads_it_as_3d_finite_elements_do():
 def oblique_cylinder_line_load(radius, load, length, phi, cell, angle):
     """cylinder_line_load with the cylinder's axis at `angle` (rad) to the grid's x: the
     same body and end face turned in the plane, its end crossing the cells obliquely
-    (pressure.ObliqueFreeEnd); the line load binned along the axis."""
+    (influence.ObliqueFreeEnd); the line load binned along the axis."""
     E_star = E_STEEL / (1 - NU**2)
     b = math.sqrt(4 * load * radius / (math.pi * E_star))
     along = np.array([math.cos(angle), math.sin(angle)])
@@ -184,7 +185,7 @@ def oblique_cylinder_line_load(radius, load, length, phi, cell, angle):
     gap = q**2 / (2 * radius)
     mask = (s < 0) & (s > -length) & (np.abs(q) < 3 * b)
     # d = -s (mm) at cell (i, j): the distance from the end into the body
-    ends = ((P.ObliqueFreeEnd(-along[0] * cell, -along[1] * cell, -float(lo @ along), phi,
+    ends = ((influence.ObliqueFreeEnd(-along[0] * cell, -along[1] * cell, -float(lo @ along), phi,
                               length),) if phi else ())
     total = load * length
     for _ in range(3):                        # the mid-length line load brought to `load`
@@ -219,8 +220,8 @@ def test_an_oblique_free_end_loads_its_end_as_a_square_one():
 
     rng = np.random.default_rng(3)
     dx, dy = 0.1, 0.08
-    end = P.ObliqueFreeEnd(0.6 * dx, 0.8 * dy, -1.2, phi, 1.5)
-    op = P.influence_operator((30, 24), dx, dy)
+    end = influence.ObliqueFreeEnd(0.6 * dx, 0.8 * dy, -1.2, phi, 1.5)
+    op = influence.influence_operator((30, 24), dx, dy)
 
     def K(p):
         out = op(p)

@@ -19,7 +19,7 @@ from toothcontact import analyses, gearset
 from toothcontact.analytic.hertz import compliance, hertz_line
 from toothcontact.case import parse_case
 from toothcontact.cli import app
-from toothcontact.report import result_document
+from toothcontact.views.report import result_document
 from toothcontact.runner import bundled_cases_dir
 
 CASE = bundled_cases_dir() / "fzg_c_type.toml"

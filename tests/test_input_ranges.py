@@ -12,6 +12,7 @@ nearest figures). Most are parse-level; a few run a small analysis."""
 
 import math
 import tomllib
+from pathlib import Path
 
 import numpy as np
 import pytest
@@ -245,7 +246,7 @@ def test_a_switch_in_a_list_or_a_spectrum_level():
 
 # -- sweeps: legal offset units, bad input refused, refusals that name -------------------
 
-def sweep_file(tmp_path, name: str, **changes) -> "Path":
+def sweep_file(tmp_path, name: str, **changes) -> Path:
     raw = {**mutations.bundled_sweeps()[name], **changes}
     path = tmp_path / f"{name}.toml"
     path.write_text(tomli_w.dumps({k: v for k, v in raw.items() if v is not None}))

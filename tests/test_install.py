@@ -42,6 +42,7 @@ def test_the_installed_tool_is_the_wheel(installed, tmp_path):
                             "import toothcontact; print(toothcontact.__file__)"],
                            cwd=tmp_path, check=True, capture_output=True, text=True).stdout
     assert str(ROOT) not in where and "site-packages" in where
+    assert (Path(where.strip()).parent / "py.typed").exists()      # typed (PEP 561)
     version = subprocess.run([str(installed / "toothcontact"), "--version"], cwd=tmp_path,
                              check=True, capture_output=True, text=True).stdout
     assert version.startswith("toothcontact ")

@@ -13,6 +13,7 @@ from toothcontact.analyses import analyse
 from toothcontact.analytic import crown
 from toothcontact.analytic.hertz import compliance, hertz_point
 from toothcontact.case import parse_case
+from toothcontact.contact import edge_loads
 from toothcontact.contact import loaded as loaded_module
 from toothcontact.contact.compliance import PairCompliance, tooth_compliance
 from toothcontact.contact.loaded import loaded_cycle
@@ -221,7 +222,7 @@ def test_the_positions_answer_alike_in_order_in_processes_and_on_threads(aligned
     pair = gear_pair(parse_case(spur({"radius": "4000 mm"}, 0.0)))
     teeth = PairCompliance(tooth_compliance(pair.pinion, 206000.0, 0.3),
                            tooth_compliance(pair.gear, 206000.0, 0.3))
-    keys = loaded_module.RESULT_KEYS
+    keys = edge_loads.RESULT_KEYS
     edges = np.linspace(-15.0, 15.0, 7)
     rows, lines = {}, {}
     for label, count, fork in (("in order", 1, True), ("processes", 3, True),

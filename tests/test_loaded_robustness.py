@@ -84,7 +84,7 @@ def test_the_kernel_measured_to_a_depth_is_positive_definite_on_any_cells(cells,
 
     import numpy as np
 
-    from toothcontact.contact.pressure import InfluenceOperator
+    from toothcontact.contact.influence import InfluenceOperator
 
     reference = ((depth, 206000.0, 0.3), (depth, 206000.0, 0.3))
     E_star = 206000.0 / (2 * (1 - 0.09))

@@ -12,7 +12,8 @@ from pathlib import Path
 
 import pytest
 
-from toothcontact import report, runner
+from toothcontact import runner
+from toothcontact.views import report
 from toothcontact.runner import bundled_cases_dir
 
 HERTZ = bundled_cases_dir() / "hertz_sphere_on_flat.toml"
@@ -52,7 +53,7 @@ def test_a_new_run_replaces_the_old_folder_whole(tmp_path):
 
 
 def test_a_plot_that_fails_is_its_own_entry(tmp_path, monkeypatch):
-    from toothcontact import plots
+    from toothcontact.views import plots
 
     def broken(*args, **kwargs):
         raise RuntimeError("no fonts")

@@ -11,7 +11,8 @@ from matplotlib.colors import to_rgb
 from PIL import Image
 from scipy import ndimage
 
-from toothcontact import analyses, case as schema, plots, report, runner
+from toothcontact import analyses, case as schema, runner
+from toothcontact.views import plots, report, style
 
 WIDTH = 1020  # 8.5 in at 120 dpi
 
@@ -85,7 +86,7 @@ def test_mesh_cycle_draws_edge_contact_in_red_only_when_there_is_some(tmp_path):
     assert _distinct(rgb) > 300
     assert _reddish(rgb).sum() == 0
     # every series colour is drawn (two pairs)
-    for colour in plots.SERIES[:2]:
+    for colour in style.SERIES[:2]:
         assert _near(rgb, colour, 20).sum() > 200
 
 
@@ -99,7 +100,7 @@ def test_mesh_cycle_of_a_spline_runs_over_the_tooth_index(tmp_path):
             for roll in (-10.0, 0.0, 10.0) for tooth in range(18)]
     result = {"case": "spline", "kind": "spline", "positions": rows}
     rgb = _rgb(plots.mesh_cycle(result, tmp_path / "spline.png"), (WIDTH, 888))
-    for colour in plots.SERIES[:3]:
+    for colour in style.SERIES[:3]:
         assert _near(rgb, colour, 20).sum() > 200
     assert _reddish(rgb).sum() > 50
     with pytest.raises(ValueError, match="positions"):
@@ -142,14 +143,14 @@ def test_ease_off_contours_leave_the_flat_bottom_alone(tmp_path, monkeypatch):
     noise = 0.01 * np.random.default_rng(1).standard_normal(X.shape)
     z = np.maximum(np.abs(X) - 4.0, 0.0) ** 2 + noise
     levels = []
-    saved = plots._save
+    saved = style.save
 
     def keep(fig, path):
         levels.extend(float(v) for c in fig.axes[0].collections if hasattr(c, "levels")
                       for v in c.levels)
         return saved(fig, path)
 
-    monkeypatch.setattr(plots, "_save", keep)
+    monkeypatch.setattr(style, "save", keep)
     plots.ease_off_map(x, y, z, tmp_path / "flat.png")
     lo, hi = z.min(), z.max()
     assert levels and min(levels) > lo + 0.02 * (hi - lo)
@@ -195,7 +196,7 @@ def _design_between_curves(path, result) -> list[tuple[float, float, float]]:
     top, bottom = _axes_rows(rgb)
     inside = np.zeros(rgb.shape[:2], bool)
     inside[top + 2:bottom - 1, :] = True
-    labels, count = ndimage.label(_near(rgb, plots.DESIGN, 30) & inside)
+    labels, count = ndimage.label(_near(rgb, style.DESIGN, 30) & inside)
     blobs = sorted(ndimage.center_of_mass(np.ones_like(labels), labels, range(1, count + 1)),
                    key=lambda rc: rc[1])
     blobs = [b for b in blobs if (labels == labels[int(b[0]), int(b[1])]).sum() > 30]
@@ -205,9 +206,9 @@ def _design_between_curves(path, result) -> list[tuple[float, float, float]]:
     for (row, col), end in zip(blobs, ends):
         col = round(col)
         beside = [*range(col - 24, col - 14), *range(col + 15, col + 25)]
-        colour = plots.SERIES[0] if end == "A" else plots.SERIES[2]
+        colour = style.SERIES[0] if end == "A" else style.SERIES[2]
         edge = _row_of(_near(rgb, colour, 25) & inside, beside)
-        stress = _row_of(_near(rgb, plots.SERIES[1], 25) & inside, range(col - 60, col + 60))
+        stress = _row_of(_near(rgb, style.SERIES[1], 25) & inside, range(col - 60, col + 60))
         found.append((edge, row, stress))
     return found
 
@@ -249,7 +250,7 @@ def test_worm_efficiency_over_temperature(tmp_path):
     result = _result("worm_saba_flap_actuator", tmp_path)
     rgb = _rgb(plots.worm_efficiency_vs_temperature(result, tmp_path / "t.png"), (WIDTH, 792))
     assert _distinct(rgb) > 300
-    for colour in plots.SERIES[:2]:  # eta_total and eta_z: lines and published points
+    for colour in style.SERIES[:2]:  # eta_total and eta_z: lines and published points
         assert _near(rgb, colour, 20).sum() > 500
     with pytest.raises(ValueError, match="temperature"):
         plots.worm_efficiency_vs_temperature({"efficiency": [{"temperature_C": None}]},
@@ -308,7 +309,8 @@ def test_a_failed_write_leaves_no_file(tmp_path, monkeypatch):
 
 def test_plots_never_load_pyplot(fresh_python):
     """The object API only: no pyplot state, no display backend."""
-    code = ("import sys, numpy as np; from toothcontact import plots; import tempfile, pathlib;"
+    code = ("import sys, numpy as np; from toothcontact.views import plots; "
+            "import tempfile, pathlib;"
             "d = pathlib.Path(tempfile.mkdtemp());"
             "plots.ease_off_map([0, 1], [0, 1], np.eye(2), d / 'm.png');"
             "print('matplotlib.pyplot' in sys.modules)")

@@ -11,6 +11,7 @@ import pytest
 from scipy.optimize import brentq
 
 from toothcontact.analytic import hertz
+from toothcontact.contact import influence
 from toothcontact.contact import pressure as P
 
 E_STAR = 1.0 / hertz.compliance(210000.0, 0.3, 210000.0, 0.3)   # steel on steel, 115385 MPa
@@ -77,7 +78,7 @@ def assert_solved(sol, h):
     assert p.sum() * sol.dx_mm * sol.dy_mm == pytest.approx(sol.load_N, rel=1e-6)
     assert p.min() >= 0.0 and np.all(p[~m] == 0)
     scale = u[m].max()
-    op = P.influence_operator(p.shape, sol.dx_mm, sol.dy_mm)
+    op = influence.influence_operator(p.shape, sol.dx_mm, sol.dy_mm)
     np.testing.assert_allclose(u, op(p) / sol.E_star_MPa, rtol=0, atol=1e-12 * scale)
     gap = np.where(m, np.asarray(h, dtype=float) + u - sol.approach_mm, 0.0)
     np.testing.assert_allclose(gap, sol.separation_mm, rtol=0, atol=1e-14 * scale)
@@ -117,13 +118,13 @@ def test_dc_fft_equals_direct_sum_of_love_coefficients():
     xi = np.arange(n0) * dx
     yj = np.arange(n1) * dy
     # coefficient of source cell (k, l) at field cell (i, j), all at once: (i, j, k, l)
-    coeff = P.rectangle_displacement(xi[:, None, None, None] - xi[None, None, :, None],
+    coeff = influence.rectangle_displacement(xi[:, None, None, None] - xi[None, None, :, None],
                                      yj[None, :, None, None] - yj[None, None, None, :],
                                      0.5 * dx, 0.5 * dy, E_STAR)
     direct = np.einsum("ijkl,kl->ij", coeff, p)
-    fft = P.influence_operator((n0, n1), dx, dy)(p) / E_STAR
+    fft = influence.influence_operator((n0, n1), dx, dy)(p) / E_STAR
     np.testing.assert_allclose(fft, direct, rtol=0, atol=1e-10 * np.abs(direct).max())
-    single = P.influence_operator((n0, n1), dx, dy)(p, single=True) / E_STAR
+    single = influence.influence_operator((n0, n1), dx, dy)(p, single=True) / E_STAR
     np.testing.assert_allclose(single, direct, rtol=0, atol=1e-6 * np.abs(direct).max())
 
 
@@ -134,21 +135,21 @@ def test_uniform_square_centre_displacement_closed_form():
     n, cells, step = 128, 101, 0.02
     p = np.zeros((n, n))
     p[:cells, :cells] = 1.0
-    u = P.influence_operator((n, n), step, step)(p) / E_STAR
+    u = influence.influence_operator((n, n), step, step)(p) / E_STAR
     c = 0.5 * cells * step
     centre = cells // 2
     assert u[centre, centre] == pytest.approx(8 / math.pi * math.log(1 + math.sqrt(2)) * c / E_STAR,
                                               rel=1e-12)
     for i, j in ((0, 0), (10, 90), (120, 127), (127, 3)):
         x, y = (i - centre) * step, (j - centre) * step
-        assert u[i, j] == pytest.approx(float(P.rectangle_displacement(x, y, c, c, E_STAR)),
+        assert u[i, j] == pytest.approx(float(influence.rectangle_displacement(x, y, c, c, E_STAR)),
                                         rel=1e-10)
 
 
 def test_operator_is_cached_per_grid():
-    first = P.influence_operator((32, 20), 0.1, 0.2)
-    assert P.influence_operator((32, 20), 0.1, 0.2) is first
-    assert P.influence_operator((32, 20), 0.1, 0.25) is not first
+    first = influence.influence_operator((32, 20), 0.1, 0.2)
+    assert influence.influence_operator((32, 20), 0.1, 0.2) is first
+    assert influence.influence_operator((32, 20), 0.1, 0.25) is not first
 
 
 # --- masked contacts and edge loading -----------------------------------------------------

@@ -6,7 +6,7 @@ import math
 import numpy as np
 
 from toothcontact import gearset
-from toothcontact.surfaces.placement import Misalignment, ParallelMesh
+from toothcontact.surfaces.placement import Misalignment
 from toothcontact.case import parse_case
 from toothcontact.contact import rays
 

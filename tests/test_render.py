@@ -11,7 +11,8 @@ import pytest
 from matplotlib.colors import rgb_to_hsv, to_rgb
 from typer.testing import CliRunner
 
-from toothcontact import analyses, plots, render
+from toothcontact import analyses
+from toothcontact.views import pictures, scene, scene_geometry, scene_style, style
 from toothcontact.surfaces.placement import Frame, rotation
 from toothcontact.case import parse_case
 from toothcontact.cli import app
@@ -50,8 +51,8 @@ def hue_distance(h: np.ndarray, target: float) -> np.ndarray:
     return np.minimum(d, 1.0 - d)
 
 
-CONTACT_HUE = float(rgb_to_hsv(np.array(to_rgb(render.CONTACT)))[0])
-WARNING_HUE = float(rgb_to_hsv(np.array(to_rgb(render.WARNING)))[0])
+CONTACT_HUE = float(rgb_to_hsv(np.array(to_rgb(scene_style.CONTACT)))[0])
+WARNING_HUE = float(rgb_to_hsv(np.array(to_rgb(scene_style.WARNING)))[0])
 
 
 def is_contact_colour(pixels: np.ndarray) -> np.ndarray:
@@ -72,29 +73,29 @@ def window(image: np.ndarray, pixel, half: int = 3) -> np.ndarray:
 
 
 def test_the_warning_colour_is_the_plots_warning_colour():
-    assert render.WARNING == plots.WARNING
+    assert scene_style.WARNING == style.WARNING
 
 
 def test_pattern_is_not_blank_and_paints_where_the_contact_is(aligned):
     case, result = aligned
     cycle = result.cycle
-    plotter = render.pattern_scene(result, case, "test", "head-on")
-    image = render.screenshot(plotter)
-    assert image.shape == (render.WINDOW[1], render.WINDOW[0], 3)
+    plotter = pictures.pattern_scene(result, case, "test", "head-on")
+    image = scene.screenshot(plotter)
+    assert image.shape == (scene_style.WINDOW[1], scene_style.WINDOW[0], 3)
     colours = np.unique(image.reshape(-1, 3), axis=0)
     assert len(colours) > 500                                    # not blank
     # every contact point of the cycle, projected by the plotter's camera, is painted in the
     # contact colour (tooth 0's flank: each row's point carried by its own pinion frame)
     for k in range(len(cycle.rows)):
         local = cycle.pinion_frames[np.array([k])].to_local(cycle.planes.point[[k]])
-        pixel = render.project(plotter, local)[0]
+        pixel = scene.project(plotter, local)[0]
         assert 0 <= pixel[0] < image.shape[1] and 0 <= pixel[1] < image.shape[0]
         assert is_contact_colour(window(image, pixel)).mean() > 0.5, (k, pixel)
     # the face ends, where the crown opens the gap beyond the approach, are not painted
     (u0, u1), (v0, v1) = cycle.pinion.domain
     for v in (v0 + 0.03 * (v1 - v0), v1 - 0.03 * (v1 - v0)):
         end = np.stack(cycle.pinion.point(np.array([0.5 * (u0 + u1)]), np.array([v])), axis=-1)
-        pixel = render.project(plotter, end)[0]
+        pixel = scene.project(plotter, end)[0]
         assert not is_contact_colour(window(image, pixel)).any()
     plotter.close()
     # without edge contact nothing is in the warning colour
@@ -110,22 +111,22 @@ def test_pressure_at_the_position_of_the_largest_pressure(aligned):
     case, result = aligned
     cycle = result.cycle
     rows = [dict(r, bem_p_max_MPa=r["p_max_MPa"]) for r in cycle.rows]
-    roll = render.peak_position(rows)
+    roll = scene_geometry.peak_position(rows)
     assert roll == max(rows, key=lambda r: r["p_max_MPa"])["roll_deg"]
     cycle = replace(cycle, rows=rows)
     loaded = SimpleNamespace(cycle=cycle, loaded=synthetic_loaded(cycle))
-    patch = render.flank_patch(cycle)
+    patch = scene_geometry.flank_patch(cycle)
     at_roll = [item if r["roll_deg"] == roll else None for item, r in zip(loaded.loaded, rows)]
-    _, envelope = render.pressure_on_flank(cycle, loaded.loaded, patch)
-    _, one = render.pressure_on_flank(cycle, at_roll, patch)
+    _, envelope = scene_geometry.pressure_on_flank(cycle, loaded.loaded, patch)
+    _, one = scene_geometry.pressure_on_flank(cycle, at_roll, patch)
     here = max(r["p_max_MPa"] for r in rows if r["roll_deg"] == roll)
     assert one.max() == pytest.approx(here, rel=0.05)
     assert 0 < (one > 0).sum() < 0.5 * (envelope > 0).sum()
-    plotter = render.pressure_scene(loaded, case, "test", patch, roll)
-    image = render.screenshot(plotter)
+    plotter = pictures.pressure_scene(loaded, case, "test", patch, roll)
+    image = scene.screenshot(plotter)
     plotter.close()
     assert len(np.unique(image.reshape(-1, 3), axis=0)) > 300
-    assert render.peak_position([{"roll_deg": 0.0, "bem_p_max_MPa": None}]) is None
+    assert scene_geometry.peak_position([{"roll_deg": 0.0, "bem_p_max_MPa": None}]) is None
 
 
 def test_a_cut_ellipse_is_drawn_along_the_edge_not_past_it(tilted):
@@ -133,7 +134,7 @@ def test_a_cut_ellipse_is_drawn_along_the_edge_not_past_it(tilted):
     edge there (every point on the flank: inside its face to 1 µm), and it reaches that
     edge (the cut shows)."""
     case, result = tilted
-    outlines = render.ellipse_outlines(result.cycle)
+    outlines = scene_geometry.ellipse_outlines(result.cycle)
     half = 0.5 * case.face_width
     assert np.isfinite(outlines).all()
     assert np.abs(outlines[..., 2]).max() <= half + 1e-3
@@ -144,8 +145,8 @@ def test_edge_contact_turns_the_warning_colour_on_at_its_edge(tilted):
     case, result = tilted
     cycle = result.cycle
     assert all(r["edge_margins_mm"].get("pinion_end_B", 0.0) < 0 for r in cycle.rows)
-    plotter = render.pattern_scene(result, case, "test", "head-on")
-    image = render.screenshot(plotter)
+    plotter = pictures.pattern_scene(result, case, "test", "head-on")
+    image = scene.screenshot(plotter)
     warning = is_warning_colour(image)
     assert warning.sum() > 500
     # and it is at end B: the warning pixels near the end B edge's projection
@@ -153,8 +154,8 @@ def test_edge_contact_turns_the_warning_colour_on_at_its_edge(tilted):
     u = np.linspace(u0, u1, 9)
     edge_b = np.stack(cycle.pinion.point(u, np.full_like(u, v1)), axis=-1)
     edge_a = np.stack(cycle.pinion.point(u, np.full_like(u, v0)), axis=-1)
-    at_b = render.project(plotter, edge_b)
-    at_a = render.project(plotter, edge_a)
+    at_b = scene.project(plotter, edge_b)
+    at_a = scene.project(plotter, edge_a)
     plotter.close()
     assert sum(is_warning_colour(window(image, p, 4)).any() for p in at_b) >= 2
     assert not any(is_warning_colour(window(image, p, 4)).any() for p in at_a)
@@ -189,15 +190,15 @@ def test_pressure_map_from_the_loaded_contact(aligned):
     case, result = aligned
     cycle = result.cycle
     loaded = SimpleNamespace(cycle=cycle, loaded=synthetic_loaded(cycle))
-    patch = render.flank_patch(cycle)
-    _, pressure = render.pressure_on_flank(cycle, loaded.loaded, patch)
+    patch = scene_geometry.flank_patch(cycle)
+    _, pressure = scene_geometry.pressure_on_flank(cycle, loaded.loaded, patch)
     assert pressure.max() == pytest.approx(max(r["p_max_MPa"] for r in cycle.rows), rel=0.05)
-    plotter = render.pressure_scene(loaded, case, "test", patch)
-    image = render.screenshot(plotter)
+    plotter = pictures.pressure_scene(loaded, case, "test", patch)
+    image = scene.screenshot(plotter)
     top_hue = float(rgb_to_hsv(np.array(to_rgb("#fde725")))[0])       # viridis' top
     k = int(np.argmax([r["p_max_MPa"] for r in cycle.rows]))
     local = cycle.pinion_frames[np.array([k])].to_local(cycle.planes.point[[k]])
-    h = hsv(window(image, render.project(plotter, local)[0], 2))
+    h = hsv(window(image, scene.project(plotter, local)[0], 2))
     plotter.close()
     assert (hue_distance(h[..., 0], top_hue) < 0.06).mean() > 0.5
 
@@ -206,7 +207,7 @@ def test_pictures_of_a_contact_case_are_written_whole(aligned, tmp_path):
     case, result = aligned
     result = SimpleNamespace(cycle=result.cycle, loaded=synthetic_loaded(result.cycle),
                              parts=result.parts, sections=result.sections)
-    written = render.pictures_for(result, case, tmp_path, name="test", exaggerate=20.0)
+    written = pictures.pictures_for(result, case, tmp_path, name="test", exaggerate=20.0)
     assert [p.name for p in written] == ["pattern_head_on.png", "pattern_perspective.png",
                                          "pair.png", "pressure.png"]
     assert sorted(p.name for p in tmp_path.iterdir()) == sorted(p.name for p in written)
@@ -215,11 +216,11 @@ def test_pictures_of_a_contact_case_are_written_whole(aligned, tmp_path):
     for path in written:
         image = np.asarray(Image.open(path).convert("RGB"))
         # the head-on pictures are cut off below their colour bar (the frame filled)
-        assert image.shape[1:] == (render.WINDOW[0], 3)
-        assert 0.4 * render.WINDOW[1] < image.shape[0] <= render.WINDOW[1]
+        assert image.shape[1:] == (scene_style.WINDOW[0], 3)
+        assert 0.4 * scene_style.WINDOW[1] < image.shape[0] <= scene_style.WINDOW[1]
         assert len(np.unique(image.reshape(-1, 3), axis=0)) > 300, path.name
         # the bottom rows hold the colour bar's labels, not an empty band
-        assert len(np.unique(image[-int(0.15 * render.WINDOW[1]):].reshape(-1, 3), axis=0)) > 20
+        assert len(np.unique(image[-int(0.15 * scene_style.WINDOW[1]):].reshape(-1, 3), axis=0)) > 20
 
 
 def test_a_bad_position_fails_before_anything_is_written(aligned, tmp_path):
@@ -227,7 +228,7 @@ def test_a_bad_position_fails_before_anything_is_written(aligned, tmp_path):
 
     case, result = aligned
     with pytest.raises(CaseError, match="--position"):
-        render.pictures_for(result, case, tmp_path / "out", position=7)
+        pictures.pictures_for(result, case, tmp_path / "out", position=7)
     assert not (tmp_path / "out").exists()
 
 
@@ -237,9 +238,9 @@ def test_exaggerated_misalignment_multiplies_the_relative_motion():
     tilt = rotation([0, 1, 0], 0.001)
     placed_g = Frame.stack([Frame(tilt @ nominal_g.R[0], tilt @ nominal_g.origin[0, 0]
                                   + np.array([0.02, 0, 0]))])
-    same = render.exaggerated_frame(nominal_p, placed_g, nominal_p, nominal_g, 1.0)
+    same = pictures.exaggerated_frame(nominal_p, placed_g, nominal_p, nominal_g, 1.0)
     assert np.allclose(same.R, placed_g.R) and np.allclose(same.origin, placed_g.origin)
-    ten = render.exaggerated_frame(nominal_p, placed_g, nominal_p, nominal_g, 10.0)
+    ten = pictures.exaggerated_frame(nominal_p, placed_g, nominal_p, nominal_g, 10.0)
     relative = ten.R[0] @ nominal_g.R[0].T
     angle = math.acos((np.trace(relative) - 1) / 2)
     assert angle == pytest.approx(0.01, rel=1e-9)
@@ -266,20 +267,20 @@ def test_the_scale_bar_is_a_round_length_drawn_to_scale(half):
     """A head-on picture's mm bar: 1, 2 or 5 × 10^k mm, between a fifteenth and a sixth of
     the window's width, and on the screen exactly that long (its ends projected through
     the camera: pixels per mm = window height / (2·half) in an orthographic view)."""
-    pv = render._pyvista()
-    plotter = render._plotter(pv)
+    pv = scene.load_pyvista()
+    plotter = scene.new_plotter(pv)
     focus, normal, up = np.zeros(3), np.array([0.0, 0.0, 1.0]), np.array([0.0, 1.0, 0.0])
-    render._camera(plotter, focus, normal, up, half, parallel=True)
+    scene.set_camera(plotter, focus, normal, up, half, parallel=True)
     before = len(plotter.renderer.actors)
-    length = render._scale_bar(plotter, focus, normal, up, half)
-    width = 2.0 * half * render.WINDOW[0] / render.WINDOW[1]
+    length = scene._scale_bar(plotter, focus, normal, up, half)
+    width = 2.0 * half * scene_style.WINDOW[0] / scene_style.WINDOW[1]
     mantissa = length / 10.0 ** math.floor(math.log10(length))
     assert round(mantissa, 9) in (1.0, 2.0, 5.0)
     assert width / 15.0 < length <= width / 6.0
     bar = list(plotter.renderer.actors.values())[before].GetMapper().GetInput()
-    ends = render.project(plotter, np.asarray(bar.points))
+    ends = scene.project(plotter, np.asarray(bar.points))
     assert abs(ends[1, 0] - ends[0, 0]) == pytest.approx(
-        length * render.WINDOW[1] / (2.0 * half), rel=0.01)
+        length * scene_style.WINDOW[1] / (2.0 * half), rel=0.01)
     plotter.close()
 
 
@@ -288,8 +289,8 @@ def test_the_colour_bars_title_stands_clear_of_its_tick_labels(aligned):
     carries no title of its own, and the title is a text above the bar's box, below the
     scale bar's height."""
     case, result = aligned
-    plotter = render.pattern_scene(result, case, "test", "head-on")
-    render._bar_title(plotter)
+    plotter = pictures.pattern_scene(result, case, "test", "head-on")
+    scene._bar_title(plotter)
     bar = plotter.scalar_bar
     assert not bar.GetTitle().strip()
     x, y = bar.GetPosition()
@@ -315,11 +316,11 @@ def test_a_helical_pair_is_seen_across_its_contact_lines(tmp_path):
                        "analysis": {"positions": 1, "interference": False, "pressure_grid": 0,
                                     "positions_check": False}})
     result = analyses.analyse(case)
-    plotter = render.pair_scene(result, case, "test")
+    plotter = pictures.pair_scene(result, case, "test")
     cycle = result.cycle
     k = max(range(len(cycle.rows)), key=lambda j: cycle.rows[j]["p_max_MPa"])
-    outline = cycle.pinion_frames[np.array([k])].to_world(render.ellipse_outlines(cycle)[k][None])[0]
-    pixels = render.project(plotter, outline)
+    outline = cycle.pinion_frames[np.array([k])].to_world(scene_geometry.ellipse_outlines(cycle)[k][None])[0]
+    pixels = scene.project(plotter, outline)
     axis = cycle.pinion_frames.R[k][:, 2]
     looking = np.asarray(plotter.camera.direction)
     plotter.close()
@@ -337,6 +338,6 @@ def test_without_the_ease_off_only_the_pair_is_drawn(aligned, tmp_path):
     result = SimpleNamespace(cycle=dataclasses.replace(result.cycle, ease_off=None),
                              loaded=synthetic_loaded(result.cycle), parts=result.parts,
                              sections=result.sections)
-    written = render.pictures_for(result, case, tmp_path, name="test")
+    written = pictures.pictures_for(result, case, tmp_path, name="test")
     assert [p.name for p in written] == ["pair.png"]
     assert sorted(p.name for p in tmp_path.iterdir()) == ["pair.png"]

@@ -11,7 +11,7 @@ import subprocess
 
 import pytest
 
-from toothcontact import report
+from toothcontact.views import report
 
 
 
@@ -96,7 +96,7 @@ def test_markdown_holds_no_giant_line_and_names_the_pictures(images):
 
 def test_inputs_are_shown_as_given():
     """Unicode stays itself, a table holding only sub-tables gets no empty header."""
-    from toothcontact.report_view import toml_lines
+    from toothcontact.views.report_view import toml_lines
 
     lines = toml_lines({"title": "z = 20 × 60", "pinion": {"crown": {"height": "10 um"}}})
     assert lines[0] == 'title = "z = 20 × 60"'
@@ -104,7 +104,7 @@ def test_inputs_are_shown_as_given():
 
 
 def test_labels_and_numbers_read_as_an_engineer_writes_them():
-    from toothcontact.report_view import label, number
+    from toothcontact.views.labels import label, number
 
     assert label("face_position_mm") == "position along the face [mm]"
     assert label("loaded_transmission_error_urad") == "transmission error (loaded) [µrad]"
@@ -124,7 +124,7 @@ def test_labels_and_numbers_read_as_an_engineer_writes_them():
 def test_a_column_that_applies_to_no_row_is_left_out():
     """A result table drops a column whose every row is null (the Kim case's temperature
     and viscosity: it has no lubricant conditions) and keeps the others in their order."""
-    from toothcontact.report_view import _tables
+    from toothcontact.views.report_view import _tables
 
     table, = _tables("efficiency", [{"temperature_C": None, "mu_zm": 0.029, "eta_z": 0.8553},
                                     {"temperature_C": None, "mu_zm": None, "eta_z": 0.9}],

@@ -15,7 +15,7 @@ from markdown_it import MarkdownIt
 from typer.testing import CliRunner
 
 from toothcontact.cli import app
-from toothcontact.report_view import label, number
+from toothcontact.views.labels import label, number
 
 CASES = Path(__file__).parent.parent / "cases"
 

@@ -15,6 +15,7 @@ from scipy.signal import fftconvolve
 from toothcontact.analyses import analyse
 from toothcontact.analytic.hertz import hertz_point
 from toothcontact.case import parse_case
+from toothcontact.contact import influence
 from toothcontact.contact import pressure as P
 from toothcontact.contact.compliance import PairCompliance
 from toothcontact.contact.loaded import _member_ends, free_ends
@@ -144,20 +145,20 @@ def cell_kernel(ox, oy, dx, dy, reference, E_star):
     """The displacement (mm per MPa, E* = 1) at the offsets (ox, oy) (mm, any, not only
     whole cells) of 1 MPa on one dx × dy cell: Johnson eq (3.25)'s double difference of F
     at the cell's corners, less each body's Boussinesq displacement at its reference depth
-    (pressure.InfluenceOperator's terms, here at any offset)."""
+    (influence.InfluenceOperator's terms, here at any offset)."""
     total = 0.0
     for sx, sy, sign in ((1, 1, 1), (1, -1, -1), (-1, 1, -1), (-1, -1, 1)):
         s, t = ox + sx * dx / 2, oy + sy * dy / 2
-        total = total + sign * P._antiderivative(s, t) / math.pi
+        total = total + sign * influence._antiderivative(s, t) / math.pi
         for depth, E, nu in reference:
             G = E / (2.0 * (1.0 + nu))
-            total = total - sign * E_star / (4.0 * math.pi * G) * P._depth_antiderivative(
+            total = total - sign * E_star / (4.0 * math.pi * G) * influence._depth_antiderivative(
                 s, t, depth, nu)
     return total
 
 
 def mirrored_oblique(p, end, dx, dy, reference, E_star):
-    """The mirror term of an oblique free end (pressure.ObliqueFreeEnd) summed directly
+    """The mirror term of an oblique free end (influence.ObliqueFreeEnd) summed directly
     (mm per E*): each tapered cell's pressure as a uniform cell centred on its exact image
     about the end's line (not spread onto the cells around it, as the solver does), its
     displacement read at every tapered cell by `cell_kernel`."""
@@ -168,7 +169,7 @@ def mirrored_oblique(p, end, dx, dy, reference, E_star):
     if not band.any():
         return u
     i, j, d = I[band], J[band], d[band]
-    taper = P.end_taper(d / end.reach_mm)
+    taper = influence.end_taper(d / end.reach_mm)
     x, y = i * dx, j * dy
     image_x, image_y = x - 2.0 * d * end.a / dx, y - 2.0 * d * end.b / dy
     K = cell_kernel(x[:, None] - image_x[None, :], y[:, None] - image_y[None, :], dx, dy,
@@ -178,11 +179,11 @@ def mirrored_oblique(p, end, dx, dy, reference, E_star):
 
 
 def mirrored(p, end, dx, dy, reference, E_star):
-    """The mirror term of a free end (pressure.FreeEnd) evaluated directly (mm per E*): the
+    """The mirror term of a free end (influence.FreeEnd) evaluated directly (mm per E*): the
     tapered pressure placed at its mirror cells (2·index - 1 - i) on a grid extended past
     the end, linearly convolved with Love's cell coefficients (scipy.signal), read back on
     the tapered cells."""
-    if isinstance(end, P.ObliqueFreeEnd):
+    if isinstance(end, influence.ObliqueFreeEnd):
         return mirrored_oblique(p, end, dx, dy, reference, E_star)
     q = p if end.axis == 0 else p.T
     step = (dx, dy)[end.axis]
@@ -197,7 +198,7 @@ def mirrored(p, end, dx, dy, reference, E_star):
     image = np.zeros((3 * n, m))
     image[2 * end.index - 1 - i[inside] + shift] = (taper[:, None] * q)[inside]
     steps = (dx, dy) if end.axis == 0 else (dy, dx)
-    kernel = P.InfluenceOperator.coefficients(3 * n, m, *steps, reference, E_star)
+    kernel = influence.InfluenceOperator.coefficients(3 * n, m, *steps, reference, E_star)
     centred = np.roll(kernel, (3 * n, m), axis=(0, 1))[1:, 1:]
     u = fftconvolve(image, centred, mode="full")[3 * n - 1:6 * n - 1, m - 1:2 * m - 1]
     u = end.weight * taper[:, None] * u[shift:shift + n] / E_star
@@ -232,7 +233,7 @@ def test_a_loaded_helical_position_satisfies_the_coupled_equations(helical):
         for contact in contacts:
             s, f, B = contact.solution, contact.field, operators[id(contact.field)]
             n0, n1 = s.pressure_MPa.shape
-            kernel = P.InfluenceOperator.coefficients(n0, n1, s.dx_mm, s.dy_mm, B.reference,
+            kernel = influence.InfluenceOperator.coefficients(n0, n1, s.dx_mm, s.dy_mm, B.reference,
                                                       s.E_star_MPa)
             centred = np.roll(kernel, (n0, n1), axis=(0, 1))[1:, 1:]  # offsets -n+1 .. n-1
             u = (fftconvolve(s.pressure_MPa, centred, mode="full")[n0 - 1:2 * n0 - 1,
@@ -241,10 +242,10 @@ def test_a_loaded_helical_position_satisfies_the_coupled_equations(helical):
             for end in free_ends(f, _member_ends(None), B.reference):
                 direct = mirrored(s.pressure_MPa, end, s.dx_mm, s.dy_mm, B.reference,
                                   s.E_star_MPa)
-                if isinstance(end, P.ObliqueFreeEnd):
+                if isinstance(end, influence.ObliqueFreeEnd):
                     spread = np.zeros(direct.shape)
                     end.add_mirror(spread, s.pressure_MPa,
-                                   P.InfluenceOperator(direct.shape, s.dx_mm, s.dy_mm,
+                                   influence.InfluenceOperator(direct.shape, s.dx_mm, s.dy_mm,
                                                        B.reference, s.E_star_MPa),
                                    (s.dx_mm, s.dy_mm), False)
                     spread /= s.E_star_MPa
@@ -300,7 +301,7 @@ def test_the_operators_of_a_window_are_the_grids_operators_there(helical):
     rng = np.random.default_rng(7)
     p = np.zeros(shape)
     p[rows, cols] = rng.random(p[rows, cols].shape) * contact.field.material[rows, cols]
-    whole = P.influence_operator(shape, s.dx_mm, s.dy_mm, B.reference, s.E_star_MPa)
+    whole = influence.influence_operator(shape, s.dx_mm, s.dy_mm, B.reference, s.E_star_MPa)
     part = whole.part(p[rows, cols].shape)
     expected = whole(p)[rows, cols]
     assert np.max(np.abs(part(p[rows, cols]) - expected)) < 1e-12 * np.max(np.abs(expected))

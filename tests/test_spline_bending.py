@@ -15,7 +15,7 @@ from toothcontact import gearset
 from toothcontact.analyses import analyse
 from toothcontact.case import parse_case
 from toothcontact.contact.compliance import ToothCompliance
-from toothcontact.contact.loaded import flank_edges
+from toothcontact.contact.edge_loads import flank_edges
 
 from mutations import CASES as CASES_DIR
 

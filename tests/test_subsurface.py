@@ -5,7 +5,6 @@ p0 at 0.786 b. Tolerance 1 % of the value and of the depth, on
 grids whose refinement (64 -> 128 cells across the contact) moves the answer less than
 0.1 %."""
 
-import math
 
 import numpy as np
 import pytest

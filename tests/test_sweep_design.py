@@ -163,7 +163,7 @@ def grid_rows():
 def test_the_figures_and_report_of_a_grid_sweep(tmp_path):
     """From the table and statistics alone: the robustness map, the Harris map, the
     response and the optimisation; the report names the key results and embeds each."""
-    from toothcontact import plots, report
+    from toothcontact.views import report, sweep_plots
 
     rows = grid_rows()
     fields = ["pinion.crown.radius", "misalignment.slope", "load.tangential_load",
@@ -179,7 +179,7 @@ def test_the_figures_and_report_of_a_grid_sweep(tmp_path):
                      "objective": o, "constraints": [c], "feasible": c <= 0.05}
                     for i, (r, o, c) in enumerate([(5.0, 900.0, 0.0), (6.5, 850.0, 0.2)])]}
     stats["optimise"]["best"] = stats["optimise"]["history"][0]
-    figures = plots.sweep_figures(rows, stats, tmp_path)
+    figures = sweep_plots.sweep_figures(rows, stats, tmp_path)
     names = [p.name for p in figures]
     assert names == ["histograms.png", "response.png", "map.png", "harris.png",
                      "optimisation.png"]
@@ -281,7 +281,7 @@ def test_sweep_figures_show_each_load_level_and_how_sure_a_rank_is(tmp_path, mon
     by its level and time share, beside the percentiles over the operating time; the
     tornado's bar carries its 95 % interval and the draws it rests on; an optimisation that
     met no constraint stars no design as the best and says so; axes read as words."""
-    from toothcontact import plots
+    from toothcontact.views import style, sweep_plots
 
     rows = spectrum_rows()
     stats = {"title": "spectrum", "inputs": ["misalignment.slope"],
@@ -299,7 +299,7 @@ def test_sweep_figures_show_each_load_level_and_how_sure_a_rank_is(tmp_path, mon
                     for i, (r, o) in enumerate([(5.0, 900.0), (6.5, 850.0)])]}
     stats["optimise"]["best"] = stats["optimise"]["history"][1]
     seen = {}
-    saved = plots._save
+    saved = style.save
 
     def keep(fig, path):
         seen[Path(path).name] = (
@@ -309,8 +309,8 @@ def test_sweep_figures_show_each_load_level_and_how_sure_a_rank_is(tmp_path, mon
             [len(c.get_children()) for a in fig.axes for c in a.containers])
         return saved(fig, path)
 
-    monkeypatch.setattr(plots, "_save", keep)
-    plots.sweep_figures(rows, stats, tmp_path)
+    monkeypatch.setattr(style, "save", keep)
+    sweep_plots.sweep_figures(rows, stats, tmp_path)
     texts, labels, _ = seen["histograms.png"]
     assert "load.tangential_load = 4000 N (70% of the time)" in texts
     assert "load.tangential_load = 8000 N (30% of the time)" in texts

@@ -10,7 +10,7 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from toothcontact import analyses, gearset
+from toothcontact import analyses, gearset, member_modifications
 from toothcontact.analytic.hertz import compliance, hertz_line
 from toothcontact.case import parse_case
 from toothcontact.contact import field as field_module
@@ -109,7 +109,7 @@ def test_a_tip_without_a_given_rounding_gets_a_tenth_of_the_module():
     tight = gearset.gear_pair(parse_case(pointed))
     edge = tight.pinion_modifications.tip_edge
     form = generate_side(tight.pinion).form_radius
-    largest = gearset.largest_tip_edge(tight.pinion, form)
+    largest = member_modifications.largest_tip_edge(tight.pinion, form)
     assert edge is not None and edge.radius == pytest.approx(min(0.3, largest), rel=1e-9)
     spline = tomllib.loads((Path(__file__).parent.parent / "cases"
                             / "spline_crowned_18t.toml").read_text())

@@ -11,7 +11,7 @@ import pytest
 from toothcontact import units
 from toothcontact.analyses import analyse
 from toothcontact.case import parse_case
-from toothcontact.report import result_document
+from toothcontact.views.report import result_document
 from toothcontact.runner import bundled_cases_dir
 
 from mutations import bundled, small

@@ -12,7 +12,7 @@ import numpy as np
 import pytest
 from mutations import CASES
 
-from toothcontact import gearset
+from toothcontact import worm_gearset
 from toothcontact.analyses import analyse, contact
 from toothcontact.case import parse_case
 from toothcontact.contact.compliance import (ThreadCompliance, ToothCompliance,
@@ -30,7 +30,7 @@ def eps_case(**analysis):
 @pytest.fixture(scope="module")
 def worm_set():
     case = eps_case()
-    parts = gearset.worm_set(case)
+    parts = worm_gearset.worm_set(case)
     flank = case.load.flank
     wheel_material = case.wheel_material or case.material
     worm, wheel = parts.worm[flank], parts.wheel[flank]
@@ -127,7 +127,7 @@ def test_the_bending_adds_what_a_pasternak_line_allows():
         rigid = analyse(case).sections["positions"]
     finally:
         contact.loaded_sections = original
-    parts = gearset.worm_set(case)
+    parts = worm_gearset.worm_set(case)
     worm, wheel = parts.worm[case.load.flank], parts.wheel[case.load.flank]
     material = case.wheel_material or case.material
     teeth = WheelToothCompliance(wheel, material.E, material.nu)

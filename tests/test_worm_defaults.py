@@ -8,7 +8,7 @@ import math
 import numpy as np
 import pytest
 
-from toothcontact import gearset
+from toothcontact import worm_gearset
 from toothcontact.analyses import analyse
 from toothcontact.case import CaseError, parse_case
 
@@ -49,7 +49,7 @@ def test_defaults_give_a_valid_wheel(form, starts, lead, teeth, module):
     wheel flank exists over its whole domain (no NaN on a 9 × 9 grid), lies on the face
     planes at v = ±b2/2, and mostly inside the blank (the rest a thin strip past its tip)."""
     case = parse_case(worm_case(form, starts, lead, teeth, module))
-    parts = gearset.worm_set(case)
+    parts = worm_gearset.worm_set(case)
     for side in ("left", "right"):
         worm, wheel = parts.worm[side], parts.wheel[side]
         r1, ra1 = worm.pitch_diameter / 2, worm.tip_diameter / 2
@@ -115,7 +115,7 @@ def test_a_worm_shorter_than_the_wheels_generating_zone_is_cut_by_a_longer_hob()
     depends on the thread, not the hob's length): the same points to 1e-9 mm. An 8 mm
     worm (one lead of 6.3 mm and a little) then meshes over its own length: its end
     carries the load, and the analysis says so instead of refusing the design."""
-    short, long = (gearset.worm_set(parse_case(worm_case("ZI", 1, 5.0, 40, 2.0, length=n)))
+    short, long = (worm_gearset.worm_set(parse_case(worm_case("ZI", 1, 5.0, 40, 2.0, length=n)))
                    for n in (8.0, 60.0))
     for side in ("left", "right"):
         cut, reference = short.wheel[side], long.wheel[side]

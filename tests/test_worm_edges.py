@@ -1,4 +1,4 @@
-"""Worm sets as made (surfaces.broken, gearset.worm_edges): the worm's and the wheel's tip
+"""Worm sets as made (surfaces.broken, worm_gearset.worm_edges): the worm's and the wheel's tip
 edges rounded or chamfered and the wheel's rim faces chamfered, held to what a rounding is
 independently of how it is put on: the broken flank departs from the exact one at the
 rounding's start with no step or kink, curves by 1/ρ across its edge (the principal
@@ -12,8 +12,8 @@ import numpy as np
 import pytest
 from scipy.optimize import least_squares
 
-from toothcontact import gearset
-from toothcontact.case import CaseError, parse_case
+from toothcontact import worm_gearset
+from toothcontact.case import parse_case
 from toothcontact.runner import bundled_cases_dir
 from toothcontact.case import load_case
 
@@ -21,7 +21,7 @@ from toothcontact.case import load_case
 @pytest.fixture(scope="module")
 def saba():
     case, _ = load_case(bundled_cases_dir() / "worm_saba_set.toml")
-    return case, gearset.worm_set(case)
+    return case, worm_gearset.worm_set(case)
 
 
 def across(flank, u, v=0.0):
@@ -119,11 +119,11 @@ def test_the_case_says_how_the_edges_are_broken():
     """'0 mm' leaves a tip sharp; a chamfer turns onto a straight chamfer at its angle (the
     drop's slope tan(angle) past the rounding of its edge); a rim chamfer breaks the
     wheel's face ends; a rounding that does not fit names its field and the limit."""
-    sharp = gearset.worm_set(raw_case(**{"worm.tip_edge": {"radius": "0 mm"},
+    sharp = worm_gearset.worm_set(raw_case(**{"worm.tip_edge": {"radius": "0 mm"},
                                          "wheel.tip_edge": {"radius": "0 mm"}}))
     assert sharp.worm["left"].tip is None and sharp.wheel["left"].tip is None
     assert sharp.edges["worm_tip"] is None
-    chamfered = gearset.worm_set(raw_case(**{
+    chamfered = worm_gearset.worm_set(raw_case(**{
         "worm.tip_edge": {"chamfer": "0.15 mm", "angle": "20 deg", "radius": "0.05 mm"},
         "wheel.rim_chamfer": {"length": "0.4 mm", "angle": "30 deg"}}))
     tip = chamfered.worm["left"].tip
@@ -137,7 +137,7 @@ def test_the_case_says_how_the_edges_are_broken():
         0.5 * wheel.face_width - 0.4 - 0.11 * math.tan(math.radians(15.0)))
     assert chamfered.edges["wheel_rim"]["chamfer_mm"] == pytest.approx(0.4)
     with pytest.raises(ValueError, match=r"worm\.tip_edge: .*half its depth"):
-        gearset.worm_set(raw_case(**{"worm.tip_edge": {"radius": "3 mm"}}))
+        worm_gearset.worm_set(raw_case(**{"worm.tip_edge": {"radius": "3 mm"}}))
 
 
 def test_a_contact_on_the_worms_rounding_is_reported_as_such(saba):
@@ -145,7 +145,7 @@ def test_a_contact_on_the_worms_rounding_is_reported_as_such(saba):
     (Flank.breaks): where they start in each flank's own parameter, toward the tip."""
     from toothcontact.surfaces.placement import WormMesh
     from toothcontact.contact.cycle import CycleSettings, parallel_cycle
-    from toothcontact.contact.loaded import edge_breaks
+    from toothcontact.contact.edge_loads import edge_breaks
     from toothcontact.analytic.hertz import compliance
 
     _, parts = saba

@@ -202,7 +202,7 @@ def test_kim_key_results_range_over_the_output_torques():
     """The Kim case's conditions are its output torques: the key results name them, with
     units, for the efficiency, the spring force, the misalignment, the aligned torque, the
     pressure and the friction; no empty placeholder ('( to °C)', '0.8553 to 0.8553')."""
-    from toothcontact.report_view import key_results
+    from toothcontact.views.report_view import key_results
 
     results = {k.label: k for k in key_results(analyse_file(KIM))}
     text = " | ".join(f"{k.label} {k.value} {k.where}" for k in results.values())
@@ -224,7 +224,7 @@ def test_kim_key_results_range_over_the_output_torques():
 
 
 def test_saba_key_results_still_range_over_temperatures():
-    from toothcontact.report_view import key_results
+    from toothcontact.views.report_view import key_results
 
     doc = analyse_file(bundled_cases_dir() / "worm_saba_flap_actuator.toml")
     results = {k.label: k for k in key_results(doc)}
@@ -240,7 +240,7 @@ def test_kim_report_rounds_its_figures():
     spring force there as 0 N; the same in report.md and report.html."""
     import re
 
-    from toothcontact import report
+    from toothcontact.views import report
 
     doc = analyse_file(KIM)
     for text in (report.markdown(doc), report.html(doc)):

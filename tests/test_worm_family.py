@@ -12,7 +12,7 @@ import pytest
 from scipy.optimize import brentq
 
 from test_worm_wheel import dot, envelope_residuals
-from toothcontact import families, gearset
+from toothcontact import families, worm_gearset
 from toothcontact.case import parse_case
 
 FAMILY = families.worm_designs(12, seed=2024)
@@ -22,7 +22,7 @@ FAMILY = families.worm_designs(12, seed=2024)
                 ids=[d["title"] for d in FAMILY])
 def worm_set(request):
     raw = FAMILY[request.param]
-    return raw, gearset.worm_set(parse_case(raw))
+    return raw, worm_gearset.worm_set(parse_case(raw))
 
 
 def test_the_family_covers_the_ranges():

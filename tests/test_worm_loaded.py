@@ -8,7 +8,7 @@ import math
 import numpy as np
 import pytest
 
-from toothcontact import gearset
+from toothcontact import worm_gearset
 from toothcontact.analyses.worm import SHAKEDOWN_PER_YIELD, worm_geometry_case
 from toothcontact.case import parse_case
 
@@ -102,7 +102,7 @@ def test_the_worm_shafts_deflection_places_the_worm_as_it_bends():
 
     case = saba(worm={"shaft": {"bearings": ["-40 mm", "40 mm"], "diameter": "8 mm"}},
                 load={"output_torque": "4.84 N*m"})
-    parts = gearset.worm_set(case)
+    parts = worm_gearset.worm_set(case)
     worm, wheel = parts.worm["left"], parts.wheel["left"]
     alpha_n, gamma = case.worm.pressure_angle, worm.lead_angle
     F_n = worm_efficiency.normal_tooth_load(4840.0, wheel.reference_radius, gamma, alpha_n)

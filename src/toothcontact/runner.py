@@ -14,9 +14,10 @@ from pathlib import Path
 
 import numpy as np
 
-from . import analyses, report, writing
+from . import analyses, writing
 from . import case as schema
 from .extras import missing_extra
+from .views import report
 
 log = logging.getLogger(__name__)
 
@@ -147,8 +148,8 @@ def run_case(path: str | Path, out_dir: str | Path | None = None, pictures: bool
              progress: Callable[[str], None] | None = None, command: str | None = None
              ) -> tuple[dict, list[Path]]:
     """Analyse a case file and write into `out_dir` (default out/<case name>/): result.json,
-    report.md, report.html, the plots (plots.figures_for) and, with `pictures`, the 3D
-    pictures (render.pictures_for). Nothing is written when the case is bad.
+    report.md, report.html, the plots (views.plots.figures_for) and, with `pictures`, the 3D
+    pictures (views.pictures.pictures_for). Nothing is written when the case is bad.
 
     The folder is all or nothing: everything is written into a staging folder beside it,
     which then replaces it (writing.staging_folder), so a reader sees the previous complete
@@ -180,7 +181,7 @@ def run_case(path: str | Path, out_dir: str | Path | None = None, pictures: bool
 
 
 def _plots(document: dict, folder: Path) -> list[Path]:
-    from . import plots
+    from .views import plots
 
     return plots.figures_for(document, folder)
 
@@ -288,9 +289,9 @@ def run_sweep(path: str | Path, out_dir: str | Path | None = None, *,
             written.append(store.write_table(out / "positions.parquet", store.position_rows(
                 out, [s.sample for s in samples])))
         written.append(writing.write_text(out / "sweep.json", report.json_text(stats)))
-        from . import plots
+        from .views import sweep_plots
 
-        figures = plots.sweep_figures(rows, stats, out)
+        figures = sweep_plots.sweep_figures(rows, stats, out)
         written += figures + [report.write_sweep_report(out, stats, figures)]
     return stats, written
 
@@ -298,17 +299,17 @@ def run_sweep(path: str | Path, out_dir: str | Path | None = None, *,
 def has_pictures(case) -> bool:
     """Whether a case gets 3D pictures: spur, spline and worm cases (with a load, the
     contact pattern; without, the pair in mesh)."""
-    from .render import PICTURE_KINDS
+    from .views.scene_style import PICTURE_KINDS
 
     return case.kind in PICTURE_KINDS
 
 
 def picture_files(run: Analysis, out_dir: Path, position: int | None = None,
                   exaggerate: float = 1.0) -> list[Path]:
-    from . import render
+    from .views import pictures
 
-    return render.pictures_for(run.result, run.case, out_dir, name=run.path.stem,
-                               position=position, exaggerate=exaggerate)
+    return pictures.pictures_for(run.result, run.case, out_dir, name=run.path.stem,
+                                 position=position, exaggerate=exaggerate)
 
 
 def render_case(path: str | Path, out_dir: str | Path | None = None, position: int | None = None,

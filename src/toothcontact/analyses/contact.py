@@ -160,7 +160,8 @@ def loaded_sections(cycle, C_E: float, grid: int, teeth, bending: str,
     corner contact (_edge_verdicts)."""
     if not grid:
         return
-    from ..contact.loaded import loaded_cycle, unsolved
+    from ..contact.edge_loads import unsolved
+    from ..contact.loaded import loaded_cycle
 
     rows = cycle.rows
     start = time.perf_counter()
@@ -218,7 +219,7 @@ def _edge_verdicts(cycle, rows: list[dict], summary: dict, result: Result) -> No
     judged, those carrying EDGE_LEAST_SHARE of their position's load), and corner contacts
     (a tip, root or form edge pressed harder than the flank); a design check of each
     kind."""
-    from ..contact.loaded import EDGE_LEAST_SHARE, EDGE_STRIP, END_LOAD_RATIO, edge_breaks
+    from ..contact.edge_loads import EDGE_LEAST_SHARE, EDGE_STRIP, END_LOAD_RATIO, edge_breaks
 
     carrying = [r for r in rows if r["bem_status"] == "solved"]
     judged = [r for r in carrying if (r.get("load_share") or 0.0) >= EDGE_LEAST_SHARE]
@@ -270,7 +271,7 @@ def _edge_verdicts(cycle, rows: list[dict], summary: dict, result: Result) -> No
 def _edge_note(curved: bool) -> str:
     """What the edge figures mean (the summary's edge_pressure_note); `curved`: a worm
     set's contact lines, crossing the edges, judged by their line load."""
-    from ..contact.loaded import (
+    from ..contact.edge_loads import (
         CORNER_REACH,
         EDGE_LEAST_SHARE,
         EDGE_NEIGHBOURHOOD,

@@ -29,7 +29,7 @@ class Check:
 @dataclass
 class Result:
     """What an analysis found: sections, checks and notes go to result.json; `cycle` (a
-    contact.cycle.ContactCycle, for contact cases), `loaded` (contact.loaded.LoadedContact
+    contact.cycle.ContactCycle, for contact cases), `loaded` (contact.edge_loads.LoadedContact
     or None per cycle row) and `parts` (the members it generated: gearset's GearPair,
     SplinePair or WormSet) stay in memory for the pictures."""
 

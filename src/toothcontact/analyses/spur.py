@@ -233,7 +233,7 @@ def _recommended_tip_relief(pair, result: Result) -> None:
 def _tip_edge_note(case: schema.SpurCase, pair) -> str:
     """The tip edges and end chamfers as analysed: each member's rounding or chamfer, and
     where it is the default."""
-    from ..gearset import DEFAULT_TIP_EDGE_MODULES
+    from ..member_modifications import DEFAULT_TIP_EDGE_MODULES
 
     parts = []
     for name, mods in (("pinion", pair.pinion_modifications), ("gear", pair.gear_modifications)):
@@ -485,7 +485,7 @@ def _load_distribution(pair, result: Result) -> None:
         positions.setdefault(row["roll_deg"], []).append(k)
     width = min(pair.pinion.face_width, pair.gear.face_width)
     transverse = math.cos(pair.pinion.base_helix_angle) ** 2
-    from ..contact.loaded import EDGE_STRIP
+    from ..contact.edge_loads import EDGE_STRIP
 
     end = 0.5 * pair.pinion.face_width - EDGE_STRIP
     edges = np.linspace(-end, end, FACE_STRIPS + 1)

@@ -18,10 +18,10 @@ from .result import Check, Result
 
 def worm_geometry_case(case: schema.WormCase) -> Result:
     """Geometry of a worm set: the worm, the hob and the enveloped wheel's blank (DIN 3975)."""
-    from .. import gearset
+    from .. import worm_gearset
 
     try:
-        parts = gearset.worm_set(case)
+        parts = worm_gearset.worm_set(case)
     except ValueError as exc:
         raise CaseError(f"worm / wheel: {exc}") from None
     worm, wheel = parts.worm["left"], parts.wheel["left"]
@@ -191,7 +191,7 @@ def _wheel_limits(material, result: Result) -> None:
 def _edges_note(edges: dict) -> str:
     """The edges as analysed: each tip's rounding or chamfer, the wheel's rim faces, and
     which are the defaults (an assumption: no standard gives a value)."""
-    from ..gearset import WORM_TIP_EDGE_MODULES
+    from ..worm_gearset import WORM_TIP_EDGE_MODULES
 
     def tip(name: str) -> str:
         edge = edges[f"{name}_tip"]

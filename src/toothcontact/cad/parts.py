@@ -2,7 +2,7 @@
 
 from __future__ import annotations
 
-from .. import gearset
+from .. import gearset, worm_gearset
 from ..case import SOLID_KINDS
 from .gear import build_gear
 from .wheel import build_wheel
@@ -13,7 +13,7 @@ def build_parts(case) -> dict:
     """Bodies (with .solid, .description, .flank_deviation()) of a spur, spline or worm case.
     Gears may be exported as a sector (`[export] teeth`)."""
     if case.kind == "worm":
-        parts = gearset.worm_set(case)
+        parts = worm_gearset.worm_set(case)
         n = case.export.teeth
         sector = n if n is not None and n < case.wheel.teeth else None
         return {"worm": build_worm(parts.worm["left"], parts.worm["right"]),

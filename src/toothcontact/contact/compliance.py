@@ -524,7 +524,7 @@ class StructureOperator:
         self.members, self.shape, self.cell = members, shape, cell
         self.active = np.flatnonzero(active.ravel())
         #: ((depth mm, E MPa, nu) per member): the contact's compression is measured to
-        #: the teeth's centre lines (pressure.InfluenceOperator), where the slices' bending
+        #: the teeth's centre lines (influence.InfluenceOperator), where the slices' bending
         #: is measured from
         self.reference = reference
         # both members' node weights on the whole grid (no rows off the material; `gather`

@@ -28,9 +28,10 @@ from ..analytic.hertz import hertz_line, hertz_point
 from ..surfaces.base import Flank
 from ..surfaces.placement import Frame
 from .ellipse import arc_to_edge, edge_margins
-from .field import EaseOff, ease_off, rigid_patterns
+from .field import EaseOff, ease_off
 from .line import contact_lines
 from .local import TangentPlanes, analytic_gaps, face_length, fit_gaps, planes_at, tangent_planes
+from .rigid_pattern import rigid_patterns
 from .search import ContactPoints, lowest, refine_minima, separation, solve_transmission_error
 
 log = logging.getLogger(__name__)

@@ -3,7 +3,7 @@ rounding or a chamfer and its face ends chamfered.
 
 No standard fixes these edges (../shared/references/worm-tip-geometry.md: drawings give a
 chamfer on the worm and the wheel's rim; no typical value was found); the defaults are the
-project's assumption, stated in the results (gearset.worm_set).
+project's assumption, stated in the results (worm_gearset.worm_set).
 
 A rounding of radius ρ tangent to the flank and to the surface across its edge (the tip
 cylinder of a worm, the throat torus of a wheel), whose outward normals make the angle θ,

@@ -1,12 +1,10 @@
-"""Matplotlib figures of results: the mesh cycle, ease-off maps, the crown design chart and
-worm-set efficiency charts.
+"""Matplotlib figures of a case's result: the mesh cycle, ease-off maps, the load
+distribution and mesh loads, lubrication, the crown design chart and worm-set efficiency
+charts (a sweep's are sweep_plots').
 
 Each function takes plain data (a result document as written to result.json, or arrays) and
-an output path, draws on its own `Figure` with an Agg canvas (object API, no pyplot, no
-display, no global pyplot state), writes one PNG whole or not at all
-(temporary file in the same folder, then rename) and returns the path. Units: mm, µm, µrad,
-MPa, N, N·m, rad as the labels say. Only this module imports matplotlib.
-"""
+an output path, draws on its own figure (look.figure) and writes it whole (look.save),
+returning the path. Units: mm, µm, µrad, MPa, N, N·m, rad as the labels say."""
 
 from __future__ import annotations
 
@@ -15,128 +13,13 @@ import textwrap
 from pathlib import Path
 
 import numpy as np
-from matplotlib.backends.backend_agg import FigureCanvasAgg
-from matplotlib.figure import Figure
 from matplotlib.legend_handler import HandlerTuple
 from matplotlib.lines import Line2D
-from matplotlib.patches import Patch, Rectangle
-from matplotlib.ticker import FuncFormatter, MaxNLocator, ScalarFormatter
+from matplotlib.patches import Patch
+from matplotlib.ticker import MaxNLocator
 
-from . import __version__
-
-#: Resolution of every figure (pixels per inch); widths are 8.5 in, i.e. 1020 px.
-DPI = 120
-WIDTH_IN = 8.5
-#: Warning colour: edge contact. No other element of a figure uses it.
-WARNING = "#d62728"
-#: Series colours: matplotlib's tab10 without its red and orange (kept for warnings).
-SERIES = ("#1f77b4", "#2ca02c", "#9467bd", "#8c564b", "#17becf", "#7f7f7f", "#bcbd22",
-          "#e377c2")
-#: Crown chart: the chosen design's marker colour (used nowhere else in that chart).
-DESIGN = "#ffbf00"
-
-
-# ---------------------------------------------------------------------------------------
-# plumbing
-
-
-def _figure(height_in: float) -> Figure:
-    fig = Figure(figsize=(WIDTH_IN, height_in), dpi=DPI, layout="constrained")
-    FigureCanvasAgg(fig)
-    return fig
-
-
-def _save(fig: Figure, path: str | Path) -> Path:
-    """Write `fig` as PNG to `path` atomically; the figure is cleared afterwards."""
-    from .writing import write_atomic
-
-    try:
-        return write_atomic(path, lambda handle: fig.savefig(
-            handle, format="png", dpi=DPI,
-            metadata={"Software": f"toothcontact {__version__} (matplotlib)"}), binary=True)
-    finally:
-        fig.clear()
-
-
-def _num(value) -> float:
-    """A float from a result value; None, "nan", "inf" or anything non-numeric -> NaN."""
-    if isinstance(value, bool) or value is None:
-        return math.nan
-    try:
-        number = float(value)
-    except (TypeError, ValueError):
-        return math.nan
-    return number if math.isfinite(number) else math.nan
-
-
-def _column(rows: list[dict], key: str) -> np.ndarray:
-    return np.array([_num(r.get(key)) for r in rows], dtype=float)
-
-
-def _title(result: dict, what: str, width: int = 80) -> str:
-    name = result.get("title") or result.get("case") or ""
-    return "\n".join(textwrap.wrap(f"{what}: {name}" if name else what, width))
-
-
-def _plain_axis(axis) -> None:
-    """Tick labels without an offset or a power of ten (TE varies in its fourth digit)."""
-    formatter = ScalarFormatter(useOffset=False)
-    formatter.set_scientific(False)
-    axis.set_major_formatter(formatter)
-
-
-def _plain_log(axis) -> None:
-    """Log-axis labels as plain numbers, at the decades and at 2, 3 and 5 between them."""
-    major = FuncFormatter(lambda v, _: f"{v:g}")
-
-    def minor(value, _):
-        mantissa = value / 10.0 ** math.floor(math.log10(value) + 1e-9)
-        return f"{value:g}" if round(mantissa) in (2, 3, 5) else ""
-
-    axis.set_major_formatter(major)
-    axis.set_minor_formatter(FuncFormatter(minor))
-
-
-def _labelled_log_limits(ax) -> None:
-    """Widen a log y axis to the labelled values (1, 2, 3, 5 per decade) just outside its
-    data, so each end carries a label."""
-    steps = np.array([1.0, 2.0, 3.0, 5.0, 10.0])
-    lo, hi = ax.get_ylim()
-    if not (lo > 0 and hi > lo):
-        return
-
-    def nice(value, below):
-        decade = 10.0 ** math.floor(math.log10(value))
-        marks = steps * decade
-        return float(marks[marks <= value * (1 + 1e-9)].max() if below
-                     else marks[marks >= value * (1 - 1e-9)].min())
-
-    ax.set_ylim(nice(lo, True), nice(hi, False))
-
-
-#: the least span of the transmission-error axis (µrad, µm): a flat curve's round-off
-#: ripple is not blown up to fill the panel
-TE_LEAST_SPAN = {"µrad": 2.0, "µm": 0.1}
-
-
-def _least_span(ax, values: np.ndarray, span: float) -> None:
-    """Widen the y axis to at least `span` around the values' middle."""
-    finite = values[np.isfinite(values)]
-    if finite.size and np.ptp(finite) < span:
-        middle = 0.5 * (finite.min() + finite.max())
-        ax.set_ylim(middle - 0.5 * span, middle + 0.5 * span)
-
-
-def _gapped(x: np.ndarray, y: np.ndarray, step: float) -> tuple[np.ndarray, np.ndarray]:
-    """Sorted by x, with a NaN inserted where consecutive x differ by more than 1.5 steps,
-    so a line does not bridge positions where the series is absent."""
-    order = np.argsort(x, kind="stable")
-    x, y = x[order], y[order]
-    if len(x) < 2 or not step > 0:
-        return x, y
-    breaks = np.nonzero(np.diff(x) > 1.5 * step)[0] + 1
-    return np.insert(x, breaks, np.nan), np.insert(y, breaks, np.nan)
-
+from . import style as look
+from .style import DESIGN, SERIES, TE_LEAST_SPAN, WARNING
 
 # ---------------------------------------------------------------------------------------
 # 1. mesh cycle
@@ -158,9 +41,9 @@ def mesh_cycle(result: dict, path: str | Path) -> Path:
     if not rows:
         raise ValueError("mesh_cycle: the result has no 'positions' (no contact analysis)")
     by_tooth = result.get("kind") == "spline"
-    roll, pair = _column(rows, "roll_deg"), _column(rows, "pair")
-    p_max = _column(rows, "p_max_MPa")
-    a, b, margin = _column(rows, "a_mm"), _column(rows, "b_mm"), _column(rows, "edge_margin_mm")
+    roll, pair = look.column(rows, "roll_deg"), look.column(rows, "pair")
+    p_max = look.column(rows, "p_max_MPa")
+    a, b, margin = look.column(rows, "a_mm"), look.column(rows, "b_mm"), look.column(rows, "edge_margin_mm")
     # a pair kept only for the loaded contact (rigid_contact false) has no Hertz contact
     touching = np.array([r.get("rigid_contact", True) for r in rows], bool)
     p_max, a, b = (np.where(touching, column, np.nan) for column in (p_max, a, b))
@@ -185,9 +68,9 @@ def mesh_cycle(result: dict, path: str | Path) -> Path:
     step = float(np.min(steps)) if len(steps) else 0.0
     groups = list(np.unique(group[np.isfinite(group)]))
 
-    fig = _figure(7.4)
+    fig = look.figure(7.4)
     (ax_te, ax_p), (ax_ab, ax_m) = fig.subplots(2, 2)
-    fig.suptitle(_title(result, "Mesh cycle", 110), fontsize=11)
+    fig.suptitle(look.title(result, "Mesh cycle", 110), fontsize=11)
 
     # transmission error: one value per position, unloaded and (where solved) loaded, each
     # about its own mean (a loaded TE's mean is the mesh's compliance, hundreds of µrad; its
@@ -199,7 +82,7 @@ def mesh_cycle(result: dict, path: str | Path) -> Path:
     for name, column, style, colour in (
             ("unloaded", f"transmission_error_{suffix}", "o-", "black"),
             ("loaded", f"loaded_transmission_error_{suffix}", "s-", WARNING)):
-        values = _column(rows, column)[first]
+        values = look.column(rows, column)[first]
         if not np.isfinite(values).any():
             continue
         mean, digits = float(np.nanmean(values)), 3 if unit == "µm" else 2
@@ -213,12 +96,12 @@ def mesh_cycle(result: dict, path: str | Path) -> Path:
                     + (f" × r = {arm:.4g} mm)" if arm and unit == "µm" else ")"),
               xlabel="roll angle (deg)" if by_tooth else x_label,
               ylabel=f"TE about its mean ({unit})")
-    _least_span(ax_te, np.concatenate([np.asarray(line.get_ydata(), float)
+    look.least_span(ax_te, np.concatenate([np.asarray(line.get_ydata(), float)
                                        for line in ax_te.get_lines()] or [np.array([])]),
                 TE_LEAST_SPAN[unit])
-    _plain_axis(ax_te.yaxis)
-    loaded_p = np.where(touching | (_column(rows, "bem_load_N") > 0),
-                        _column(rows, "bem_p_max_MPa"), np.nan)
+    look.plain_axis(ax_te.yaxis)
+    loaded_p = np.where(touching | (look.column(rows, "bem_load_N") > 0),
+                        look.column(rows, "bem_p_max_MPa"), np.nan)
     has_loaded = np.isfinite(loaded_p).any()
 
     handles = []
@@ -227,13 +110,13 @@ def mesh_cycle(result: dict, path: str | Path) -> Path:
         sel = group == g
         xs = x[sel]
         if has_loaded:
-            ax_p.plot(*_gapped(xs, loaded_p[sel], step), "o-", color=colour, ms=4, lw=1.2)
-            ax_p.plot(*_gapped(xs, p_max[sel], step), ":", color=colour, lw=1.0)
+            ax_p.plot(*look.gapped(xs, loaded_p[sel], step), "o-", color=colour, ms=4, lw=1.2)
+            ax_p.plot(*look.gapped(xs, p_max[sel], step), ":", color=colour, lw=1.0)
         else:
-            ax_p.plot(*_gapped(xs, p_max[sel], step), "o-", color=colour, ms=4, lw=1.2)
-        ax_ab.plot(*_gapped(xs, a[sel], step), "o-", color=colour, ms=4, lw=1.2)
-        ax_ab.plot(*_gapped(xs, b[sel], step), "s--", color=colour, ms=3.5, lw=1.2)
-        ax_m.plot(*_gapped(xs, margin[sel], step), "o-", color=colour, ms=4, lw=1.2)
+            ax_p.plot(*look.gapped(xs, p_max[sel], step), "o-", color=colour, ms=4, lw=1.2)
+        ax_ab.plot(*look.gapped(xs, a[sel], step), "o-", color=colour, ms=4, lw=1.2)
+        ax_ab.plot(*look.gapped(xs, b[sel], step), "s--", color=colour, ms=3.5, lw=1.2)
+        ax_m.plot(*look.gapped(xs, margin[sel], step), "o-", color=colour, ms=4, lw=1.2)
         handles.append(Line2D([], [], color=colour, marker="o", ms=4, label=label(g)))
 
     ax_p.set(title="Peak pressure: loaded (—), Hertz (···)" if has_loaded
@@ -242,8 +125,8 @@ def mesh_cycle(result: dict, path: str | Path) -> Path:
               ylabel="semi-axis a (solid), b (dashed) (mm)")
     if np.any(np.isfinite(a) & (a > 0)) or np.any(np.isfinite(b) & (b > 0)):
         ax_ab.set_yscale("log")
-        _plain_log(ax_ab.yaxis)
-        _labelled_log_limits(ax_ab)
+        look.plain_log(ax_ab.yaxis)
+        look.labelled_log_limits(ax_ab)
     ax_m.axhline(0.0, color="black", ls="--", lw=1.0)
     ax_m.set(title="Worst edge margin", xlabel=x_label,
              ylabel="edge margin (mm), < 0 = edge loading")
@@ -263,7 +146,7 @@ def mesh_cycle(result: dict, path: str | Path) -> Path:
     if np.isfinite(margin).any():
         worst = int(np.nanargmin(margin))
         margins = rows[worst].get("edge_margins_mm") or {}
-        finite = {k: _num(v) for k, v in margins.items() if math.isfinite(_num(v))}
+        finite = {k: look.num(v) for k, v in margins.items() if math.isfinite(look.num(v))}
         name = min(finite, key=finite.get) if finite else "worst"
         lo_x, hi_x = np.nanmin(x), np.nanmax(x)
         right = x[worst] <= 0.5 * (lo_x + hi_x)
@@ -282,7 +165,7 @@ def mesh_cycle(result: dict, path: str | Path) -> Path:
     fig.legend(handles=entries, loc="outside lower center",
                ncol=min(len(entries), max(4, math.ceil(len(entries) / 2))), fontsize=8,
                frameon=False, title=pair_legend or None, title_fontsize=8)
-    return _save(fig, path)
+    return look.save(fig, path)
 
 
 # ---------------------------------------------------------------------------------------
@@ -312,7 +195,7 @@ def ease_off_map(face_mm, radius_mm, separation_um, path: str | Path,
         raise ValueError("separation_um has no finite value")
     field = np.ma.masked_invalid(z)
 
-    fig = _figure(5.2)
+    fig = look.figure(5.2)
     ax = fig.subplots()
     mesh = ax.pcolormesh(x, y, field, shading="nearest", cmap="viridis")
     lo, hi = float(field.min()), float(field.max())
@@ -350,7 +233,7 @@ def ease_off_map(face_mm, radius_mm, separation_um, path: str | Path,
            ylabel=f"{member} radius (mm)")
     ax.legend(handles=handles, loc="upper center", bbox_to_anchor=(0.5, -0.14), ncol=1,
               fontsize=8, frameon=False)
-    return _save(fig, path)
+    return look.save(fig, path)
 
 
 def load_distribution(result: dict, path: str | Path) -> Path:
@@ -364,7 +247,7 @@ def load_distribution(result: dict, path: str | Path) -> Path:
     rolls = np.asarray(section["roll_deg"], float)
     lines = np.asarray(section["line_load_N_per_mm"], float)
     factors = np.asarray(section["K_H_beta"], float)
-    fig = _figure(5.2)
+    fig = look.figure(5.2)
     ax, side = fig.subplots(1, 2, sharey=True, gridspec_kw={"width_ratios": [4, 1]})
     mesh = ax.pcolormesh(face, rolls, lines, shading="nearest", cmap="viridis")
     ax.plot(face[np.argmax(lines, axis=1)], rolls, "+", color="black", ms=8, mew=1.2,
@@ -383,9 +266,9 @@ def load_distribution(result: dict, path: str | Path) -> Path:
         side.axvline(cycle, color="black", lw=1.0, ls="--")
     side.set(xlabel="K_Hβ of each position", title=f"worst {factors[worst]:.3f}"
              + (f"\ncycle (ISO A) {cycle:.3f}" if cycle is not None else ""))
-    fig.suptitle(_title(result, "Load distribution along the face over the mesh cycle", 95),
+    fig.suptitle(look.title(result, "Load distribution along the face over the mesh cycle", 95),
                  fontsize=10)
-    return _save(fig, path)
+    return look.save(fig, path)
 
 
 def mesh_loads(result: dict, path: str | Path) -> Path:
@@ -398,9 +281,9 @@ def mesh_loads(result: dict, path: str | Path) -> Path:
     position. A panel whose data the result lacks says so."""
     rows = result["positions"]
     summary = result.get("summary") or {}
-    roll, pair = _column(rows, "roll_deg"), _column(rows, "pair")
-    share = _column(rows, "load_share")
-    shear = _column(rows, "subsurface_shear_max_MPa")
+    roll, pair = look.column(rows, "roll_deg"), look.column(rows, "pair")
+    share = look.column(rows, "load_share")
+    shear = look.column(rows, "subsurface_shear_max_MPa")
     # a spline's teeth all carry at every position: over the tooth index, one series a
     # position (as mesh_cycle draws it)
     by_tooth = result.get("kind") == "spline"
@@ -410,7 +293,7 @@ def mesh_loads(result: dict, path: str | Path) -> Path:
     def label(g: float) -> str:
         return f"roll {g:g}°" if by_tooth else (f"pair {int(g):+d}" if g else "pair 0")
 
-    fig = _figure(6.4)
+    fig = look.figure(6.4)
     (ax_share, ax_stiff), (ax_te, ax_shear) = fig.subplots(2, 2)
     groups = sorted(set(group[np.isfinite(share)]))
     for i, g in enumerate(groups):
@@ -424,7 +307,7 @@ def mesh_loads(result: dict, path: str | Path) -> Path:
     section = result.get("load_distribution") or {}
     stiffness = section.get("mesh_stiffness_N_per_mm_um")
     if stiffness:
-        k = np.array([_num(v) for v in stiffness])
+        k = np.array([look.num(v) for v in stiffness])
         ax_stiff.plot(section["roll_deg"], k, "o-", ms=3, lw=1.0, color=SERIES[0],
                       label="the loaded contact's secant stiffness")
         iso = summary.get("iso_mesh_stiffness_N_per_mm_um")
@@ -468,8 +351,8 @@ def mesh_loads(result: dict, path: str | Path) -> Path:
                       va="center", transform=ax_shear.transAxes)
     ax_shear.set(xlabel=x_label, ylabel="(σ1 − σ3)/2 (MPa)",
                  title="Largest shear below each contact")
-    fig.suptitle(_title(result, "Loads over the mesh cycle", 95), fontsize=10)
-    return _save(fig, path)
+    fig.suptitle(look.title(result, "Loads over the mesh cycle", 95), fontsize=10)
+    return look.save(fig, path)
 
 
 def lubrication(result: dict, path: str | Path) -> Path:
@@ -479,9 +362,9 @@ def lubrication(result: dict, path: str | Path) -> Path:
     series a tooth pair, over the driver's roll."""
     rows = result["positions"]
     summary = result.get("summary") or {}
-    roll, pair = _column(rows, "roll_deg"), _column(rows, "pair")
+    roll, pair = look.column(rows, "roll_deg"), look.column(rows, "pair")
     x_label = f"{_driver(result)} roll angle (deg)"
-    fig = _figure(6.4)
+    fig = look.figure(6.4)
     (ax_speed, ax_film), (ax_heat, ax_loss) = fig.subplots(2, 2)
     panels = ((ax_speed, ("sliding_velocity_m_per_s", "sum_velocity_m_per_s"),
                ("sliding", "sum"), "m/s", "Sliding and sum speeds"),
@@ -490,7 +373,7 @@ def lubrication(result: dict, path: str | Path) -> Path:
               (ax_loss, ("power_loss_W",), ("loss",), "W", "Power lost per contact"))
     for ax, keys, names, unit, title in panels:
         for j, (key, name) in enumerate(zip(keys, names)):
-            values = _column(rows, key)
+            values = look.column(rows, key)
             for i, g in enumerate(sorted(set(pair[np.isfinite(values)]))):
                 on = (pair == g) & np.isfinite(values)
                 order = np.argsort(roll[on])
@@ -508,8 +391,8 @@ def lubrication(result: dict, path: str | Path) -> Path:
     if summary.get("mesh_power_loss_W") is not None:
         ax_loss.set_title(f"Power lost per contact (mesh {summary['mesh_power_loss_W']:.0f} W, "
                           f"η {100 * summary['mesh_efficiency']:.2f} %)", fontsize=9)
-    fig.suptitle(_title(result, "The lubricated contact over the mesh cycle", 95), fontsize=10)
-    return _save(fig, path)
+    fig.suptitle(look.title(result, "The lubricated contact over the mesh cycle", 95), fontsize=10)
+    return look.save(fig, path)
 
 
 # ---------------------------------------------------------------------------------------
@@ -522,9 +405,9 @@ def crown_design_curves(result: dict) -> dict:
     chosen crown's radius, centre and face width."""
     chart = result["crown_chart"]
     return {"theta": np.asarray(chart["theta_rad"], float),
-            "edge_radius_mm": {end: np.array([_num(r) for r in radii])
+            "edge_radius_mm": {end: np.array([look.num(r) for r in radii])
                                for end, radii in chart["edge_radius_mm"].items()},
-            "stress_radius_mm": _num(chart["stress_radius_mm"]),
+            "stress_radius_mm": look.num(chart["stress_radius_mm"]),
             "reference_stress_MPa": chart["reference_stress_MPa"],
             "reference": chart["reference"], "design_radius_mm": result["crown"]["radius_mm"],
             "design_stress_MPa": chart["design_stress_MPa"], "slope_A": chart["slope_A"],
@@ -544,7 +427,7 @@ def crown_design_chart(result: dict, path: str | Path) -> Path:
     curves = crown_design_curves(result)
     theta_mrad = 1e3 * curves["theta"]
     R = curves["design_radius_mm"]
-    fig = _figure(5.6)
+    fig = look.figure(5.6)
     ax = fig.subplots()
     colours = {"A": SERIES[0], "B": SERIES[2]}
     full = curves["full"]
@@ -604,7 +487,7 @@ def crown_design_chart(result: dict, path: str | Path) -> Path:
                         label=f"largest slope within both rules{'' if full else ' at end ' + end}: "
                               f"{t:.3g} mrad")
     ax.set_yscale("log")
-    _plain_log(ax.yaxis)
+    look.plain_log(ax.yaxis)
     finite = [v for r in curves["edge_radius_mm"].values() for v in r[np.isfinite(r)]]
     span = [R] + ([R_min] if math.isfinite(R_min) else []) + finite
     ref = max(R, R_min) if math.isfinite(R_min) else R
@@ -613,10 +496,10 @@ def crown_design_chart(result: dict, path: str | Path) -> Path:
     ax.grid(True, which="both", alpha=0.3)
     ax.set(xlabel="total slope θ, misalignment + deflection (mrad = mm/m)",
            ylabel="crown radius R (mm)",
-           title=_title(result, ("Full" if full else "Off-centre") + " crown design chart"))
+           title=look.title(result, ("Full" if full else "Off-centre") + " crown design chart"))
     ax.legend(loc="upper center", fontsize=8, bbox_to_anchor=(0.5, -0.13), ncol=1,
               frameon=False)
-    return _save(fig, path)
+    return look.save(fig, path)
 
 
 # ---------------------------------------------------------------------------------------
@@ -639,8 +522,8 @@ def worm_efficiency_vs_temperature(result: dict, path: str | Path) -> Path:
                  for r in rows]
     order = np.argsort([r["temperature_C"] for r in rows])
     rows = [rows[i] for i in order]
-    T = _column(rows, "temperature_C")
-    fig = _figure(6.6)
+    T = look.column(rows, "temperature_C")
+    fig = look.figure(6.6)
     ax, ax_mu = fig.subplots(2, 1, sharex=True, height_ratios=(2.2, 1.0))
     failed = [c["name"] for c in result.get("checks") or [] if not c.get("ok")]
     series = [("eta_total", "η_total = η_z·η_spindle", SERIES[0], "-", "o"),
@@ -650,7 +533,7 @@ def worm_efficiency_vs_temperature(result: dict, path: str | Path) -> Path:
                None)]
     handles, labels, extra = [], [], []
     for key, text, colour, ls, marker in series:
-        values = _column(rows, key)
+        values = look.column(rows, key)
         if not np.isfinite(values).any() or (key == "eta_wheel_driving" and not np.any(values > 0)):
             continue
         (line,) = ax.plot(T, values, ls, color=colour, lw=1.8)
@@ -675,12 +558,12 @@ def worm_efficiency_vs_temperature(result: dict, path: str | Path) -> Path:
         labels.append(label)
     handles += [h for h, _ in extra]
     labels += [t for _, t in extra]
-    ax.set(ylabel="efficiency (–)", title=_title(result, "Worm set efficiency over temperature"))
+    ax.set(ylabel="efficiency (–)", title=look.title(result, "Worm set efficiency over temperature"))
     ax.legend(handles, labels, fontsize=8, loc="center right",
               handler_map={tuple: HandlerTuple(ndivide=None)})
     ax.grid(True, alpha=0.3)
 
-    ax_mu.plot(T, _column(rows, "mu_zm"), "-", color=SERIES[4], lw=1.8,
+    ax_mu.plot(T, look.column(rows, "mu_zm"), "-", color=SERIES[4], lw=1.8,
                label="computed μ_zm = μ_0T·Y_S·Y_G·Y_W·Y_R·Y_VISC")
     pts = [(c["temperature"], c["published_mu_zm"]) for c in published
            if c.get("published_mu_zm") is not None]
@@ -691,7 +574,7 @@ def worm_efficiency_vs_temperature(result: dict, path: str | Path) -> Path:
     ax_mu.set(xlabel="lubricant temperature (°C)", ylabel="mean friction μ_zm (–)")
     ax_mu.legend(fontsize=8, loc="upper right")
     ax_mu.grid(True, alpha=0.3)
-    return _save(fig, path)
+    return look.save(fig, path)
 
 
 def worm_torque_curves(result: dict) -> dict:
@@ -720,18 +603,18 @@ def worm_efficiency_vs_torque(result: dict, path: str | Path) -> Path:
         raise ValueError("worm_efficiency_vs_torque: the result has no 'misalignment' rows")
     curves = worm_torque_curves(result)
     Tq = curves["output_torque_Nm"]
-    T_rows = _column(rows, "output_torque_Nm")
-    fig = _figure(7.4)
+    T_rows = look.column(rows, "output_torque_Nm")
+    fig = look.figure(7.4)
     ax_eta, ax_x, ax_f = fig.subplots(3, 1, sharex=True, height_ratios=(1.3, 1.0, 1.0))
-    fig.suptitle(_title(result, "Worm set efficiency over output torque", 110), fontsize=11)
+    fig.suptitle(look.title(result, "Worm set efficiency over output torque", 110), fontsize=11)
 
-    eta_tilted = _column(rows, "eta_kim")
+    eta_tilted = look.column(rows, "eta_kim")
     mu = curves["mu_zm"]
     if "eta_kim_aligned" in rows[0]:
         # seed 001's full chain: pressure (eq 19) -> mu = c·p^n -> eq (2), per torque (no
         # efficiency without output torque)
         on = T_rows > 0
-        ax_eta.plot(T_rows[on], _column(rows, "eta_kim_aligned")[on], "o-", color=SERIES[0],
+        ax_eta.plot(T_rows[on], look.column(rows, "eta_kim_aligned")[on], "o-", color=SERIES[0],
                     lw=1.8, ms=5, label="without misalignment: μ(p) at the tooth load (eqs 19, 2)")
         ax_eta.plot(T_rows[on], eta_tilted[on], "s-", color=SERIES[2], lw=1.8, ms=5,
                     label="with the spring's preload and tilt: μ(p) on the total load")
@@ -752,7 +635,7 @@ def worm_efficiency_vs_torque(result: dict, path: str | Path) -> Path:
     if "eta_kim_aligned" not in rows[0]:
         ax_eta.plot(T_rows, np.interp(T_rows, Tq, curves["eta_aligned"]), "o", color=SERIES[0],
                     ms=5, ls="none", label="torques of the case")
-    _plain_axis(ax_eta.yaxis)
+    look.plain_axis(ax_eta.yaxis)
     lo, hi = ax_eta.get_ylim()
     if hi - lo < 0.02:
         mid = 0.5 * (lo + hi)
@@ -763,7 +646,7 @@ def worm_efficiency_vs_torque(result: dict, path: str | Path) -> Path:
     x = curves["misalignment_mm"]
     ax_x.plot(Tq, x, "-", color=SERIES[2], lw=1.8,
               label="shaft-end misalignment x (eq 21), left axis")
-    ax_x.plot(T_rows, _column(rows, "misalignment_mm"), "o", color=SERIES[2], ms=5, ls="none",
+    ax_x.plot(T_rows, look.column(rows, "misalignment_mm"), "o", color=SERIES[2], ms=5, ls="none",
               label="the case's torques (result)")
     ax_x.axhline(0.0, color="black", lw=0.8, ls="--")
     if np.any(np.diff(np.sign(x)) != 0):
@@ -778,7 +661,7 @@ def worm_efficiency_vs_torque(result: dict, path: str | Path) -> Path:
     if x[i] != 0.0:
         ax_s = ax_x.twinx()
         ax_s.set_ylim(*(np.array(ax_x.get_ylim()) * force[i] / x[i]))
-        ax_s.plot(T_rows, _column(rows, "spring_force_N"), "x", color="black", ms=6,
+        ax_s.plot(T_rows, look.column(rows, "spring_force_N"), "x", color="black", ms=6,
                   ls="none")
         ax_s.set_ylabel("spring force F_ARS (N)")
         ax_x.plot([], [], "x", color="black", ms=6, ls="none",
@@ -787,14 +670,14 @@ def worm_efficiency_vs_torque(result: dict, path: str | Path) -> Path:
 
     ax_f.plot(Tq, curves["normal_load_N"], "-", color=SERIES[3], lw=1.8,
               label="tooth normal load F_n (eq 3)")
-    ax_f.plot(T_rows, _column(rows, "normal_load_N"), "o", color=SERIES[3], ms=5, ls="none",
+    ax_f.plot(T_rows, look.column(rows, "normal_load_N"), "o", color=SERIES[3], ms=5, ls="none",
               label="the case's torques (result)")
     ax_f.set(xlabel="output (wheel) torque (N·m)", ylabel="normal load (N)")
     ax_f.legend(fontsize=8, loc="upper left")
     for ax in (ax_eta, ax_x, ax_f):
         ax.grid(True, alpha=0.3)
     ax_f.set_xlim(0.0, Tq[-1])
-    return _save(fig, path)
+    return look.save(fig, path)
 
 
 # ---------------------------------------------------------------------------------------
@@ -825,9 +708,9 @@ def figures_for(result: dict, out_dir: str | Path) -> list[Path]:
     if isinstance(ease, dict) and {"face_mm", "radius_mm", "separation_um"} <= ease.keys():
         written.append(ease_off_map(
             ease["face_mm"], ease["radius_mm"],
-            np.array([[_num(v) for v in row] for row in ease["separation_um"]]),
+            np.array([[look.num(v) for v in row] for row in ease["separation_um"]]),
             out / "ease_off.png", approach_um=ease.get("approach_um"),
-            title=_title(result, f"Ease-off: separation on the {ease.get('member', 'pinion')} "
+            title=look.title(result, f"Ease-off: separation on the {ease.get('member', 'pinion')} "
                                  "flank"), member=ease.get("member", "pinion")))
     if result.get("load_distribution"):
         written.append(load_distribution(result, out / "load_distribution.png"))
@@ -844,324 +727,3 @@ def figures_for(result: dict, out_dir: str | Path) -> list[Path]:
         if result.get("misalignment"):
             written.append(worm_efficiency_vs_torque(result, out / "worm_efficiency_torque.png"))
     return written
-
-
-# ---------------------------------------------------------------------------------------
-# sweeps
-
-#: the figures a sweep's plots show, the first present being the primary one (the
-#: tornado's and the response curves'), with their axis labels
-SWEEP_FIGURES = {
-    "bem_max_p_max_MPa": "largest loaded pressure (MPa)",
-    "flank_pressure_max_MPa": "largest active-flank pressure (MPa)",
-    "max_p_max_MPa": "largest Hertz pressure (MPa)",
-    "max_edge_pressure_MPa": "largest edge pressure (MPa)",
-    "loaded_transmission_error_peak_to_peak_um": "loaded TE peak to peak (µm)",
-    "loaded_transmission_error_peak_to_peak_urad": "loaded TE peak to peak (µrad)",
-    "transmission_error_peak_to_peak_um": "unloaded TE peak to peak (µm)",
-    "transmission_error_peak_to_peak_urad": "unloaded TE peak to peak (µrad)",
-    "worst_face_edge_margin_mm": "worst face-edge margin (mm)",
-}
-
-
-#: the grid fields a Harris map reads as the load (x) and as the relief (one curve each)
-LOAD_FIELDS = ("load.torque", "load.tangential_load")
-RELIEF_WORD = "relief"
-
-
-def sweep_figures(rows: list[dict], stats: dict, out_dir: str | Path) -> list[Path]:
-    """A sweep's figures from its table (`rows`, samples.parquet's records) and statistics
-    (sweep.json's, which name its title, grid and toleranced inputs):
-    - histograms.png: each figure of SWEEP_FIGURES present, with P5, P50 and P95;
-    - tornado.png: each toleranced input's total and first Sobol index for the primary
-      figure (Saltelli's design), else its rank correlation;
-    - response.png: the primary figure's median and P5-P95 band over each numeric grid axis;
-    - map.png: over the first two numeric grid axes (crown × slope: the robustness map) the
-      primary figure's median, the region loaded at a face end outlined;
-    - harris.png: loaded TE peak to peak over the load, one curve per relief (Harris's map),
-      when the grid varies a load and a relief;
-    - optimisation.png: the objective of every design tried, and the path of the design.
-    The primary figure is the first of SWEEP_FIGURES the samples report; the curves and
-    maps draw the statistics' groups (per axis level, per grid point: P5/P50/P95)."""
-    out = Path(out_dir)
-    title = stats.get("title", "sweep")
-    ok = [r for r in rows if r.get("status") == "ok"]
-    present = [k for k in SWEEP_FIGURES if np.isfinite(_column(ok, k)).any()]
-    # a transmission error once: in µm where the samples give it, else in µrad
-    present = [k for k in present if not (k.endswith("_urad") and k[:-5] + "_um" in present)]
-    if not present:
-        return []
-    written = [_sweep_histograms(ok, stats, present, title, out / "histograms.png")]
-    primary = present[0]
-    sobol = stats.get("sobol", {}).get("indices", {})
-    ranks = {f: stats.get("sensitivity", {}).get(f, {}).get(primary)
-             for f in stats.get("inputs", [])}
-    if any(primary in sobol.get(f, {}) for f in stats.get("inputs", [])):
-        written.append(_sweep_sobol({f: sobol[f][primary] for f in sobol
-                                     if primary in sobol[f]}, primary, title,
-                                    out / "tornado.png"))
-    elif any(rho is not None for rho in ranks.values()):
-        intervals = {f: stats.get("sensitivity_interval", {}).get(f, {}).get(primary)
-                     for f in ranks}
-        written.append(_sweep_tornado({f: r for f, r in ranks.items() if r is not None},
-                                      intervals, stats.get("sensitivity_draws"), primary,
-                                      title, out / "tornado.png"))
-    response = stats.get("response", {})
-    axes = [f for f in stats.get("grid", []) if f in response]
-    if axes:
-        written.append(_sweep_response(response, axes, primary, title, out / "response.png"))
-    points = stats.get("grid_points", [])
-    if len(axes) >= 2:
-        written.append(_sweep_map(points, axes[:2], primary, title, out / "map.png"))
-    load = next((f for f in axes if f in LOAD_FIELDS), None)
-    relief = next((f for f in axes if RELIEF_WORD in f), None)
-    te = next((f"loaded_transmission_error_peak_to_peak_{unit}" for unit in ("um", "urad")
-               if f"loaded_transmission_error_peak_to_peak_{unit}" in present), None)
-    if load and relief and te:
-        written.append(_sweep_harris(points, load, relief, te, title, out / "harris.png"))
-    if stats.get("optimise", {}).get("history"):
-        written.append(_sweep_optimisation(stats["optimise"], title,
-                                           out / "optimisation.png"))
-    return written
-
-
-def _median_at(points: list[dict], figure: str, **inputs) -> float:
-    """The figure's median at the grid points with the given inputs (the first such point
-    that reports it; NaN where none does)."""
-    for point in points:
-        if all(point["inputs"].get(k) == v for k, v in inputs.items()):
-            value = point["percentiles"].get(figure, {}).get("P50")
-            if value is not None:
-                return value
-    return math.nan
-
-
-def _axis_levels(points: list[dict], field: str) -> np.ndarray:
-    return np.unique([p["inputs"][field] for p in points
-                      if isinstance(p["inputs"].get(field), float)])
-
-
-def _sweep_map(points, axes, primary, title, path) -> Path:
-    """The primary figure's median over a grid of two axes (the first grid point of each
-    pair of their values; a cell without answers is blank); the cells where half or more
-    of the samples are loaded at a face end hatched and outlined."""
-    xs, ys = (_axis_levels(points, f) for f in axes)
-    median = np.array([[_median_at(points, primary, **{axes[0]: x, axes[1]: y}) for x in xs]
-                       for y in ys])
-    ended = np.array([[next((p.get("end_loading", 0.0) for p in points
-                             if p["inputs"].get(axes[0]) == x and p["inputs"].get(axes[1]) == y),
-                            0.0) for x in xs] for y in ys])
-    fig = _figure(4.6)
-    ax = fig.add_subplot()
-    mesh = ax.pcolormesh(xs, ys, median, shading="nearest", cmap="viridis")
-    fig.colorbar(mesh, ax=ax, label=f"median {SWEEP_FIGURES[primary]}")
-    xe, ye = _cell_edges(xs), _cell_edges(ys)
-    for i, j in zip(*np.nonzero(ended >= 0.5)):
-        ax.add_patch(Rectangle((xe[j], ye[i]), xe[j + 1] - xe[j], ye[i + 1] - ye[i],
-                               fill=False, hatch="//", edgecolor="w", linewidth=0.0))
-    if (ended >= 0.5).any():
-        ax.legend(handles=[Patch(facecolor="0.5", hatch="//", edgecolor="w",
-                                 label="loaded at a face end in half the samples or more")],
-                  fontsize="small", loc="upper right")
-    ax.set_xlabel(f"{axes[0]} (core units: mm, N, MPa, rad)")
-    ax.set_ylabel(f"{axes[1]} (core units)")
-    fig.suptitle(textwrap.fill(f"{title} (median at each grid point)", 90))
-    return _save(fig, path)
-
-
-def _cell_edges(centres: np.ndarray) -> np.ndarray:
-    """The edges of cells around sorted centres (midway; the end cells symmetric), as
-    pcolormesh's 'nearest' shading draws them."""
-    if centres.size == 1:
-        return np.array([centres[0] - 0.5, centres[0] + 0.5])
-    mid = (centres[1:] + centres[:-1]) / 2
-    return np.concatenate([[2 * centres[0] - mid[0]], mid, [2 * centres[-1] - mid[-1]]])
-
-
-def _sweep_harris(points, load, relief, te, title, path) -> Path:
-    """Harris's map: loaded TE peak to peak (the median at each grid point) against the
-    load, one curve per relief."""
-    fig = _figure(4.2)
-    ax = fig.add_subplot()
-    loads = _axis_levels(points, load)
-    for k, level in enumerate(_axis_levels(points, relief)):
-        te_at = np.array([_median_at(points, te, **{load: x, relief: level}) for x in loads])
-        ax.plot(loads, te_at, "o-", color=SERIES[k % len(SERIES)], label=f"{level * 1e3:g} µm")
-    ax.set_xlabel(f"{load} (core units: N, N·mm)")
-    ax.set_ylabel(SWEEP_FIGURES[te])
-    ax.set_ylim(bottom=0)
-    ax.legend(fontsize="small", title=relief, title_fontsize="small")
-    fig.suptitle(textwrap.fill(f"{title} (median at each grid point)", 90))
-    return _save(fig, path)
-
-
-def _sweep_optimisation(opt, title, path) -> Path:
-    """The objective of each design the optimiser tried (feasible filled, infeasible open,
-    the best starred) and each design variable against the evaluation."""
-    history = opt["history"]
-    n = [h["evaluation"] for h in history]
-    fig = _figure(2.8 + 2.0 * len(opt["variables"]))
-    grid = fig.add_gridspec(1 + len(opt["variables"]), 1,
-                            height_ratios=[1.6] + [1.0] * len(opt["variables"]))
-    ax = fig.add_subplot(grid[0])
-    objective = np.array([h["objective"] for h in history], dtype=float)
-    feasible = np.array([h["feasible"] for h in history])
-    ax.plot(n, objective, "-", color="0.6", linewidth=0.8)
-    ax.plot(np.array(n)[feasible], objective[feasible], "o", color=SERIES[0],
-            label="feasible")
-    ax.plot(np.array(n)[~feasible], objective[~feasible], "o", mfc="none", color=SERIES[2],
-            label="infeasible")
-    best = opt["best"]
-    if best["feasible"]:
-        ax.plot([best["evaluation"]], [best["objective"]], "*", ms=14, color="k",
-                label="best feasible design")
-    else:
-        ax.plot([best["evaluation"]], [best["objective"]], "*", ms=14, mfc="none",
-                mec=WARNING, mew=1.5, label="best tried: no design met the constraints")
-    ax.set_ylabel(_statistic_label(opt["objective"]))
-    ax.legend(fontsize="small")
-    for k, variable in enumerate(opt["variables"]):
-        axv = fig.add_subplot(grid[k + 1], sharex=ax)
-        values = [float(str(h["design"][variable["field"]]).split()[0]) for h in history]
-        axv.plot(n, values, "o-", color=SERIES[1], markersize=4)
-        unit = str(history[0]["design"][variable["field"]]).partition(" ")[2]
-        axv.set_ylabel(f"{variable['field']}" + (f"\n({unit})" if unit else ""))
-    fig.axes[-1].set_xlabel("evaluation (one sweep over the samples each)")
-    fig.suptitle(textwrap.fill(f"{title}: optimisation ({opt['evaluations']} designs; "
-                               f"constraints: " + (", ".join(
-                                   f"{_statistic_label(c['statistic'])} ≤ {c['max']:g}"
-                                   for c in opt["constraints"]) or "none") + ")", 90))
-    return _save(fig, path)
-
-
-def _statistic_label(text: str) -> str:
-    """A sweep statistic as a reader names it: 'P95 bem_max_p_max_MPa' -> 'P95 of the
-    largest loaded pressure (MPa)', 'end_loading' -> 'probability of loading at a face end'."""
-    from .report_view import label
-    from .sweep.spec import PROBABILITIES
-
-    if text in PROBABILITIES:
-        return {"edge_loading": "probability of edge loading",
-                "end_loading": "probability of loading at a face end"}[text]
-    name, _, figure = text.partition(" ")
-    return f"{name} of the {SWEEP_FIGURES.get(figure) or label(figure)}"
-
-
-def _sweep_sobol(indices: dict, primary: str, title: str, path) -> Path:
-    """Each toleranced input's total (bar) and first (dark bar) Sobol index of the primary
-    figure, with their 95 % bootstrap half-widths."""
-    order = sorted(indices, key=lambda f: indices[f]["ST"])
-    fig = _figure(1.5 + 0.55 * len(order))
-    ax = fig.add_subplot()
-    at = np.arange(len(order))
-    ax.barh(at + 0.2, [indices[f]["ST"] for f in order], 0.4,
-            xerr=[indices[f]["ST_conf"] for f in order], color=SERIES[0], label="total")
-    ax.barh(at - 0.2, [indices[f]["S1"] for f in order], 0.4,
-            xerr=[indices[f]["S1_conf"] for f in order], color=SERIES[2], label="first order")
-    ax.set_yticks(at, order)
-    ax.set_xlim(0.0, 1.05)
-    ax.set_xlabel(f"Sobol index of the {SWEEP_FIGURES[primary]} (share of its variance)")
-    ax.legend(fontsize="small")
-    fig.suptitle(textwrap.fill(f"{title}: sensitivity to the toleranced inputs", 90))
-    return _save(fig, path)
-
-
-def _sweep_histograms(rows, stats, keys, title, path) -> Path:
-    """Each figure's histogram with its P5, P50 and P95; under a load spectrum one
-    histogram and median per load level (the levels' figures differ: pooled, they make
-    one histogram with a median between its humps) and the time-weighted percentiles."""
-    columns = 2 if len(keys) > 1 else 1
-    lines = math.ceil(len(keys) / columns)
-    fig = _figure(2.6 * lines + 0.9)
-    fig.suptitle(textwrap.fill(f"{title}: {len(rows)} samples answered", 90))
-    spectrum = stats.get("spectrum")
-    levels = ([("all samples", 1.0, np.ones(len(rows), bool))] if not spectrum
-              else _spectrum_levels(rows, spectrum))
-    quantiles = (stats.get("time_weighted") or stats).get("percentiles", {})
-    for i, key in enumerate(keys):
-        ax = fig.add_subplot(lines, columns, i + 1)
-        every = _column(rows, key)
-        for j, (text, share, chosen) in enumerate(levels):
-            values = every[chosen & np.isfinite(every)]
-            colour = SERIES[j % len(SERIES)]
-            # each level's own bins: the levels' figures may lie far apart
-            bins = min(30, max(5, values.size // 3))
-            ax.hist(values, bins=bins, color=colour, alpha=0.55 if spectrum else 1.0,
-                    label=f"{spectrum['field']} = {text} ({share:.0%} of the time)"
-                    if spectrum else None)
-            if spectrum and values.size:
-                ax.axvline(float(np.median(values)), color=colour, linewidth=1.6)
-        for q, style in (("P5", ":"), ("P50", "-"), ("P95", ":")):
-            at = quantiles.get(key, {}).get(q)
-            if at is not None:
-                ax.axvline(at, color="k", linestyle=style, linewidth=1.0,
-                           label=f"{q} over the operating time" if spectrum else q)
-        ax.set_xlabel(SWEEP_FIGURES[key])
-        ax.set_ylabel("samples")
-    handles, labels = fig.axes[0].get_legend_handles_labels()
-    if spectrum:
-        handles.append(Line2D([], [], color="0.3", linewidth=1.6))
-        labels.append("a level's median (its colour)")
-    fig.legend(handles, labels, loc="outside lower center", fontsize="small", frameon=False,
-               ncol=2 if spectrum else 3)
-    return _save(fig, path)
-
-
-def _spectrum_levels(rows: list[dict], spectrum: dict) -> list[tuple[str, float, np.ndarray]]:
-    """Per load level of a spectrum: its text, its share of the time and which rows ran
-    at it. The sampler runs the levels in their order, so the rows' values in their order
-    of appearance are the levels'; where a level has no answered sample, the levels are
-    named by their values (core units) and shares by the rows' time shares."""
-    column = _column(rows, f"input:{spectrum['field']}")
-    values = list(dict.fromkeys(v for v in column.tolist() if math.isfinite(v)))
-    if len(values) == len(spectrum["levels"]):
-        return [(str(text), share, column == value)
-                for text, share, value in zip(spectrum["levels"], spectrum["shares"], values)]
-    shares = _column(rows, "time_share")
-    total = float(np.nansum(shares)) or 1.0
-    return [(f"{value:g}", float(np.nansum(shares[column == value])) / total, column == value)
-            for value in values]
-
-
-def _sweep_tornado(ranks: dict, intervals: dict, draws: int | None, primary: str,
-                   title: str, path) -> Path:
-    """Each toleranced input's rank correlation with the primary figure, with its 95 %
-    interval where the draws allow one (sweep.statistics.spearman_interval); the number of
-    draws it rests on in the axis label."""
-    order = sorted(ranks, key=lambda f: abs(ranks[f]))
-    fig = _figure(1.7 + 0.45 * len(order))
-    ax = fig.add_subplot()
-    values = [ranks[f] for f in order]
-    bounds = [intervals.get(f) for f in order]
-    errors = np.array([[v - b[0], b[1] - v] if b else [0.0, 0.0]
-                       for v, b in zip(values, bounds)]).T
-    ax.barh(order, values, color=[SERIES[0] if v >= 0 else SERIES[2] for v in values],
-            xerr=errors if any(bounds) else None, capsize=4, ecolor="k")
-    ax.axvline(0.0, color="k", linewidth=0.8)
-    ax.set_xlim(-1.0, 1.0)
-    basis = (f"; {draws} draws per point" if draws else "") + (
-        ", 95 % intervals" if any(bounds) else
-        ": too few for an interval, read it as a hint" if draws else "")
-    ax.set_xlabel(textwrap.fill(f"Spearman rank correlation with the "
-                                f"{SWEEP_FIGURES[primary]}{basis}", 90))
-    fig.suptitle(textwrap.fill(f"{title}: sensitivity to the toleranced inputs", 90))
-    return _save(fig, path)
-
-
-def _sweep_response(response, axes, primary, title, path) -> Path:
-    """The primary figure's median and P5-P95 band at each level of each grid axis (over
-    the other inputs)."""
-    fig = _figure(2.8 * len(axes) + 0.6)
-    fig.suptitle(textwrap.fill(f"{title}: {SWEEP_FIGURES[primary]} over the grid", 90))
-    for i, field in enumerate(axes):
-        ax = fig.add_subplot(len(axes), 1, i + 1)
-        levels = [g for g in response[field] if primary in g["percentiles"]]
-        x = [g["value"] for g in levels]
-        q = [g["percentiles"][primary] for g in levels]
-        ax.fill_between(x, [v["P5"] for v in q], [v["P95"] for v in q], color=SERIES[0],
-                        alpha=0.25, label="P5-P95 over the other inputs")
-        ax.plot(x, [v["P50"] for v in q], "o-", color=SERIES[0], label="median")
-        ax.set_xlabel(f"{field} (core units: mm, N, MPa, rad)")
-        ax.set_ylabel(SWEEP_FIGURES[primary])
-        ax.legend(fontsize="small")
-    return _save(fig, path)

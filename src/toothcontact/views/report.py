@@ -9,9 +9,9 @@ import math
 import re
 from pathlib import Path
 
-from . import __version__
+from .. import __version__
+from ..writing import write_text
 from .report_view import view
-from .writing import write_text
 
 
 def result_document(name: str, case, raw: dict, result, provenance: dict | None = None
@@ -120,7 +120,7 @@ def write_sweep_report(out_dir: Path, stats: dict, images=()) -> Path:
     """A sweep's report as one self-contained HTML page (templates/sweep.html.j2, in the
     style of a case's report; report_view.sweep_view) with its figures embedded:
     OUT_DIR/report.html."""
-    from . import __version__
+    from .. import __version__
     from .report_view import sweep_view
 
     pictures = [{"name": Path(p).name,
