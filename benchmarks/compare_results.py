@@ -5,7 +5,10 @@ refactor (issue 54), or the differences listed.
 
 OUT_* are folders as `toothcontact demo --out` writes them (one folder per case, each with
 its result.json). Numbers agree when |a - b| <= rel·max(|a|, |b|) + 1e-12; strings, booleans,
-nulls and list lengths must be equal. Prints a table (case, values compared, differing) and
+nulls and list lengths must be equal; the keys of --ignore (dotted paths; by default the
+run's time and the paths of the case file and the bodies it reads, which differ between
+any two checkouts) are not compared.
+Prints a table (case, values compared, differing) and
 the first differences; exit 1 where any case differs or is missing from either run.
 """
 
@@ -18,16 +21,23 @@ import sys
 from pathlib import Path
 
 
-def differences(a, b, rel: float, path: str = "") -> tuple[int, list[str]]:
+#: what differs between any two runs of the same case (dotted paths)
+IGNORED = ("provenance.run_at_utc", "provenance.case_file", "bodies.pinion.file",
+           "bodies.gear.file")
+
+
+def differences(a, b, rel: float, path: str = "", ignore=IGNORED) -> tuple[int, list[str]]:
     """(values compared, differences as 'path: a != b') between two JSON values."""
     if isinstance(a, dict) and isinstance(b, dict):
         count, out = 0, []
         for key in sorted(set(a) | set(b)):
             where = f"{path}.{key}" if path else str(key)
+            if where in ignore:
+                continue
             if key not in a or key not in b:
                 out.append(f"{where}: only in {'after' if key not in a else 'before'}")
                 continue
-            n, d = differences(a[key], b[key], rel, where)
+            n, d = differences(a[key], b[key], rel, where, ignore)
             count, out = count + n, out + d
         return count, out
     if isinstance(a, list) and isinstance(b, list):
@@ -35,7 +45,7 @@ def differences(a, b, rel: float, path: str = "") -> tuple[int, list[str]]:
             return 1, [f"{path}: {len(a)} items != {len(b)}"]
         count, out = 0, []
         for k, (x, y) in enumerate(zip(a, b)):
-            n, d = differences(x, y, rel, f"{path}[{k}]")
+            n, d = differences(x, y, rel, f"{path}[{k}]", ignore)
             count, out = count + n, out + d
         return count, out
     numbers = (int, float)
@@ -53,6 +63,7 @@ def main() -> int:
     ap.add_argument("after", type=Path)
     ap.add_argument("--rel", type=float, default=1e-9)
     ap.add_argument("--json", type=Path, help="write the comparison here")
+    ap.add_argument("--ignore", nargs="*", default=list(IGNORED), help="dotted keys not compared")
     args = ap.parse_args()
     cases = sorted({p.parent.name for run in (args.before, args.after)
                     for p in run.glob("*/result.json")})
@@ -65,7 +76,8 @@ def main() -> int:
             print(f"{case:45} {'missing in ' + str([f.parent.parent for f in files if not f.exists()]):>19}")
             failed = True
             continue
-        count, diffs = differences(*(json.loads(f.read_text()) for f in files), args.rel)
+        count, diffs = differences(*(json.loads(f.read_text()) for f in files), args.rel,
+                                   ignore=tuple(args.ignore))
         report[case] = dict(compared=count, differing=len(diffs), first=diffs[:20])
         failed |= bool(diffs)
         print(f"{case:45} {count:9d} {len(diffs):9d}")

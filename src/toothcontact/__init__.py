@@ -1,3 +1,3 @@
 """toothcontact: geometric tooth-contact analysis of gears under misalignment and deflection."""
 
-__version__ = "0.1.0"
+__version__ = "0.2.0"
