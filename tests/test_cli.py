@@ -118,3 +118,20 @@ def test_help_does_not_import_the_heavy_stack(fresh_python):
             "heavy = {'cadquery', 'pyvista', 'vtk', 'OCP', 'scipy', 'pint', 'matplotlib'}\n"
             "print(sorted(heavy & set(sys.modules)))")
     assert fresh_python(code) == "[]"
+
+
+def test_the_demo_names_a_pairs_kind_as_built():
+    """The demo table's kind: helical or spur from the base helix angle, ring for an
+    internal gear, the case kind in words otherwise."""
+    from toothcontact.cli import case_kind
+
+    def spur(helix, internal=None):
+        return {"kind": "spur", "pinion": {"base_helix_angle_deg": helix},
+                "gear": {"internal": internal}}
+
+    assert case_kind(spur(0.0)) == "spur"
+    assert case_kind(spur(18.75)) == "helical"
+    assert case_kind(spur(0.0, True)) == "spur ring"
+    assert case_kind(spur(-14.1, True)) == "helical ring"
+    assert case_kind({"kind": "worm_efficiency"}) == "worm efficiency"
+    assert case_kind({"kind": "spline"}) == "spline"

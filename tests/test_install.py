@@ -68,3 +68,10 @@ def test_demo_runs_every_bundled_case_from_an_empty_folder(installed, tmp_path):
     assert cases == sorted(p.stem for p in bundled_cases())
     for case in cases:
         complete_run(tmp_path / "out" / case)
+    # the table names every case whole (it can be pasted into `run`) and its kind as built
+    rows = {line.split("│")[1].strip(): [c.strip() for c in line.split("│")[2:]]
+            for line in done.stdout.splitlines() if line.count("│") >= 5}
+    assert set(cases) <= set(rows)
+    assert rows["helical_offcentre_crown_tip_relief"][0] == "helical"
+    assert rows["spur_crowned_20_60"][0] == "spur"
+    assert rows["fzg_c_type"][1].startswith(("all ", "1 of", "2 of"))

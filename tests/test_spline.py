@@ -37,3 +37,26 @@ def test_eq19_radius_closes_the_clearance_exactly(theta_deg):
     assert spline.tilted_tooth_clearance(R, T, dT, theta, long_enough) == pytest.approx(0.0, abs=1e-9)
     assert spline.tilted_tooth_clearance(1.01 * R, T, dT, theta, long_enough) < -1e-7
     assert spline.tilted_tooth_clearance(0.99 * R, T, dT, theta, long_enough) > 1e-7
+
+
+def test_the_tooth_load_factor_is_the_largest_tooth_load_over_the_mean():
+    """analyses.spline.tooth_loads on hand numbers: two positions of a 4-tooth spline, the
+    first with loads 30, 10, 0, 0 N (2 teeth in contact, mean 10 N over all 4 teeth,
+    factor 3), the second 10 N each (factor 1); a position whose solve failed leaves the
+    figures None."""
+    from toothcontact.analyses.spline import tooth_loads
+
+    rows = [{"roll_deg": r, "bem_load_N": v} for r, loads in ((-1.0, (30.0, 10.0, 0.0, 0.0)),
+                                                             (1.0, (10.0,) * 4))
+            for v in loads]
+    summary = {}
+    tooth_loads(rows, 4, summary)
+    first, second = summary["tooth_loads"]
+    assert (first["teeth_in_contact"], first["mean_tooth_load_N"],
+            first["largest_tooth_load_N"], first["tooth_load_factor"]) == (2, 10.0, 30.0, 3.0)
+    assert second["tooth_load_factor"] == 1.0
+    assert summary["tooth_load_factor"] == 3.0
+    rows[0]["bem_load_N"] = None
+    tooth_loads(rows, 4, summary)
+    assert summary["tooth_loads"][0]["tooth_load_factor"] is None
+    assert summary["tooth_load_factor"] is None

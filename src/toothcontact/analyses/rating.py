@@ -18,6 +18,9 @@ LUBRICATED_LEVEL_KEYS = ("lambda_min", "flash_temperature_max_K", "contact_tempe
                          "mesh_power_loss_W", "mesh_efficiency")
 
 
+#: a Miner sum below this is no damage to speak of (shown as such, not as its round-off)
+LEAST_DAMAGE = 1e-9
+
 def root_sections(case, pair, result: Result) -> None:
     """root_stress_pinion_MPa and root_stress_gear_MPa on every row (the largest along the
     face of the tooth that contact loads; 0 where unloaded, None where not solved or for
@@ -320,7 +323,8 @@ def duty_cycle_sections(case, result: Result, run_level) -> None:
             summary[key] = damage
             result.checks.append(Check(
                 f"duty cycle: Miner's sum of the {name}'s {kind} at most 1", damage <= 1.0,
-                f"D = {damage:.3g} over {len(rows)} levels"))
+                (f"D = {damage:.3g}" if damage >= LEAST_DAMAGE else f"D below {LEAST_DAMAGE:g}")
+                + f" over {len(rows)} levels"))
     section["note"] = (
         "each level analysed as the case at that load (no positions check, no subsurface "
         "stresses); miner_sum_* = Σ n_i/N_i, n_i the level's load cycles of the member "

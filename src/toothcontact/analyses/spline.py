@@ -88,7 +88,29 @@ def _spline_contact(case: schema.SplineCase, pair, result: Result, phase: float 
                      "of its root circle; corrected to 3D finite elements of a gear) coupled "
                      "along the engaged length as a Pasternak "
                      "line (contact.compliance), solved with the contact in one system", result)
-    per_position = {}
-    for r in cycle.rows:
-        per_position.setdefault(r["roll_deg"], []).append(r["pair"])
-    result.sections["summary"]["teeth_in_contact"] = {f"{k:.3f}": v for k, v in per_position.items()}
+    tooth_loads(cycle.rows, case.teeth, result.sections["summary"])
+
+
+def tooth_loads(rows: list[dict], teeth: int, summary: dict) -> None:
+    """How the load spreads over a spline's teeth, per position (summary["tooth_loads"]: the
+    teeth in contact, the largest and the mean tooth load over all `teeth`) and its worst
+    (summary["tooth_load_factor"]: the largest tooth load over the mean, a local figure
+    like the load distribution factor K_γ of spline design practice, not ISO's); None
+    where a position's loaded contact was not solved."""
+    by_roll: dict[float, list[float | None]] = {}
+    for r in rows:
+        by_roll.setdefault(r["roll_deg"], []).append(r.get("bem_load_N"))
+    table = []
+    for roll, loads in sorted(by_roll.items()):
+        if any(v is None for v in loads) or not sum(loads) > 0.0:
+            table.append({"roll_deg": roll, "teeth_in_contact": None,
+                          "largest_tooth_load_N": None, "mean_tooth_load_N": None,
+                          "tooth_load_factor": None})
+            continue
+        mean = sum(loads) / teeth
+        table.append({"roll_deg": roll, "teeth_in_contact": sum(v > 0.0 for v in loads),
+                      "largest_tooth_load_N": max(loads), "mean_tooth_load_N": mean,
+                      "tooth_load_factor": max(loads) / mean})
+    summary["tooth_loads"] = table
+    factors = [row["tooth_load_factor"] for row in table]
+    summary["tooth_load_factor"] = None if None in factors or not factors else max(factors)

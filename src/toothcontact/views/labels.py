@@ -25,6 +25,11 @@ UNITS = [("_N_per_mm_um", "N/(mm·µm)"), ("_N_per_mm", "N/mm"), ("_m_per_s", "m
 
 #: labels of keys whose words alone do not say what they are
 LABELS = {
+    "sigma_H_pinion_MPa": "σ_H pinion", "sigma_H_gear_MPa": "σ_H gear",
+    "sigma_F_pinion_MPa": "σ_F pinion", "sigma_F_gear_MPa": "σ_F gear",
+    "K_v": "dynamic factor K_v", "K_H_beta_rating": "K_Hβ of the rating",
+    "K_H_beta_iso_C": "K_Hβ by ISO 6336-1 Method C",
+    "tooth_load_factor": "tooth load factor (largest over mean tooth load)",
     "roll_deg": "pinion roll", "pair": "tooth pair", "p_max_MPa": "Hertz peak pressure",
     "max_p_max_MPa": "largest Hertz pressure (equal split)",
     "bem_max_p_max_MPa": "largest loaded pressure", "bem_p_max_MPa": "loaded peak pressure",
@@ -140,8 +145,18 @@ SECTION_LABELS = {
         "friction_exponent": "friction law: exponent n (μ = c·p^n)"},
 }
 
-#: the members' names in a worm set's labels
-WORM_MEMBERS = (("pinion", "worm"), ("gear", "wheel"))
+#: the members' own names by case kind, for the driver ("pinion") and the driven member
+#: ("gear") that the analysis names generically
+MEMBER_WORDS = {"worm": (("pinion", "worm"), ("gear", "wheel")),
+                "spline": (("pinion", "hub"), ("gear", "sleeve"))}
+
+
+def in_words(text: str, kind: str) -> str:
+    """`text` with the members named as a `kind` names them (a worm set's worm and wheel, a
+    spline's hub and sleeve), in words and in edge names (gear_tip -> sleeve_tip)."""
+    for member, name in MEMBER_WORDS.get(kind, ()):
+        text = re.sub(rf"\b{member}(?=\b|_)", name, text)
+    return text
 
 #: significant digits of a figure
 DIGITS = 4
@@ -162,11 +177,34 @@ TE_RESOLUTION = 0.01
 TE_UM_RESOLUTION = 0.001
 
 
+#: the least magnitude a figure of a unit means (below it, float round-off or a value under
+#: the model's own resolution: shown as 0): a nanometre, a micro-degree, a kPa, a µN, a
+#: curvature of 1/(1000 km)
+FLOORS = {"mm": 1e-6, "µm": 1e-3, "1/mm": 1e-9, "µrad": 1e-3, "deg": 1e-6, "rad": 1e-9,
+          "MPa": 1e-3, "N": 1e-6, "N/mm": 1e-6, "N·m": 1e-6, "mm²": 1e-9}
+
+
+def unit_of(key: str) -> str | None:
+    """The unit a key's suffix carries (UNITS), or None (a method's letter is no unit:
+    K_H_beta_iso_C is ISO's Method C, not a temperature)."""
+    if key.endswith("_iso_C"):
+        return None
+    return next((u for suffix, u in UNITS if key.endswith(suffix)), None)
+
+
+def floor(key: str) -> float | None:
+    """The least magnitude (in the key's unit) a figure of `key` means (FLOORS; a Miner sum's
+    1e-9), or None."""
+    if key.startswith("miner_sum"):
+        return 1e-9
+    return FLOORS.get(unit_of(key) or "")
+
+
 def label(key: str, kind: str = "", section: str = "") -> str:
     """A key's label with its unit: 'face_position_mm' -> 'position along the face [mm]'; in
     a worm set's report (`kind` "worm") the pinion is the worm and the gear the wheel; in
-    `section` its SECTION_LABELS first."""
-    unit = next((u for suffix, u in UNITS if key.endswith(suffix)), None)
+    `section` its SECTION_LABELS first; a spline's hub and sleeve likewise."""
+    unit = unit_of(key)
     if key in SECTION_LABELS.get(section, {}):
         words = SECTION_LABELS[section][key]
     elif key in LABELS:
@@ -174,15 +212,15 @@ def label(key: str, kind: str = "", section: str = "") -> str:
     else:
         stem = key[: -len(next(s for s, u in UNITS if key.endswith(s)))] if unit else key
         words = stem.replace("_", " ")
-    if kind == "worm":
-        for member, name in WORM_MEMBERS:
-            words = re.sub(rf"\b{member}\b", name, words)
+    words = in_words(words, kind)
     return f"{words} [{unit}]" if unit else words
 
 
-def number(value, scale: float | None = None, resolution: float | None = None) -> str:
+def number(value, scale: float | None = None, resolution: float | None = None,
+           least: float | None = None) -> str:
     """A value as text: numbers to four significant digits (in digits up to LARGE: 30000,
-    123500) and no finer than `resolution`;
+    123500) and no finer than `resolution`; a number below `least` in magnitude (its unit's
+    floor) is 0;
     beside the largest figure of its kind (`scale`, e.g. its column's largest magnitude) a
     number below half a unit in that figure's last shown digit is 0 (-1.1 to 1.417 mm: a
     misalignment of 6.8e-06 mm shows as 0, as the figures beside it are shown to 0.001 mm);
@@ -199,7 +237,8 @@ def number(value, scale: float | None = None, resolution: float | None = None) -
     if isinstance(value, float):
         if not math.isfinite(value):
             return str(value)
-        if value == 0.0 or (scale and abs(value) < 0.5 * last_digit(scale)):
+        if value == 0.0 or (scale and abs(value) < 0.5 * last_digit(scale)) or \
+                (least and abs(value) < least):
             return "0"
         text = f"{value:.{DIGITS}g}"
         return f"{float(text):.0f}" if "e+" in text and abs(value) < LARGE else text
@@ -215,9 +254,11 @@ def number(value, scale: float | None = None, resolution: float | None = None) -
             finite = [v for v in flat if isinstance(v, (int, float)) and not isinstance(v, bool)
                       and math.isfinite(v)]
             shape = " × ".join(str(n) for n in _shape(value))
-            span = f", {number(min(finite))} to {number(max(finite))}" if finite else ""
+            low, high = (number(v, least=least) for v in (min(finite), max(finite))) \
+                if finite else ("", "")
+            span = f", {low} to {high}" if finite else ""
             return f"[{shape} values{span}]"
-        return "[" + ", ".join(number(v) for v in value) + "]"
+        return "[" + ", ".join(number(v, least=least) for v in value) + "]"
     return str(value)
 
 

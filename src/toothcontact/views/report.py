@@ -36,16 +36,31 @@ def provenance_of(path: Path) -> dict:
 
 
 def write_run(out_dir: Path, document: dict, images=()) -> list[Path]:
-    """Write DIR/result.json, DIR/report.md and DIR/report.html atomically (temporary file,
-    then rename). `images`: the PNGs of the run (plots and pictures, in DIR), linked from
-    report.md and embedded in report.html."""
+    """Write DIR/result.json, DIR/report.md, DIR/report.html and each long table's CSV
+    (DIR/positions.csv, ...) atomically (temporary file, then rename). `images`: the PNGs of
+    the run (plots and pictures, in DIR), linked from report.md and embedded in
+    report.html."""
     out_dir = Path(out_dir)
     images = [Path(p) for p in images]
     texts = {"result.json": json_text(document),
              "report.md": markdown(document, [_relative(p, out_dir) for p in images]),
-             "report.html": html(document, images)}
+             "report.html": html(document, images),
+             **{t.csv: csv_text(t) for t in view(document).tables if t.csv}}
     out_dir.mkdir(parents=True, exist_ok=True)
     return [write_text(out_dir / filename, text) for filename, text in texts.items()]
+
+
+def csv_text(table) -> str:
+    """A report table as CSV: its labelled headers (units in brackets), then its rows as the
+    reports show them (four significant digits, round-off as 0)."""
+    import csv
+    import io
+
+    buffer = io.StringIO()
+    writer = csv.writer(buffer, lineterminator="\n")
+    writer.writerow(table.headers)
+    writer.writerows(table.rows)
+    return buffer.getvalue()
 
 
 def _relative(path: Path, folder: Path) -> str:

@@ -7,6 +7,7 @@ out as Markdown and as one self-contained HTML page."""
 
 from __future__ import annotations
 
+import dataclasses
 import math
 from dataclasses import dataclass, field
 
@@ -16,12 +17,14 @@ from .labels import (
     META,
     TE_RESOLUTION,
     TE_UM_RESOLUTION,
-    UNITS,
     ZERO,
+    floor,
+    in_words,
     label,
     number,
     over,
     span,
+    unit_of,
 )
 
 
@@ -38,7 +41,8 @@ class KeyResult:
 @dataclass(frozen=True)
 class Table:
     """A results table: `rows` of cells (text), `numeric` per column; a table of many rows
-    is shown collapsed."""
+    is shown collapsed, and written beside the reports as the CSV file `csv` (report.md
+    links it instead of repeating it; report.html keeps it, sortable)."""
 
     title: str
     headers: list[str]
@@ -46,6 +50,7 @@ class Table:
     numeric: list[bool]
     collapsed: bool = False
     note: str = ""
+    csv: str = ""
 
 
 @dataclass(frozen=True)
@@ -73,6 +78,8 @@ class ReportView:
     tables: list[Table]
     stages: list[tuple[str, str]] = field(default_factory=list)
     provenance: list[tuple[str, str]] = field(default_factory=list)
+    #: the long definitions, once each, at the end: (what it defines, the text)
+    glossary: list[tuple[str, str]] = field(default_factory=list)
 
     @property
     def failed(self) -> list[CheckLine]:
@@ -86,6 +93,8 @@ class ReportView:
 
 #: a table of more rows than this is shown collapsed
 COLLAPSE_ROWS = 12
+#: a table's note longer than this (characters) is a definition: it goes to the glossary
+GLOSSARY_NOTE = 300
 
 
 def view(document: dict) -> ReportView:
@@ -93,28 +102,43 @@ def view(document: dict) -> ReportView:
     checks = [CheckLine(c["name"], bool(c["ok"]), c["detail"], c.get("kind", "design"))
               for c in document.get("checks", [])]
     summary = document.get("summary") if isinstance(document.get("summary"), dict) else {}
-    tool = list(document.get("notes") or [])
-    for key in ("load_sharing", "transmission_error_note", "edge_pressure_note"):
-        if summary.get(key):
-            tool.append(summary[key])
     rating = document.get("rating") if isinstance(document.get("rating"), dict) else {}
     rated = {f["key"] for f in rating.get("figures", [])}
     tables = [t for key, value in document.items() if key not in META | CHARTS | {"rating"}
-              for t in _tables(key, {k: v for k, v in value.items() if k not in rated}
+              for t in _tables(key, {k: v for k, v in value.items() if k not in rated
+                                     and not _is_note(k) and k != "load_sharing"}
                                if key == "summary" else value, document["kind"])]
     if rating:
         tables.insert(0, rating_table(rating))
+    entries = [(label(k).removesuffix(" note"), str(v)) for k, v in summary.items()
+               if (k == "load_sharing" or _is_note(k)) and v]
+    entries += [(t.title, t.note) for t in tables if len(t.note) > GLOSSARY_NOTE]
+    glossary = list(dict.fromkeys(entries))            # each text once, in order
+    seen = {text for _, text in glossary}
+    tables = [t if t.note not in seen else dataclasses.replace(t, note="see the glossary")
+              for t in tables]
     stages = [(name, stage.get("reason", "")) for name, stage in
               (document.get("stages") or {}).items() if stage.get("status") == "failed"]
+    kind = document["kind"]
+
+    def words(text: str) -> str:
+        return in_words(text, kind)
+
+    checks = [CheckLine(words(c.name), c.ok, words(c.detail), c.kind) for c in checks]
+    tables = [dataclasses.replace(t, rows=[[words(cell) for cell in row] for row in t.rows],
+                                  note=words(t.note)) for t in tables]
     return ReportView(
         title=document.get("title") or document["case"], case=document["case"],
         kind=document["kind"], source=document.get("source") or "",
         version=str(document.get("toothcontact_version", "")), units=document.get("units", ""),
-        key_results=key_results(document),
+        key_results=[KeyResult(words(k.label), words(k.value), words(k.where), k.bad)
+                     for k in key_results(document)],
         design_checks=[c for c in checks if c.kind == "design"],
         other_checks=[c for c in checks if c.kind != "design"],
         assumptions=[str(a) for a in document.get("assumptions") or []]
-        + [f"rating: {a}" for a in rating.get("assumptions", [])], tool_notes=tool,
+        + [f"rating: {a}" for a in rating.get("assumptions", [])],
+        tool_notes=[words(n) for n in document.get("notes") or []],
+        glossary=[(words(name), words(text)) for name, text in glossary],
         inputs="\n".join(toml_lines(document.get("inputs") or {})), tables=tables,
         stages=stages, provenance=provenance(document))
 
@@ -135,10 +159,7 @@ def provenance(document: dict) -> list[tuple[str, str]]:
 def rating_table(rating: dict) -> Table:
     """ISO 6336's rating as one table: each figure's symbol, value and source, the factors
     the case gave named so."""
-    def unit(key: str) -> str:
-        return next((u for suffix, u in UNITS if key.endswith(suffix)), "")
-
-    rows = [[f["symbol"], number(f["value"]), unit(f["key"]), f["source"]]
+    rows = [[f["symbol"], number(f["value"]), unit_of(f["key"]) or "", f["source"]]
             for f in rating["figures"]]
     given = rating.get("factors_given") or []
     return Table("ISO 6336 rating", ["figure", "value", "unit", "source"], rows,
@@ -152,31 +173,45 @@ def _is_note(key: str) -> bool:
     return key == "note" or key.endswith("_note")
 
 
+def note_of(section: dict) -> str:
+    """A section's explanations (its `note`, a summary's `..._note`s) as one text."""
+    return "; ".join(f"{number(v)}" for k, v in section.items() if _is_note(k))
+
+
 def _tables(key: str, value, kind: str) -> list[Table]:
     """A document section as a table: a dict as quantity/value rows (those that do not
     apply, None, left out), a list of dicts as one row each (a column that applies to no
     row left out)."""
     title = key.replace("_", " ")
     if isinstance(value, dict):
+        def nested(v) -> bool:          # a table of its own: a dict, or a list of dicts
+            return isinstance(v, dict) or (isinstance(v, list) and bool(v)
+                                           and all(isinstance(r, dict) for r in v))
+
         plain = {k: v for k, v in value.items() if not _is_note(k)
-                 and k not in ("load_sharing",) and v is not None and not isinstance(v, dict)}
-        # a table within the section (the summary's positions check) follows as its own
-        inner = [t for k, v in value.items() if isinstance(v, dict) for t in _tables(k, v, kind)]
+                 and k not in ("load_sharing",) and v is not None and not nested(v)}
+        # a table within the section (the summary's positions check, a duty cycle's levels)
+        # follows as its own
+        inner = [t for k, v in value.items() if nested(v)
+                 for t in _tables(f"{title} {k}" if isinstance(v, list) else k, v, kind)]
         if not plain:
+            if inner and note_of(value):
+                inner[0] = dataclasses.replace(inner[0], note=note_of(value))
             return inner
-        note = "; ".join(f"{number(v)}" for k, v in value.items() if _is_note(k))
-        rows = [[label(k, kind, key), number(v)] for k, v in plain.items()]
+        note = note_of(value)
+        rows = [[label(k, kind, key), number(v, least=floor(k))] for k, v in plain.items()]
         return [Table(title, ["quantity", "value"], rows, [False, True], note=note)] + inner
     if isinstance(value, list) and value and all(isinstance(r, dict) for r in value):
         keys = [k for k in dict.fromkeys(k for row in value for k in row)
                 if any(row.get(k) is not None for row in value)]
         scale = {k: max((abs(r[k]) for r in value if isinstance(r.get(k), float)
                          and math.isfinite(r[k])), default=0.0) for k in keys}
-        rows = [[number(r.get(k), scale[k]) for k in keys] for r in value]
+        rows = [[number(r.get(k), scale[k], least=floor(k)) for k in keys] for r in value]
         numeric = [all(isinstance(r.get(k), (int, float)) and not isinstance(r.get(k), bool)
                        for r in value if r.get(k) is not None) for k in keys]
+        long = len(value) > COLLAPSE_ROWS
         return [Table(title, [label(k, kind, key) for k in keys], rows, numeric,
-                      collapsed=len(value) > COLLAPSE_ROWS)]
+                      collapsed=long, csv=f"{key}.csv" if long else "")]
     return []
 
 
@@ -193,6 +228,15 @@ def key_results(document: dict) -> list[KeyResult]:
     if summary:
         driven = "wheel" if document["kind"] == "worm" else "gear"
         out += _contact_figures(summary, document.get("positions") or [], driven)
+    if summary and summary.get("tooth_load_factor") is not None:
+        worst = max(summary["tooth_loads"], key=lambda r: r["tooth_load_factor"])
+        out.append(KeyResult(
+            "tooth load factor (largest over mean tooth load)",
+            number(summary["tooth_load_factor"]),
+            f"{number(worst['largest_tooth_load_N'])} N against a mean of "
+            f"{number(worst['mean_tooth_load_N'])} N over all teeth at roll "
+            f"{number(worst['roll_deg'], resolution=0.01)} deg; "
+            f"{worst['teeth_in_contact']} teeth in contact"))
     if summary and summary.get("K_H_beta") is not None:
         out.append(KeyResult("face load factor K_Hβ (loaded contact)", number(summary["K_H_beta"]),
                              "ISO 6336-1 Method A: the cycle's largest over mean line load; "
