@@ -6,6 +6,7 @@ parabola's minimum (-R·k), and a helix slope of the misalignment's gap across t
 brings the loaded pattern back to the aligned one."""
 
 import math
+from pathlib import Path
 
 import numpy as np
 import pytest
@@ -342,3 +343,26 @@ def test_the_bundled_measured_flank_is_its_generators_grid(tmp_path):
     assert np.allclose(grid.face, generator.FACE)
     assert np.allclose(grid.roll, np.sqrt((generator.DIAMETER / 2) ** 2 - rb ** 2), atol=1e-9)
     assert np.allclose(grid.deviation, np.round(generator.deviation_um(), 2) * 1e-3, atol=1e-12)
+
+
+def test_the_k_chart_traces_are_the_modifications_as_made():
+    """member_modifications.k_chart_traces on the bundled crowned pair: the pinion's lead
+    trace is its circular crown, R - sqrt(R² - z²) (R = 4000 mm) to 1e-9 mm at every face
+    position, the uncrowned gear's lead flat; the profile trace runs from the form to the
+    tip diameter, zero below the tip edge's start and rising on the rounding."""
+    import math
+
+    from toothcontact.case import load_case
+    from toothcontact.member_modifications import k_chart_traces
+
+    case, _ = load_case(Path(__file__).parents[1] / "cases" / "spur_crowned_20_60.toml")
+    pair = gearset.gear_pair(case)
+    pinion = k_chart_traces(pair.pinion_modifications, pair.pinion)
+    gear = k_chart_traces(pair.gear_modifications, pair.gear)
+    for z, drop in zip(pinion["lead_face_mm"], pinion["lead_um"]):
+        assert drop == pytest.approx(1e3 * (4000.0 - math.sqrt(4000.0 ** 2 - z ** 2)), abs=1e-6)
+    assert max(map(abs, gear["lead_um"])) < 1e-9
+    d = np.asarray(pinion["profile_diameter_mm"])
+    assert d[-1] == pytest.approx(2 * pair.pinion.tip_radius, abs=1e-9) and d[0] < d[-1]
+    profile = np.asarray(pinion["profile_um"])
+    assert profile[d < d[-1] - 1.0].max() == 0.0 and profile[-1] > 10.0

@@ -315,3 +315,25 @@ def test_plots_never_load_pyplot(fresh_python):
             "plots.ease_off_map([0, 1], [0, 1], np.eye(2), d / 'm.png');"
             "print('matplotlib.pyplot' in sys.modules)")
     assert fresh_python(code) == "False"
+
+
+def test_the_k_chart_and_the_path_of_contact_are_drawn_from_the_result(tmp_path):
+    """k_chart.png from a result's k_chart section (both members, profile and lead) and
+    path_of_contact.png from its positions' flank pressures and the rating's σ_H: written
+    at the figures' width, and by figures_for for a spur pair that has them."""
+    trace = {"profile_diameter_mm": [56.0, 60.0, 66.0], "profile_um": [0.0, 0.0, 30.0],
+             "lead_face_mm": [-15.0, 0.0, 15.0], "lead_um": [28.1, 0.0, 28.1],
+             "lead_diameter_mm": 59.4}
+    rows = [{"roll_deg": r, "pair": p, "contact_radius_pinion_mm": 29.0 + r + 3 * p,
+             "flank_p_max_MPa": 1200.0 + 10 * r, "transmission_error_urad": 0.1 * r}
+            for r in (-2.0, 0.0, 2.0) for p in (0, 1)]
+    result = {"kind": "spur", "case": "c", "title": "t", "k_chart": {"pinion": trace,
+                                                                     "gear": trace},
+              "positions": rows,
+              "rating": {"figures": [{"key": "sigma_H_MPa", "value": 1300.0},
+                                     {"key": "sigma_H0_MPa", "value": 1100.0}]}}
+    for draw, name in ((plots.k_chart, "k.png"), (plots.path_of_contact, "p.png")):
+        path = draw(result, tmp_path / name)
+        assert Image.open(path).size[0] == WIDTH
+    names = {p.name for p in plots.figures_for(result, tmp_path / "all")}
+    assert {"k_chart.png", "path_of_contact.png"} <= names

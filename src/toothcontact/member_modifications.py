@@ -171,6 +171,29 @@ def check_slopes(mods: FlankModifications, gear: CylindricalGear, name: str,
                              "of µm")
 
 
+#: points along each trace of a K-chart
+K_CHART_SAMPLES = 61
+
+
+def k_chart_traces(mods: FlankModifications, gear: CylindricalGear) -> dict:
+    """A member's modifications as a K-chart shows them, as made (crowns, slopes, twist,
+    reliefs, topography and the tip edge together): the profile trace at mid-face over the
+    active profile (form to tip diameter) and the lead trace at mid-profile over the face;
+    drops in µm along the flank's normal, positive where material is removed."""
+    s_tip = float(gear.base_radius * gear.roll_angle(gear.tip_radius))
+    s_form = _form_roll(gear)
+    s = np.linspace(min(s_form, s_tip), max(s_form, s_tip), K_CHART_SAMPLES)
+    w = np.linspace(-0.5 * gear.face_width, 0.5 * gear.face_width, K_CHART_SAMPLES)
+    s_mid = 0.5 * (s_form + s_tip)
+    profile = mods.drop(np.zeros_like(s), s, gear.face_width, s_form, s_tip)
+    lead = mods.drop(w, np.full_like(w, s_mid), gear.face_width, s_form, s_tip)
+    return {"profile_diameter_mm": (2.0 * np.hypot(gear.base_radius, s)).tolist(),
+            "profile_um": (1e3 * np.broadcast_to(profile, s.shape)).tolist(),
+            "lead_face_mm": w.tolist(),
+            "lead_um": (1e3 * np.broadcast_to(lead, w.shape)).tolist(),
+            "lead_diameter_mm": float(2.0 * np.hypot(gear.base_radius, s_mid))}
+
+
 def _form_roll(gear: CylindricalGear) -> float:
     """The roll length (mm) of a member's generated form circle."""
     from .surfaces.generation import generate_ring_side, generate_side

@@ -20,6 +20,7 @@ from .result import Check, Result
 def spur_geometry_case(case: schema.SpurCase) -> Result:
     """Geometry of a spur/helical pair: both gears' circles, form and undercut, the mesh."""
     from .. import gearset
+    from ..member_modifications import k_chart_traces
     from ..surfaces.generation import generate_side
 
     try:
@@ -77,6 +78,10 @@ def spur_geometry_case(case: schema.SpurCase) -> Result:
             for end, w in (("A", -0.5 * gear.face_width), ("B", 0.5 * gear.face_width)):
                 section[f"crown_drop_{end}_mm"] = float(mods.lead_crown.drop(w, gear.face_width))
         result.sections[name] = section
+    result.sections["k_chart"] = {
+        name: k_chart_traces(mods, gear) for name, gear, mods in (
+            ("pinion", pair.pinion, pair.pinion_modifications),
+            ("gear", pair.gear, pair.gear_modifications))}
     result.sections["mesh"] = {
         "center_distance_mm": pair.center_distance,
         "working_pressure_angle_deg": math.degrees(pair.working_pressure_angle),

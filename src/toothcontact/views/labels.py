@@ -13,7 +13,7 @@ META = {"case", "kind", "title", "source", "assumptions", "toothcontact_version"
         "inputs", "checks", "notes", "stages", "provenance"}
 #: sections that are a chart's curves: drawn in the chart, kept whole in result.json, not
 #: tabulated
-CHARTS = {"crown_chart", "anti_rattle_curve"}
+CHARTS = {"crown_chart", "anti_rattle_curve", "k_chart"}
 
 #: key suffix -> unit shown in a label (longest first)
 UNITS = [("_N_per_mm_um", "N/(mm·µm)"), ("_N_per_mm", "N/mm"), ("_m_per_s", "m/s"), ("_sqrt_MPa", "√MPa"),

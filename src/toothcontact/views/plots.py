@@ -271,6 +271,80 @@ def load_distribution(result: dict, path: str | Path) -> Path:
     return look.save(fig, path)
 
 
+#: a K-chart trace spanning less than this (µm) is drawn on this span about its value
+K_CHART_LEAST_SPAN_UM = 2.0
+
+
+def k_chart(result: dict, path: str | Path) -> Path:
+    """The K-chart of both members (the result's k_chart section): each member's profile
+    trace at mid-face over its diameter and its lead trace at mid-profile over the face,
+    the drop along the normal in µm (material removed), as made: crowns, slopes, twist,
+    reliefs, topography and the tip edge together."""
+    section = result["k_chart"]
+    names = [n for n in ("pinion", "gear") if section.get(n)]
+    fig = look.figure(2.5 * len(names) + 0.9)
+    axes = np.atleast_2d(fig.subplots(len(names), 2))
+    for row, name in zip(axes, names):
+        trace = section[name]
+        profile, lead = row
+        profile.plot(trace["profile_um"], trace["profile_diameter_mm"], color=SERIES[0])
+        profile.set(xlabel="drop along the normal (µm)", ylabel="diameter (mm)",
+                    title=f"{name}: profile at mid-face")
+        lead.plot(trace["lead_face_mm"], trace["lead_um"], color=SERIES[1])
+        lead.set(xlabel="face position from mid-face (mm, + toward end B)",
+                 ylabel="drop along the normal (µm)",
+                 title=f"{name}: lead at d = {trace['lead_diameter_mm']:.2f} mm")
+        lead.invert_yaxis()               # material removed downward, as a K-chart plots it
+        for ax, values, set_limits in ((profile, trace["profile_um"], profile.set_xlim),
+                                       (lead, trace["lead_um"], lead.set_ylim)):
+            low, high = min(values), max(values)
+            if high - low < K_CHART_LEAST_SPAN_UM:        # an unmodified trace: a flat line
+                middle = 0.5 * (low + high)
+                span = 0.5 * K_CHART_LEAST_SPAN_UM
+                set_limits(*((middle + span, middle - span) if ax is lead
+                             else (middle - span, middle + span)))
+            look.plain_axis(ax.xaxis)
+            look.plain_axis(ax.yaxis)
+            ax.grid(True, lw=0.4, color="0.85")
+    fig.suptitle(look.title(result, "K-chart: the modifications as made", 95), fontsize=10)
+    return look.save(fig, path)
+
+
+def path_of_contact(result: dict, path: str | Path) -> Path:
+    """The loaded flank pressure along the path of contact: each contact's largest pressure
+    on the active flank (flank_p_max_MPa) at its place on the driver's profile (its contact
+    diameter), per tooth pair, so that the pairs taking over from each other draw one path;
+    beside it ISO 6336-2's σ_H and σ_H0 of the rating and each member's permissible σ_HP."""
+    rows = result["positions"]
+    rating = {f["key"]: f["value"] for f in (result.get("rating") or {}).get("figures", [])}
+    fig = look.figure(4.2)
+    ax = fig.subplots()
+    pairs = sorted({r["pair"] for r in rows})
+    for k, pair in enumerate(pairs):
+        mine = sorted((r for r in rows if r["pair"] == pair and r.get("flank_p_max_MPa")
+                       and r.get("contact_radius_pinion_mm")),
+                      key=lambda r: r["contact_radius_pinion_mm"])
+        if mine:
+            ax.plot([2.0 * r["contact_radius_pinion_mm"] for r in mine],
+                    [r["flank_p_max_MPa"] for r in mine], "o-", ms=3, lw=1.2,
+                    color=SERIES[k % len(SERIES)], label=f"tooth pair {pair}")
+    for key, text, style in (("sigma_H_MPa", "ISO 6336-2 σ_H", "--"),
+                             ("sigma_H0_MPa", "σ_H0 (nominal)", ":"),
+                             ("sigma_HP_pinion_MPa", "σ_HP of the pinion", "-."),
+                             ("sigma_HP_gear_MPa", "σ_HP of the gear", (0, (1, 4)))):
+        if rating.get(key) is not None:
+            ax.axhline(rating[key], color="black", lw=1.0, ls=style,
+                       label=f"{text} {rating[key]:.0f} MPa")
+    ax.set(xlabel=f"contact diameter on the {_driver(result)} (mm)",
+           ylabel="largest pressure on the active flank (MPa)")
+    look.plain_axis(ax.yaxis)
+    ax.legend(loc="upper center", bbox_to_anchor=(0.5, -0.16), ncol=3, fontsize=8,
+              frameon=False)
+    fig.suptitle(look.title(result, "Flank pressure along the path of contact against ISO's "
+                                    "σ_H", 95), fontsize=10)
+    return look.save(fig, path)
+
+
 def mesh_loads(result: dict, path: str | Path) -> Path:
     """What the loaded contact decides over the mesh cycle (a result whose positions carry
     load_share): each tooth pair's share of its position's load, the mesh stiffness per
@@ -694,7 +768,9 @@ def figures_for(result: dict, out_dir: str | Path) -> list[Path]:
     mesh_cycle.png (any result with 'positions'), ease_off.png (a result with an 'ease_off'
     section: face_mm, radius_mm, separation_um, optional approach_um), crown_design.png
     (kind crown_design), load_distribution.png (a result with a 'load_distribution' section),
-    mesh_loads.png (a result whose positions carry a loaded contact's load_share),
+    k_chart.png (a result with a 'k_chart' section), path_of_contact.png (a spur or helical
+    pair's loaded flank pressures), mesh_loads.png (a result whose positions carry a loaded
+    contact's load_share),
     lubrication.png (positions with the lubricated contact's lambda),
     worm_efficiency_temperature.png and worm_efficiency_torque.png
     (kind worm_efficiency, with conditions / an anti-rattle spring). [] when none applies
@@ -714,6 +790,11 @@ def figures_for(result: dict, out_dir: str | Path) -> list[Path]:
                                  "flank"), member=ease.get("member", "pinion")))
     if result.get("load_distribution"):
         written.append(load_distribution(result, out / "load_distribution.png"))
+    if result.get("k_chart"):
+        written.append(k_chart(result, out / "k_chart.png"))
+    if any(r.get("flank_p_max_MPa") for r in result.get("positions") or []) and \
+            kind == "spur":
+        written.append(path_of_contact(result, out / "path_of_contact.png"))
     if any(r.get("load_share") is not None for r in result.get("positions") or []):
         written.append(mesh_loads(result, out / "mesh_loads.png"))
     if any(r.get("lambda") is not None for r in result.get("positions") or []):

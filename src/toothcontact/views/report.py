@@ -84,6 +84,8 @@ CAPTIONS = {
     "lubrication.png": "The lubricated contact over the mesh cycle: sliding and sum speeds, "
                        "specific film λ, flash temperature, power lost",
     "ease_off.png": "Ease-off of the flank",
+    "k_chart.png": "K-chart: each member's profile and lead traces as made",
+    "path_of_contact.png": "Flank pressure along the path of contact against ISO's σ_H",
     "crown_design.png": "Crown design chart",
     "worm_efficiency_temperature.png": "Worm-set efficiency against the lubricant temperature",
     "worm_efficiency_torque.png": "Worm-set efficiency against the output torque",
