@@ -3,6 +3,7 @@ into a fresh virtual environment (its dependencies borrowed from this one), and 
 every bundled case from an empty folder, the imported cases reading their packaged bodies."""
 
 import json
+import re
 import subprocess
 import sys
 import sysconfig
@@ -75,3 +76,11 @@ def test_demo_runs_every_bundled_case_from_an_empty_folder(installed, tmp_path):
     assert rows["helical_offcentre_crown_tip_relief"][0] == "helical"
     assert rows["spur_crowned_20_60"][0] == "spur"
     assert rows["fzg_c_type"][1].startswith(("all ", "1 of", "2 of"))
+    # no printed figure carries float round-off (issue 55): no number of 1e-7 or below,
+    # in any bundled report
+    noise = re.compile(r"(?<![\w.])-?\d(?:\.\d+)?e-(?:0[7-9]|[1-9]\d)\b")
+    for case in cases:
+        for name in ("report.md", "report.html"):
+            text = (tmp_path / "out" / case / name).read_text(encoding="utf-8")
+            text = re.sub(r"data:image/png;base64,[^\"]+", "", text)
+            assert not noise.findall(text), (case, name, noise.findall(text)[:5])

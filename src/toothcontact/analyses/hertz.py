@@ -39,6 +39,6 @@ def hertz_case(case: schema.HertzCase) -> Result:
         },
         checks=[Check("Roark's alpha/beta form equals the exact Hertz solution", agree < 1e-6,
                       "largest relative difference "
-                      + (f"{agree:.1e}" if agree >= 1e-12 else "below 1e-12 (round-off)")
+                      + (f"{agree:.1e}" if agree >= 1e-12 else "below 10⁻¹² (round-off)")
                       + " (limit 1e-6)", "method")],
     )

@@ -323,7 +323,7 @@ def duty_cycle_sections(case, result: Result, run_level) -> None:
             summary[key] = damage
             result.checks.append(Check(
                 f"duty cycle: Miner's sum of the {name}'s {kind} at most 1", damage <= 1.0,
-                (f"D = {damage:.3g}" if damage >= LEAST_DAMAGE else f"D below {LEAST_DAMAGE:g}")
+                (f"D = {damage:.3g}" if damage >= LEAST_DAMAGE else "D below 10⁻⁹")
                 + f" over {len(rows)} levels"))
     section["note"] = (
         "each level analysed as the case at that load (no positions check, no subsurface "

@@ -178,9 +178,11 @@ TE_UM_RESOLUTION = 0.001
 
 
 #: the least magnitude a figure of a unit means (below it, float round-off or a value under
-#: the model's own resolution: shown as 0): a nanometre, a micro-degree, a kPa, a µN, a
-#: curvature of 1/(1000 km)
-FLOORS = {"mm": 1e-6, "µm": 1e-3, "1/mm": 1e-9, "µrad": 1e-3, "deg": 1e-6, "rad": 1e-9,
+#: the model's own resolution: shown as 0): a nanometre, a micro-degree, a kPa, a µN; a gap
+#: coefficient (1/mm, half a relative curvature) of 1e-6, a relative radius of 500 m that
+#: no crown that can be made reaches (a line contact's fit along its line reads 1e-8 to
+#: 2e-7 there)
+FLOORS = {"mm": 1e-6, "µm": 1e-3, "1/mm": 1e-6, "µrad": 1e-3, "deg": 1e-6, "rad": 1e-9,
           "MPa": 1e-3, "N": 1e-6, "N/mm": 1e-6, "N·m": 1e-6, "mm²": 1e-9}
 
 

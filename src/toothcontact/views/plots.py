@@ -380,7 +380,9 @@ def mesh_loads(result: dict, path: str | Path) -> Path:
         ax_share.legend(fontsize=7, loc="best")
     section = result.get("load_distribution") or {}
     stiffness = section.get("mesh_stiffness_N_per_mm_um")
-    if stiffness:
+    if by_tooth:
+        _tooth_loads(ax_stiff, ax_te, x, group, share, summary, label)
+    elif stiffness:
         k = np.array([look.num(v) for v in stiffness])
         ax_stiff.plot(section["roll_deg"], k, "o-", ms=3, lw=1.0, color=SERIES[0],
                       label="the loaded contact's secant stiffness")
@@ -392,22 +394,9 @@ def mesh_loads(result: dict, path: str | Path) -> Path:
     else:
         ax_stiff.text(0.5, 0.5, "no mesh stiffness for this kind", ha="center", va="center",
                       transform=ax_stiff.transAxes)
-    ax_stiff.set_title("Mesh stiffness per mm of face")
-    loaded, unloaded = summary.get("te_harmonics_um"), summary.get("unloaded_te_harmonics_um")
-    width = 0.38
-    for offset, values, name, colour in ((-width / 2, unloaded, "unloaded", "black"),
-                                         (width / 2, loaded, "loaded", SERIES[0])):
-        if values:
-            orders = np.arange(1, len(values) + 1)
-            ax_te.bar(orders + offset, values, width, color=colour, label=name)
-            for o, v in zip(orders, values):
-                ax_te.annotate(f"{v:.3g}", (o + offset, v), ha="center", va="bottom",
-                               fontsize=6)
-    if loaded or unloaded:
-        ax_te.legend(fontsize=7)
-        ax_te.set_xticks(np.arange(1, max(len(loaded or []), len(unloaded or [])) + 1))
-    ax_te.set(xlabel="mesh order (× tooth-mesh frequency)", ylabel="amplitude (µm)",
-              title="Transmission error harmonics")
+    if not by_tooth:
+        ax_stiff.set_title("Mesh stiffness per mm of face")
+        _te_harmonics(ax_te, summary)
     on = np.isfinite(shear)
     for i, g in enumerate(sorted(set(group[on]))):
         here = on & (group == g)
@@ -427,6 +416,50 @@ def mesh_loads(result: dict, path: str | Path) -> Path:
                  title="Largest shear below each contact")
     fig.suptitle(look.title(result, "Loads over the mesh cycle", 95), fontsize=10)
     return look.save(fig, path)
+
+
+def _te_harmonics(ax_te, summary: dict) -> None:
+    """The loaded and unloaded transmission error's mesh harmonics as bars (µm)."""
+    loaded, unloaded = summary.get("te_harmonics_um"), summary.get("unloaded_te_harmonics_um")
+    width = 0.38
+    for offset, values, name, colour in ((-width / 2, unloaded, "unloaded", "black"),
+                                         (width / 2, loaded, "loaded", SERIES[0])):
+        if values:
+            orders = np.arange(1, len(values) + 1)
+            ax_te.bar(orders + offset, values, width, color=colour, label=name)
+            for o, v in zip(orders, values):
+                ax_te.annotate(f"{v:.3g}", (o + offset, v), ha="center", va="bottom",
+                               fontsize=6)
+    if loaded or unloaded:
+        ax_te.legend(fontsize=7)
+        ax_te.set_xticks(np.arange(1, max(len(loaded or []), len(unloaded or [])) + 1))
+    ax_te.set(xlabel="mesh order (× tooth-mesh frequency)", ylabel="amplitude (µm)",
+              title="Transmission error harmonics")
+
+
+def _tooth_loads(ax_loads, ax_factor, tooth, roll, share, summary: dict, label) -> None:
+    """A spline's load per tooth over the mean (its share of the position's load times the
+    number of teeth), a series a position, and each position's tooth load factor (the
+    summary's tooth_loads) as bars with the worst marked."""
+    teeth = int(np.nanmax(tooth)) + 1 if np.isfinite(tooth).any() else 0
+    for i, g in enumerate(sorted(set(roll[np.isfinite(share)]))):
+        on = (roll == g) & np.isfinite(share)
+        ax_loads.plot(tooth[on], share[on] * teeth, "o-", ms=3, lw=1.0,
+                      color=SERIES[i % len(SERIES)], label=label(g))
+    ax_loads.axhline(1.0, color="0.4", ls="--", lw=1.0, label="the mean")
+    ax_loads.set(xlabel="tooth index", ylabel="tooth load over the mean",
+                 title="Load per tooth")
+    ax_loads.legend(fontsize=7, loc="best")
+    rows = [r for r in summary.get("tooth_loads") or [] if r.get("tooth_load_factor")]
+    if rows:
+        factors = [r["tooth_load_factor"] for r in rows]
+        ax_factor.bar([f"{r['roll_deg']:.3g}°" for r in rows], factors, color=SERIES[0])
+        worst = int(np.argmax(factors))
+        ax_factor.bar([f"{rows[worst]['roll_deg']:.3g}°"], [factors[worst]], color=WARNING,
+                      label=f"worst {factors[worst]:.3f}")
+        ax_factor.legend(fontsize=7)
+    ax_factor.set(xlabel="roll angle of the position", ylabel="largest over mean tooth load",
+                  title="Tooth load factor")
 
 
 def lubrication(result: dict, path: str | Path) -> Path:
