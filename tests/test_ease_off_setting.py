@@ -4,7 +4,7 @@ and the positions check's second pass leave it, at the same figures."""
 import copy
 
 from toothcontact import analyses
-from toothcontact.analyses.contact import midway_case
+from toothcontact.analyses.contact import refining_case
 from toothcontact.case import parse_case
 from toothcontact.sweep.run import sample_record
 
@@ -50,4 +50,4 @@ def test_a_sweep_sample_leaves_the_ease_off_unless_its_case_asks(monkeypatch):
 def test_the_positions_checks_second_pass_leaves_the_ease_off():
     case = parse_case(with_analysis())
     assert case.analysis.ease_off is None            # a run maps it
-    assert midway_case(case).analysis.ease_off is False
+    assert refining_case(case).analysis.ease_off is False

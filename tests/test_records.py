@@ -38,7 +38,7 @@ def test_positions_and_summary_as_dataframes(relieved):
     assert list(summary.index) == ["spur_relieved_20_60"]
     assert summary.loc["spur_relieved_20_60", "bem_max_p_max_MPa"] == \
         relieved.summary["bem_max_p_max_MPa"]
-    assert "positions_check.doubled_bem_max_p_max_MPa" in summary
+    assert "positions_check.refined_bem_max_p_max_MPa" in summary
     other = CaseResult.from_document(dict(relieved.document, case="again"))
     stacked = pandas.concat([relieved.summary.to_dataframe(), other.summary.to_dataframe()])
     assert list(stacked.index) == ["spur_relieved_20_60", "again"]

@@ -81,7 +81,7 @@ def tolerance(where: str) -> tuple[float, float]:
         return RTOL, EASE_OFF_TIP_ATOL
     loaded = (key.startswith(LOADED) or ".bem_" in where or ".positions_check." in where
               or ".duty_cycle." in where or ".rating.figures[" in where)
-    if key.startswith(("transmission_error", "loaded_transmission_error", "doubled_loaded")) \
+    if key.startswith(("transmission_error", "loaded_transmission_error", "refined_loaded")) \
             and key.endswith("_um"):      # µrad times the arm (mm), µm: below 0.2 of µrad's
         return (LOADED_RTOL, 0.2 * LOADED_TE_ATOL) if loaded else (RTOL, 0.2 * TE_ATOL)
     if loaded:

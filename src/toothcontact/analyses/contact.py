@@ -17,83 +17,170 @@ from .result import Check, Result
 log = logging.getLogger(__name__)
 
 
-def cycle_settings(a: schema.AnalysisSpec, phase: float = 0.0, **kind_settings):
-    """The contact cycle's settings from a case's [analysis] table, its positions shifted
-    by `phase` of their step (contact.cycle.mesh_positions)."""
+def cycle_settings(a: schema.AnalysisSpec, at: tuple[float, ...] | None = None,
+                   **kind_settings):
+    """The contact cycle's settings from a case's [analysis] table, at the places `at` (in
+    steps of the positions' spacing from roll 0; None: the case's positions;
+    contact.cycle.mesh_positions)."""
     from ..contact.cycle import CycleSettings
 
-    return CycleSettings(a.positions, phase, a.grid, a.approach, field_grid=a.field_grid,
+    return CycleSettings(a.positions, at, a.grid, a.approach, field_grid=a.field_grid,
                          patterns=a.rigid_patterns is not False,
                          ease_off=a.ease_off is not False, **kind_settings)
 
 
-#: the largest loaded pressure may move by this much (fraction) with twice the positions
+#: the largest loaded pressure may move by this much (fraction) with the positions refined
 #: before the result says that the case needs more
 POSITIONS_TOLERANCE = 0.05
 #: the loaded transmission error's peak to peak may move by this fraction, or by
-#: TE_POSITIONS_FLOOR µm if more, with twice the positions before the result says so
+#: TE_POSITIONS_FLOOR µm if more, with the positions refined before the result says so
 TE_POSITIONS_TOLERANCE, TE_POSITIONS_FLOOR = 0.10, 0.1
+#: the positions check halves a step this many times at most (to 1/8 of the case's step)
+REFINEMENT_LEVELS = 3
 
 
-def midway_case(case: schema.CaseInfo) -> schema.CaseInfo:
-    """The case as check_positions' second pass runs it: without the rigid patterns and the
-    ease-off (a row's keys and a map the check does not read, which leave the loaded
+def refining_case(case: schema.CaseInfo) -> schema.CaseInfo:
+    """The case as check_positions' refining passes run it: without the rigid patterns and
+    the ease-off (a row's keys and a map the check does not read, which leave the loaded
     contact as it is)."""
     return case.model_copy(update={"analysis": case.analysis.model_copy(update={
         "rigid_patterns": False, "ease_off": False})})
 
 
-def check_positions(result: Result, positions: int, midway) -> None:
+def _per_position(rows: list[dict]) -> list[tuple[float | None, float | None]]:
+    """(largest loaded pressure MPa, loaded transmission error µm) of each position of a
+    pass's rows, in roll order; None where the position's pairs were not solved (its
+    transmission error also where its loaded contact left it unknown)."""
+    positions: dict[float, list[dict]] = {}
+    for row in rows:
+        positions.setdefault(row["roll_deg"], []).append(row)
+    out = []
+    for roll in sorted(positions):
+        answered = [r for r in positions[roll] if r["bem_status"] != "failed"]
+        out.append((max((r["bem_p_max_MPa"] or 0.0 for r in answered), default=None)
+                    if answered else None,
+                    positions[roll][0].get("loaded_transmission_error_um")))
+    return out
+
+
+def _to_refine(known: dict[float, tuple], count: int, width: float,
+               most: int | None = None) -> list[float]:
+    """The midpoints of the intervals `width` steps wide between the places analysed
+    (`known`: step -> (pressure, TE); the cycle is periodic over `count` steps) that can hide
+    a larger figure: one end within POSITIONS_TOLERANCE of the largest pressure, the
+    pressure changing by more than twice that across it (an edge contact starting
+    between), or one end at the transmission error's highest or lowest (where they differ
+    by more than TE_POSITIONS_FLOOR); at most `most`, those nearest the largest pressure
+    first, then the largest jumps, then the TE's extremes. Intervals with an end not
+    solved are left."""
+    steps = sorted(known)
+    pressures = [known[k][0] for k in steps if known[k][0] is not None]
+    errors = [known[k][1] for k in steps if known[k][1] is not None]
+    if not pressures:
+        return []
+    top = max(pressures)
+    extremes = ({max(errors), min(errors)} if errors and max(errors) - min(errors)
+                > TE_POSITIONS_FLOOR else set())
+    found = []
+    for a, b in zip(steps, steps[1:] + [steps[0] + count]):
+        (pa, ta), (pb, tb) = known[a], known[b if b in known else b - count]
+        if b - a != width or pa is None or pb is None:
+            continue
+        reasons = (max(pa, pb) >= (1.0 - POSITIONS_TOLERANCE) * top,
+                   abs(pa - pb) >= 2.0 * POSITIONS_TOLERANCE * top,
+                   ta in extremes or tb in extremes)
+        if any(reasons):
+            found.append((reasons, max(pa, pb), abs(pa - pb), a + 0.5 * width))
+    found.sort(key=lambda f: (f[0], f[1] if f[0][0] else f[2]), reverse=True)
+    return sorted(f[3] for f in found[:most])
+
+
+def _envelope(known: dict[float, tuple]) -> tuple[float, float | None]:
+    """The largest pressure (MPa) and the transmission error's peak to peak (µm; None
+    where a place's is unknown) over the places analysed."""
+    pressures = [p for p, _ in known.values() if p is not None]
+    errors = [t for _, t in known.values()]
+    spread = None if None in errors else max(errors) - min(errors)
+    return max(pressures), spread
+
+
+def check_positions(result: Result, positions: int, refine) -> None:
     """summary["positions_check"]: the largest loaded pressure and the loaded transmission
-    error's peak to peak at the case's positions and with the same again midway between
-    them (`midway(scratch)` runs the contact and the loaded contact with the positions
-    shifted by half a step into a scratch Result), and how far they move; a note where the
-    pressure moves by more than POSITIONS_TOLERANCE (`converged` false), or the peak to
-    peak by more than TE_POSITIONS_TOLERANCE (`transmission_error_converged` false).
-    Nothing where no loaded contact was solved."""
+    error's peak to peak at the case's positions, and with the positions refined by
+    adaptive bisection where those figures can hide (_to_refine: about the pressure's peak,
+    across its jumps and about the transmission error's extremes), a step halved up to
+    REFINEMENT_LEVELS times, stopping when a level moves neither figure by more than its
+    tolerance or as many positions as the case's were added (the cost of doubling them; a
+    pass for one place is not worth its contact cycle); `refine(scratch, at)` runs the
+    contact and the loaded contact at the places `at` (steps from roll 0) into a scratch
+    Result. A note where the pressure moves by more
+    than POSITIONS_TOLERANCE (`converged` false), or the peak to peak by more than
+    TE_POSITIONS_TOLERANCE (`transmission_error_converged` false). Nothing where no loaded
+    contact was solved."""
     summary = result.sections.get("summary") or {}
     here = summary.get("bem_max_p_max_MPa")
     if here is None:
         return
-    scratch, start = Result(), time.perf_counter()
-    try:
-        midway(scratch)
-        between = scratch.sections["summary"]
-    except CaseError as exc:
-        summary["positions_check"] = {"positions": positions, "checked": False,
-                                      "reason": str(exc)}
-        return
-    both = max(here, between.get("bem_max_p_max_MPa") or 0.0)
-    te = [r.get("loaded_transmission_error_um") for rows in
-          (result.sections["positions"], scratch.sections["positions"]) for r in rows]
+    start = time.perf_counter()
+    first = _per_position(result.sections["positions"])
+    known = dict(zip((float(k - positions // 2) for k in range(len(first))), first))
     spread = summary.get("loaded_transmission_error_peak_to_peak_um")
-    doubled = None if spread is None or None in te else max(te) - min(te)
-    check = {"positions": positions, "checked": True, "doubled_positions": 2 * positions,
-             "bem_max_p_max_MPa": here, "doubled_bem_max_p_max_MPa": both,
-             "bem_max_p_max_change_percent": 100.0 * (both - here) / here,
+    width, added, failed, levels = 1.0, 0, 0, 0
+    while levels < REFINEMENT_LEVELS and positions - added >= (2 if levels else 1):
+        at = _to_refine(known, positions, width, positions - added)
+        if not at:
+            break
+        before = _envelope(known)
+        scratch = Result()
+        try:
+            refine(scratch, tuple(at))
+        except CaseError as exc:
+            summary["positions_check"] = {"positions": positions, "checked": False,
+                                          "reason": str(exc)}
+            return
+        found = _per_position(scratch.sections["positions"])
+        if len(found) != len(at):       # a place without a pair: not comparable
+            break
+        known.update(zip(at, found))
+        added, levels, width = added + len(at), levels + 1, 0.5 * width
+        failed += scratch.sections["summary"].get("bem_failed_contacts", 0)
+        after = _envelope(known)
+        if (after[0] <= (1.0 + POSITIONS_TOLERANCE) * before[0]
+                and (None in (after[1], before[1]) or after[1] - before[1]
+                     <= max(TE_POSITIONS_TOLERANCE * before[1], TE_POSITIONS_FLOOR))):
+            break
+    best, refined = _envelope(known)
+    refined = None if spread is None else refined
+    check = {"positions": positions, "checked": True, "method": "adaptive bisection",
+             "refined_positions": added, "refinement_levels": levels,
+             "finest_step_fraction": width,
+             "bem_max_p_max_MPa": here, "refined_bem_max_p_max_MPa": best,
+             "bem_max_p_max_change_percent": 100.0 * (best - here) / here,
              "loaded_transmission_error_peak_to_peak_um": spread,
-             "doubled_loaded_transmission_error_peak_to_peak_um": doubled,
-             "doubled_failed_contacts": between.get("bem_failed_contacts", 0),
+             "refined_loaded_transmission_error_peak_to_peak_um": refined,
+             "refined_failed_contacts": failed,
              "tolerance_percent": 100.0 * POSITIONS_TOLERANCE,
-             "converged": both <= (1.0 + POSITIONS_TOLERANCE) * here,
-             "transmission_error_converged": None if doubled is None else
-             doubled - spread <= max(TE_POSITIONS_TOLERANCE * spread, TE_POSITIONS_FLOOR)}
+             "converged": best <= (1.0 + POSITIONS_TOLERANCE) * here,
+             "transmission_error_converged": None if refined is None else
+             refined - spread <= max(TE_POSITIONS_TOLERANCE * spread, TE_POSITIONS_FLOOR)}
     summary["positions_check"] = check
-    log.info("positions check: largest loaded pressure %.0f MPa at %d positions, %.0f MPa at "
-             "%d (%+.1f %%), in %.2f s", here, positions, both, 2 * positions,
-             check["bem_max_p_max_change_percent"], time.perf_counter() - start)
+    log.info("positions check: largest loaded pressure %.0f MPa at %d positions, %.0f MPa "
+             "with %d more (%+.1f %%, steps down to 1/%d), in %.2f s", here, positions, best,
+             added, check["bem_max_p_max_change_percent"], round(1 / width),
+             time.perf_counter() - start)
+    more = f"give [analysis] positions = {positions * max(2, round(1 / width))} or more"
     if not check["converged"]:
         result.notes.append(
-            f"positions: the largest loaded pressure rises from {here:.0f} to {both:.0f} MPa "
-            f"(+{check['bem_max_p_max_change_percent']:.1f} %) with twice the positions "
-            f"({2 * positions}); the peak falls between the case's positions: give [analysis] "
-            f"positions = {4 * positions} or more")
+            f"positions: the largest loaded pressure rises from {here:.0f} to {best:.0f} MPa "
+            f"(+{check['bem_max_p_max_change_percent']:.1f} %) with the positions refined "
+            f"between the case's {positions} (to 1/{round(1 / width)} of their step where it "
+            f"can hide); the peak falls between the case's positions: {more}")
     if check["transmission_error_converged"] is False:
         result.notes.append(
             f"positions: the loaded transmission error's peak to peak grows from {spread:.3g} "
-            f"to {doubled:.3g} µm with twice the positions ({2 * positions}): its extremes "
-            f"fall between the case's positions: give [analysis] positions = {4 * positions} "
-            "or more for the transmission error")
+            f"to {refined:.3g} µm with the positions refined between the case's "
+            f"{positions}: its extremes fall between the case's positions: {more} for the "
+            "transmission error")
 
 
 #: the mesh orders whose amplitudes a transmission error's Fourier series reports (as many
@@ -319,15 +406,34 @@ def _edge_note(curved: bool) -> str:
 #: the per-contact keys of the stresses below it (subsurface_sections)
 SUBSURFACE_KEYS = ("subsurface_shear_max_MPa", "subsurface_shear_depth_mm",
                    "subsurface_von_mises_max_MPa", "subsurface_von_mises_depth_mm")
+#: the contacts whose stresses below can decide: this many largest by each of
+#: DECIDING_FIGURES, and every edge-loaded one (deciding_contacts)
+DECIDING_EACH = 3
+DECIDING_FIGURES = ("bem_p_max_MPa", "flank_p_max_MPa", "bem_raw_peak_MPa", "bem_load_N")
 
 
-def subsurface_sections(result: Result, wanted: bool | None,
+def deciding_contacts(rows: list[dict], solved: list[int]) -> list[int]:
+    """The solved contacts (indices into `rows`) whose stresses below can be the cycle's
+    largest: the DECIDING_EACH largest by each of DECIDING_FIGURES (peak pressures, the
+    largest cell pressure, the load) and every edge-loaded one (a corner or end-loaded
+    contact puts its largest stress near the surface, whatever its load). On the bundled
+    cases no other contact's shear or von Mises maximum exceeds theirs (tests)."""
+    chosen = {k for k in solved if rows[k].get("edge_loaded")}
+    for figure in DECIDING_FIGURES:
+        chosen.update(sorted(solved, key=lambda k: -(rows[k].get(figure) or 0.0))
+                      [:DECIDING_EACH])
+    return sorted(chosen)
+
+
+def subsurface_sections(result: Result, wanted: bool | str | None,
                         poisson: tuple[float, float]) -> None:
-    """The stresses below every loaded contact (contact.subsurface, in the body of each
-    Poisson's ratio; the larger where they differ): per row the largest principal shear
-    (σ1 - σ3)/2 and von Mises stress and their depths (None without a loaded solution),
-    and the largest over the cycle in the summary. `wanted`: the case's
-    `[analysis] subsurface` (None: yes)."""
+    """The stresses below the loaded contacts that can decide (deciding_contacts; every
+    solved one where `wanted` is "all"), in the body of each Poisson's ratio (the larger
+    where they differ; contact.subsurface): per row the largest principal shear
+    (σ1 - σ3)/2 and von Mises stress and their depths (None for a contact not computed or
+    without a loaded solution), and the largest over the cycle in the summary with how
+    many contacts were computed. `wanted`: the case's `[analysis] subsurface` (None: yes,
+    the deciding contacts)."""
     if wanted is False or not result.loaded:
         return
     from ..contact.subsurface import peak
@@ -335,6 +441,9 @@ def subsurface_sections(result: Result, wanted: bool | None,
 
     rows = result.sections["positions"]
     solved = [k for k, contact in enumerate(result.loaded) if contact is not None]
+    every = wanted == "all"
+    if not every:
+        solved = deciding_contacts(rows, solved)
     ratios = sorted(set(poisson))
 
     def task(i: int):
@@ -363,7 +472,13 @@ def subsurface_sections(result: Result, wanted: bool | None,
         subsurface_shear_at=f"roll {worst['roll_deg']:.2f} deg pair {worst['pair']}",
         subsurface_von_mises_max_MPa=worst_vm["subsurface_von_mises_max_MPa"],
         subsurface_von_mises_depth_mm=worst_vm["subsurface_von_mises_depth_mm"],
-        subsurface_note="the stresses below each loaded contact in an elastic half-space "
+        subsurface_contacts=len(answered),
+        subsurface_note=("the stresses below every loaded contact" if every else
+                         "the stresses below the loaded contacts that can decide (the "
+                         f"{DECIDING_EACH} largest by peak pressure, flank pressure, cell "
+                         "pressure and load, and every edge-loaded one: "
+                         "subsurface_contacts; the other rows' are not computed)")
+                        + " in an elastic half-space "
                         "under its solved pressure (frictionless; Boussinesq's point load "
                         "summed over the pressure cells by FFT): subsurface_shear_max_MPa the "
                         "largest principal shear (σ1 - σ3)/2 and its depth, "

@@ -47,12 +47,13 @@ def spline_geometry_case(case: schema.SplineCase) -> Result:
         contact.subsurface_sections(result, case.analysis.subsurface, (case.material.nu,) * 2)
         if case.analysis.positions_check:
             contact.check_positions(result, case.analysis.positions,
-                             lambda scratch: _spline_contact(contact.midway_case(case), pair,
-                                                             scratch, 0.5))
+                             lambda scratch, at: _spline_contact(contact.refining_case(case),
+                                                                 pair, scratch, at))
     return result
 
 
-def _spline_contact(case: schema.SplineCase, pair, result: Result, phase: float = 0.0) -> None:
+def _spline_contact(case: schema.SplineCase, pair, result: Result,
+                    at: tuple[float, ...] | None = None) -> None:
     """Every tooth of the spline under the angular misalignment: a coaxial pair of ratio 1
     (surfaces.placement.ParallelMesh with zero centre distance), the sleeve tilted about the normal of
     tooth 0's plane of action; the lag closes the clearance."""
@@ -71,7 +72,7 @@ def _spline_contact(case: schema.SplineCase, pair, result: Result, phase: float 
     a = case.analysis
     try:
         cycle = parallel_cycle(mesh, hub, sleeve, normal_load, C_E,
-                              contact.cycle_settings(a, phase, pairs=tuple(range(case.teeth))))
+                              contact.cycle_settings(a, at, pairs=tuple(range(case.teeth))))
     except (ValueError, RuntimeError) as exc:
         raise CaseError(f"misalignment / torque: no contact could be found: {exc}") from None
     contact.contact_sections(cycle, {"tangential_load_N": wt, "normal_load_N": normal_load}, result,

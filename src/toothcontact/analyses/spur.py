@@ -170,8 +170,8 @@ def _spur_contact(case: schema.SpurCase, pair, result: Result) -> None:
                                          result)
     if case.analysis.positions_check:
         contact.check_positions(result, case.analysis.positions,
-                         lambda scratch: _loaded_pass(contact.midway_case(case), pair,
-                                                       scratch, 0.5))
+                         lambda scratch, at: _loaded_pass(contact.refining_case(case), pair,
+                                                           scratch, at))
     if not pair.shafts or not changes:
         return
     result.sections["shaft"]["passes"] = len(changes)
@@ -275,10 +275,12 @@ def _contact_pass(case: schema.SpurCase, pair, result: Result):
     return mesh
 
 
-def _loaded_pass(case: schema.SpurCase, pair, result: Result, phase: float = 0.0):
-    """The contact cycle and its loaded contact (positions shifted by `phase` of a step)
-    into `result`; the mesh and the cycle."""
-    mesh, cycle, (wt, normal_load, C_E) = contact_cycle(case, pair, phase)
+def _loaded_pass(case: schema.SpurCase, pair, result: Result,
+                 at: tuple[float, ...] | None = None):
+    """The contact cycle and its loaded contact (at the places `at`, in steps of the
+    positions' spacing; None: the case's positions) into `result`; the mesh and the
+    cycle."""
+    mesh, cycle, (wt, normal_load, C_E) = contact_cycle(case, pair, at)
     contact.contact_sections(cycle, {"tangential_load_N": wt, "normal_load_N": normal_load}, result,
                       (pair.gear.base_radius, "gear's base circle (along the transverse line "
                                               "of action)"))
@@ -298,10 +300,11 @@ def _loaded_pass(case: schema.SpurCase, pair, result: Result, phase: float = 0.0
     return mesh, cycle
 
 
-def contact_cycle(case: schema.SpurCase, pair, phase: float = 0.0):
-    """The pair's contact cycle under the case's load and misalignment (positions shifted by
-    `phase` of a step), with the tooth pairs the loaded contact may bring in: the mesh, the
-    cycle and (tangential load N, normal load N, the pair's Hertz compliance C_E)."""
+def contact_cycle(case: schema.SpurCase, pair, at: tuple[float, ...] | None = None):
+    """The pair's contact cycle under the case's load and misalignment (at the places `at`,
+    in steps of the positions' spacing; None: the case's positions), with the tooth pairs
+    the loaded contact may bring in: the mesh, the cycle and (tangential load N, normal
+    load N, the pair's Hertz compliance C_E)."""
     from ..contact.cycle import parallel_cycle
     from ..gearset import working_flank
     from ..surfaces.placement import Misalignment
@@ -321,7 +324,7 @@ def contact_cycle(case: schema.SpurCase, pair, phase: float = 0.0):
              if a.pressure_grid else 0.0)
     try:
         cycle = parallel_cycle(mesh, pinion, gear, normal_load, C_E,
-                              contact.cycle_settings(a, phase, reach=reach))
+                              contact.cycle_settings(a, at, reach=reach))
     except (ValueError, RuntimeError) as exc:
         raise CaseError(f"misalignment / load: no contact could be found: {exc}") from None
     return mesh, cycle, (wt, normal_load, C_E)

@@ -83,8 +83,8 @@ def worm_geometry_case(case: schema.WormCase) -> Result:
         _wheel_limits(case.wheel_material or case.material, result)
         if case.analysis.positions_check:
             contact.check_positions(result, case.analysis.positions,
-                             lambda scratch: _worm_contact(contact.midway_case(case), parts,
-                                                           scratch, 0.5))
+                             lambda scratch, at: _worm_contact(contact.refining_case(case),
+                                                               parts, scratch, at))
     return result
 
 
@@ -237,7 +237,8 @@ def _worm_running(case: schema.WormCase, parts) -> lubrication.LubricatedPair:
         (case.material, case.wheel_material or case.material), output, False, False)
 
 
-def _worm_contact(case: schema.WormCase, parts, result: Result, phase: float = 0.0):
+def _worm_contact(case: schema.WormCase, parts, result: Result,
+                  at: tuple[float, ...] | None = None):
     """Contact of the loaded flank pair (`[load] flank`) over one mesh cycle, with seed 001's
     anti-rattle-spring tilt of the worm shaft when a spring is given; the mesh that placed
     it."""
@@ -279,7 +280,7 @@ def _worm_contact(case: schema.WormCase, parts, result: Result, phase: float = 0
     a = case.analysis
     try:
         cycle = parallel_cycle(mesh, worm, wheel, normal_load, C_E,
-                              contact.cycle_settings(a, phase, pairs=(-2, -1, 0, 1, 2),
+                              contact.cycle_settings(a, at, pairs=(-2, -1, 0, 1, 2),
                                               ease_off_grid=(41, 61), ease_off_member="gear"))
     except (ValueError, RuntimeError) as exc:
         raise CaseError(f"misalignment / load: no contact could be found: {exc}") from None

@@ -535,6 +535,13 @@ class AnalysisSpec(Model):
             raise ValueError(f"{value}: 0 (none) or at least {least} points a side")
         return value
 
+    @field_validator("subsurface", mode="before")
+    @classmethod
+    def _subsurface(cls, value: Any) -> Any:
+        if value is not None and not isinstance(value, bool) and value != "all":
+            raise ValueError(f"{value!r}: must be true, false or \"all\"")
+        return value
+
     @field_validator("grid")
     @classmethod
     def _grid(cls, value: tuple[int, int]) -> tuple[int, int]:
@@ -556,13 +563,16 @@ class AnalysisSpec(Model):
                                            "contact has about n² cells, as square as the "
                                            "contact's box allows; 0 = Hertz only")
     positions_check: bool = Field(
-        True, description="solve the loaded contact again midway between the positions (twice "
-                          "as many in all) and report how far the largest loaded pressure "
-                          "moves (summary positions_check)")
-    subsurface: bool | None = Field(
-        None, description="the stresses below each loaded contact (largest principal shear "
-                          "and von Mises stress and their depths); default: in a run, not "
-                          "in a sweep's samples")
+        True, description="solve the loaded contact again between the positions where the "
+                          "largest loaded pressure or the transmission error's extremes can "
+                          "hide (adaptive bisection, steps down to 1/8) and report how far "
+                          "they move (summary positions_check)")
+    subsurface: bool | Literal["all"] | None = Field(
+        None, description="the stresses below the loaded contacts that can decide (largest "
+                          "principal shear and von Mises stress and their depths; the "
+                          "largest few by pressure and load and every edge-loaded one), "
+                          "\"all\" below every one; default: in a run, not in a sweep's "
+                          "samples")
     rigid_patterns: bool | None = Field(
         None, description="measure each contact's rigid pattern on its separation field "
                           "(the rows' rigid_pattern_* keys); default: in a run, and in a "

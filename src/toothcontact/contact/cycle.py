@@ -56,21 +56,24 @@ UNTOUCHED = {"normal_load_N": 0.0, "a_mm": 0.0, "b_mm": 0.0, "p_max_MPa": 0.0,
              "edge_contact": False, "edge_contact_at": None, "edge_margins_mm": {}}
 
 
-def mesh_positions(pitch: float, count: int, phase: float = 0.0) -> np.ndarray:
-    """`count` driver roll angles (rad) spread evenly over one pitch (rad), 0 among them
-    unless shifted.
+def mesh_positions(pitch: float, count: int, at: tuple[float, ...] | None = None
+                   ) -> np.ndarray:
+    """`count` driver roll angles (rad) spread evenly over one pitch (rad), 0 among them,
+    or the places `at` (in steps of pitch/count from 0) instead.
 
     One pitch is periodic, so its two ends are one position: the angles are k·pitch/count
-    for k from -(count // 2), each position once. `phase` shifts them all by that fraction
-    of a step: 0.5 puts one midway between each two (with them, twice the count)."""
-    return pitch * (np.arange(count) - count // 2 + phase) / count
+    for k from -(count // 2), each position once. `at` = k + 0.5 for each k puts one midway
+    between each two (with them, twice the count)."""
+    steps = np.arange(count) - count // 2 if at is None else np.asarray(at, float)
+    return pitch * steps / count
 
 
 @dataclass(frozen=True)
 class CycleSettings:
     positions: int = 21
-    #: the positions' shift, as a fraction of their step (mesh_positions)
-    phase: float = 0.0
+    #: the places analysed instead of the evenly spread positions, in steps of
+    #: pitch/positions from roll 0 (mesh_positions); None: the evenly spread ones
+    at: tuple[float, ...] | None = None
     grid: tuple[int, int] = (25, 41)      # pinion flank grid for the separation search
     approach: float = 0.00632             # mm, Litvin's rigid approach for the pattern
     fit_points: int = 21
@@ -145,7 +148,7 @@ def parallel_cycle(mesh, pinion: Flank, gear: Flank, normal_load: float,
     start = time.perf_counter()
     (u0, u1), (v0, v1) = pinion.domain
     pitch = mesh.driver_pitch
-    phis = mesh_positions(pitch, settings.positions, settings.phase)
+    phis = mesh_positions(pitch, settings.positions, settings.at)
     pairs = np.array(settings.pairs)
     pinion_frames = Frame.stack([[mesh.pinion_frame(phi, j) for j in pairs] for phi in phis])
 

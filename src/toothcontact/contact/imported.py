@@ -104,7 +104,7 @@ def imported_cycle(mesh: ParallelMesh, pinion: TriangleSurface, gear: TriangleSu
     driving = np.zeros(len(pinion.faces), bool)
     driving[leading] = True
     rows, placed, lag = [], [], None
-    for phi in mesh_positions(pitch, settings.positions, settings.phase):
+    for phi in mesh_positions(pitch, settings.positions, settings.at):
         frame = mesh.pinion_frame(phi)
         corners = frame.to_world(pinion.triangles[leading].reshape(-1, 3))[:, :2] - mesh.center[:2]
         near = np.hypot(corners[:, 0], corners[:, 1]).reshape(-1, 3).min(axis=1)

@@ -17,6 +17,7 @@ Sign: compression negative. Units: mm, MPa.
 
 from __future__ import annotations
 
+import functools
 import math
 from dataclasses import dataclass
 
@@ -105,11 +106,18 @@ def _influence(shape: tuple[int, int], nx: int, ny: int, dx: float, dy: float, z
     return out
 
 
+@functools.lru_cache(maxsize=64)
+def _gauss_legendre(n: int) -> tuple[np.ndarray, np.ndarray]:
+    """Gauss-Legendre nodes and weights of n points on [-1, 1] (numpy's, kept: a loaded
+    cycle asks for the same few rules thousands of times)."""
+    return np.polynomial.legendre.leggauss(n)
+
+
 def _integrated(out: np.ndarray, a: np.ndarray, b: np.ndarray, dx: float, dy: float, z: float,
                 nu: float, nodes: list[int]) -> None:
     """The stresses at offsets a·dx, b·dy (into `out`, FFT order) under a unit pressure on
     a dx × dy cell, integrated over it by Gauss-Legendre rules of `nodes` points per axis."""
-    (ux, wx), (uy, wy) = (np.polynomial.legendre.leggauss(n) for n in nodes)
+    (ux, wx), (uy, wy) = (_gauss_legendre(n) for n in nodes)
     A, B, U, V = np.meshgrid(a * dx, b * dy, 0.5 * dx * ux, 0.5 * dy * uy, indexing="ij")
     w = np.outer(wx, wy) * (0.25 * dx * dy)
     out[:, (a % out.shape[1])[:, None], (b % out.shape[2])[None, :]] = (

@@ -56,7 +56,7 @@ def sample_record(number: int, inputs: dict, case: CaseInfo, positions: bool = F
             analysis = case.analysis
             patterns = positions if analysis.rigid_patterns is None else analysis.rigid_patterns
             case = case.model_copy(update={"analysis": analysis.model_copy(update={
-                "positions_check": False, "subsurface": bool(analysis.subsurface),
+                "positions_check": False, "subsurface": analysis.subsurface or False,
                 "rigid_patterns": patterns, "ease_off": bool(analysis.ease_off)})})
         with workers(1):
             sections = analyse(case).sections

@@ -384,11 +384,13 @@ def _contact_figures(summary: dict, rows: list[dict], driven: str) -> list[KeyRe
     check = summary.get("positions_check") or {}
     if check.get("checked"):
         out.append(KeyResult(
-            "largest loaded pressure with twice the positions",
-            f"{number(check['doubled_bem_max_p_max_MPa'])} MPa "
+            "largest loaded pressure with the positions refined",
+            f"{number(check['refined_bem_max_p_max_MPa'])} MPa "
             f"({check['bem_max_p_max_change_percent']:+.1f} %)",
-            f"{check['doubled_positions']} positions: the case's {check['positions']} and one "
-            "midway between each two", not check["converged"]))
+            f"the case's {check['positions']} positions and {check['refined_positions']} "
+            "between them where the pressure's peak or the transmission error's extremes "
+            f"can hide (steps down to 1/{round(1 / check['finest_step_fraction'])})",
+            not check["converged"]))
     return out
 
 
@@ -555,7 +557,27 @@ def sweep_view(stats: dict, version: str) -> SweepView:
     """The report of a sweep's statistics: the figures that decide (P95 of the largest
     loaded pressure, the edge-loading probability, the optimum), then the percentiles,
     sensitivities, spectrum and optimisation as tables."""
-    tables = [_percentile_table("percentiles over the samples", stats.get("percentiles", {}))]
+    fitted = stats.get("surrogate")
+    errors = (fitted or {}).get("rmse")
+    tables = [_percentile_table("percentiles over the samples" if fitted is None else
+                                f"percentiles over {stats['surrogate_draws']} draws on the "
+                                "surrogate", stats.get("percentiles", {}), errors)]
+    if fitted:
+        tables.append(Table(
+            "the surrogate and its error",
+            ["figure", "leave-one-out RMS error", "of the figure's range", "range"],
+            [[label(k), number(fitted["rmse"][k]), f"{100 * e:.1f} %",
+              number(fitted["ranges"][k])] for k, e in fitted["errors"].items()],
+            [False, True, True, True],
+            note=f"{fitted['model']}; {fitted['loaded_samples']} loaded samples per grid "
+                 f"point in {fitted['rounds']} round(s) ({fitted['design']}); "
+                 + ("every figure settled: within" if fitted["converged"] else
+                    f"not every figure settled (the budget, {fitted['max_samples']} samples, "
+                    "is spent): within")
+                 + f" the tolerance, {100 * fitted['tolerance']:g} % of its range, or, the "
+                 "largest end load ratio, no draw's side of 1 in doubt; the error is a "
+                 "point's: a percentile drawn on the surrogate, an average over the draws, "
+                 "is surer"))
     weighted = stats.get("time_weighted")
     if weighted:
         spectrum = stats["spectrum"]
@@ -565,7 +587,7 @@ def sweep_view(stats: dict, version: str) -> SweepView:
                             note=f"{spectrum['field']}: each sample weighted by its level's "
                                  "share over the draws"))
         tables.append(_percentile_table("percentiles over the operating time",
-                                        weighted["percentiles"]))
+                                        weighted["percentiles"], errors))
     from ..sweep.statistics import LEAST_DRAWS
 
     sensitivity = stats.get("sensitivity", {})
@@ -626,21 +648,37 @@ def sweep_view(stats: dict, version: str) -> SweepView:
         failures=[(str(n), e) for n, e in stats.get("failures", {}).items()])
 
 
-def _percentile_table(title: str, percentiles: dict) -> Table:
+def _percentile_table(title: str, percentiles: dict, errors: dict | None = None) -> Table:
+    """Each figure's percentiles; with a surrogate's `errors` (figure -> its leave-one-out
+    RMS error) that error beside them (a figure not studied shows none)."""
     names = ["P5", "P50", "P95", "P99"]
-    return Table(title, ["figure"] + names,
+    extra = ["surrogate error (±)"] if errors else []
+    return Table(title, ["figure"] + names + extra,
                  [[label(k)] + [number(q.get(n)) for n in names]
-                  for k, q in percentiles.items()], [False] + [True] * len(names))
+                  + ([number(errors[k]) if k in errors else "–"] if errors else [])
+                  for k, q in percentiles.items()], [False] + [True] * (len(names) + len(extra)))
 
 
 def _sweep_key_results(stats: dict) -> list[KeyResult]:
     out = []
+    fitted = stats.get("surrogate")
     for key in ("bem_max_p_max_MPa", "loaded_transmission_error_peak_to_peak_urad",
                 "max_p_max_MPa"):
         q = stats.get("percentiles", {}).get(key)
         if q:
+            error = (fitted or {}).get("rmse", {}).get(key)
             out.append(KeyResult(f"{label(key)}, P95", number(q["P95"]),
-                                 f"P50 {number(q['P50'])}, P99 {number(q['P99'])}"))
+                                 f"P50 {number(q['P50'])}, P99 {number(q['P99'])}"
+                                 + ("" if error is None else
+                                    f"; on the surrogate, ± {number(error)}")))
+    if fitted:     # the largest loaded pressure's, else the worst figure's
+        shown = ("bem_max_p_max_MPa" if "bem_max_p_max_MPa" in fitted["errors"]
+                 else max(fitted["errors"], key=fitted["errors"].get))
+        out.append(KeyResult("surrogate error", f"{100 * fitted['errors'][shown]:.1f} %",
+                             f"of the range of {label(shown)} (leave-one-out RMS), "
+                             f"{fitted['loaded_samples']} loaded samples per grid point"
+                             + ("" if fitted["converged"] else "; not every figure within "
+                                "the tolerance"), bad=not fitted["converged"]))
     for flag, what in (("edge_loading", "edge loading (any flank edge)"),
                        ("end_loading", "loading at a face end"),
                        ("corner_contact", "a corner contact (tip, root or form edge)")):
@@ -649,18 +687,30 @@ def _sweep_key_results(stats: dict) -> list[KeyResult]:
             low, high = edge["interval_95"]
             out.append(KeyResult(f"probability of {what}", f"{edge['probability']:.1%}",
                                  f"95 % interval {low:.1%} to {high:.1%} over "
-                                 f"{edge['samples']} samples", bad=edge["probability"] > 0))
+                                 f"{edge['samples']} "
+                                 + ("draws on the surrogate (its error not counted)"
+                                    if fitted else "samples"),
+                                 bad=edge["probability"] > 0))
         weighted = (stats.get("time_weighted") or {}).get(flag)
         if weighted:
             out.append(KeyResult(f"share of the time: {what}", f"{weighted['time_share']:.1%}",
                                  "over the load spectrum", bad=weighted["time_share"] > 0))
     opt = stats.get("optimise")
     if opt:
-        best = opt["best"]
+        best, recheck = opt["best"], opt.get("recheck")
         out.append(KeyResult(f"optimum: {opt['objective']}", number(best["objective"]),
                              ", ".join(f"{k} = {v}" for k, v in best["design"].items())
                              + ("" if best["feasible"] else " (no feasible design found)"),
                              bad=not best["feasible"]))
+        if recheck:
+            worst = max(recheck["errors"], key=recheck["errors"].get)
+            out.append(KeyResult(
+                "optimum re-checked by the loaded contact",
+                f"{100 * recheck['errors'][worst]:.1f} %",
+                f"RMS difference of {recheck['samples']} loaded samples from the surrogate, "
+                f"over the range of {label(worst)} (its stated error "
+                f"{100 * recheck['stated_errors'][worst]:.1f} %)",
+                bad=not recheck["agrees"]))
     return out
 
 
