@@ -121,8 +121,9 @@ def test_the_optimiser_finds_a_constrained_optimum(tmp_path):
         "variable": [{"field": "pinion.crown.radius", "low": "2 m", "high": "8000 mm"}],
         "constraint": [{"statistic": "P50 ratio", "max": 0.5}]})
 
-    def evaluate(design, folder):
+    def evaluate(design, folder, point):
         r = float(design["pinion.crown.radius"].split()[0]) * 1000.0      # given in m
+        assert point[0] == pytest.approx((r - 2000.0) / 6000.0)
         stats = {"ok": 1, "failed": 0, "percentiles": {"figure": {"P95": (r - 6000) ** 2},
                                                        "ratio": {"P50": r / 8000}}}
         return stats, [{"status": "ok"}]

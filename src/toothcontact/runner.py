@@ -234,12 +234,17 @@ def run_sweep(path: str | Path, out_dir: str | Path | None = None, *,
     spec, base, base_path = load_sweep(path)
     with sweep_run.Workers(scheduler, workers) as pool:
         pool.start()          # its workers spawn while the samples are planned and checked
-        samples = plan(spec, base, base_path.parent, source=str(path))
+        # a surrogate study plans its loaded samples as it goes; its draws are not cases
+        samples = (plan(spec, base, base_path.parent, source=str(path))
+                   if spec.method == "monte_carlo" else [])
         if spec.optimise is not None:          # the bounds' corners are cases too, checked now
             design_of = designs(spec.optimise, f"{path}: optimise")
+            middle = (None if spec.method == "monte_carlo"       # a surrogate's: one draw
+                      else np.full((1, len(spec.tolerance)), 0.5))
             for corner in (0.0, 1.0):
                 plan(spec, base, base_path.parent, source=f"{path}: optimise",
-                     design=design_of(np.full(len(spec.optimise.variables), corner)))
+                     design=design_of(np.full(len(spec.optimise.variables), corner)),
+                     unit_cube=middle)
             # what the objective and constraints name, against the figures the base design
             # reports (one analysis, here, before any output is written)
             record, _ = sweep_run.sample_record(0, {}, schema.load_case(base_path)[0])
@@ -261,7 +266,7 @@ def run_sweep(path: str | Path, out_dir: str | Path | None = None, *,
                                  positions=keep_positions, on_done=on_done)
             return rows, statistics.summarise(rows, inputs, grid, spec.sampling == "saltelli")
 
-        def evaluate(design, folder):
+        def evaluate(design, folder, point=None):
             designed = plan(spec, base, base_path.parent, source=f"{path}: optimise",
                             design=design)
             total[0] += len(designed)
@@ -271,14 +276,18 @@ def run_sweep(path: str | Path, out_dir: str | Path | None = None, *,
             store.write_table(folder / "samples.parquet", rows)
             return summary, rows
 
-        rows, summary = sweep_into(samples, out, positions)
+        if spec.method == "surrogate":
+            rows, summary = _surrogate_sweep(spec, base, base_path.parent, str(path), pool,
+                                             out, positions, resume, on_done, planned)
+        else:
+            rows, summary = sweep_into(samples, out, positions)
         stats = {"sweep": str(path), "title": spec.title or path.stem, "base": str(base_path),
                  "seed": spec.seed, "sampling": spec.sampling if inputs else "none (a grid)",
-                 "inputs": inputs, "grid": grid,
+                 "method": spec.method, "inputs": inputs, "grid": grid,
                  **({"tolerance_classes": classes} if classes else {}),
                  **({"spectrum": spec.spectrum.model_dump()} if spec.spectrum else {}),
                  **summary}
-        if spec.optimise is not None:
+        if spec.optimise is not None and spec.method == "monte_carlo":
             if not resume:
                 shutil.rmtree(out / "optimise", ignore_errors=True)
             stats["optimise"] = optimise(spec.optimise, evaluate, out / "optimise",
@@ -287,13 +296,104 @@ def run_sweep(path: str | Path, out_dir: str | Path | None = None, *,
         written = [store.write_table(out / "samples.parquet", rows)]
         if positions:
             written.append(store.write_table(out / "positions.parquet", store.position_rows(
-                out, [s.sample for s in samples])))
+                out, [r["sample"] for r in rows])))
         written.append(writing.write_text(out / "sweep.json", report.json_text(stats)))
         from .views import sweep_plots
 
         figures = sweep_plots.sweep_figures(rows, stats, out)
         written += figures + [report.write_sweep_report(out, stats, figures)]
     return stats, written
+
+
+def _surrogate_sweep(spec, base: dict, folder: Path, source: str, pool, out: Path,
+                     positions: bool, resume: bool, on_done, planned) -> tuple[list, dict]:
+    """A surrogate study (sweep.surrogate): its loaded samples analysed round by round on
+    `pool` into `out` (checkpointed as a Monte Carlo's are), then the sweep's own draws,
+    the statistics and the Sobol indices taken on the surrogate. With an [optimise] table
+    the design variables are inputs of the surrogate too (uniform over their bounds): the
+    optimisation runs on it, the statistics are the best design's, and that design is
+    checked by loaded samples into `out`/optimum (surrogate.recheck). The loaded samples'
+    records and the statistics, with the surrogate's errors (`surrogate`)."""
+    from .contact.edge_loads import END_LOAD_RATIO
+    from .sweep import run as sweep_run
+    from .sweep import statistics, surrogate
+    from .sweep.optimise import design_key, designs, optimise
+    from .sweep.sampling import plan, unit_draws
+    from .sweep.spec import Surrogate
+
+    settings = spec.surrogate or Surrogate()
+    figures = list(settings.figures or surrogate.DEFAULT_FIGURES)
+    inputs, grid = [t.field for t in spec.tolerance], [v.field for v in spec.axes]
+    variables = [v.field for v in spec.optimise.variables] if spec.optimise else []
+    design_of = designs(spec.optimise, f"{source}: optimise") if variables else None
+    surrogate.check_figures(figures, spec.optimise, f"{source}: optimise")
+    d = len(inputs)
+
+    def planned_at(u, first: int, design: dict | None = None) -> list:
+        """The samples at the unit-cube points u (tolerances, then design variables unless
+        `design` is given), at every grid point, numbered from `first`."""
+        if not variables or design is not None:
+            return plan(spec, base, folder, source=f"{source}: surrogate",
+                        unit_cube=u[:, :d], first=first, design=design)
+        todo: list = []
+        for row in u:
+            todo += plan(spec, base, folder, source=f"{source}: surrogate",
+                         unit_cube=row[None, :d], first=first + len(todo),
+                         design=design_of(row[d:]))
+        return todo
+
+    analysed: list = []
+
+    def analyse_points(u, first: int) -> list[dict]:
+        analysed.extend(planned_at(u, first))
+        if planned is not None:
+            planned(len(analysed))
+        rows = sweep_run.run(analysed, out, pool, resume=resume or first > 0,
+                             positions=positions, on_done=on_done)
+        return [r for r in rows if r["sample"] >= first]
+
+    found = surrogate.study(analyse_points, d + len(variables), grid, figures, settings,
+                            spec.seed, {"max_end_load_ratio": END_LOAD_RATIO})
+    shares = None
+    if spec.spectrum is not None:       # a level's share: a first-round sample's × its count
+        shares = {tuple(r.get(f"input:{g}") for g in grid): r["time_share"] * settings.initial
+                  for r in found.records if r["sample"] < settings.initial * len(found.fits)}
+    draws = unit_draws(spec)
+
+    def on_surrogate(point=None) -> tuple[dict, list[dict]]:
+        """The statistics of the sweep's draws on the surrogate (at a design `point`)."""
+        cube = draws if point is None else np.hstack([draws, np.tile(point, (len(draws), 1))])
+        records = surrogate.draws_on(found, cube, inputs + variables, grid, shares,
+                                     END_LOAD_RATIO)
+        return statistics.summarise(records, inputs, grid), records
+
+    best_point = None
+    if variables:
+        points: dict[str, np.ndarray] = {}
+
+        def evaluate(design: dict, _folder: Path, point: np.ndarray):
+            points[design_key(design)] = point
+            return on_surrogate(point)
+
+        optimum = optimise(spec.optimise, evaluate, out / "optimise",
+                           where=f"{source}: optimise")
+        design = optimum["best"]["design"]
+        best_point = points[design_key(design)]
+        summary, records = on_surrogate(best_point)
+        optimum["recheck"] = surrogate.recheck(
+            found, lambda u, first: sweep_run.run(planned_at(u, first, design), out / "optimum",
+                                                  pool, resume=resume, on_done=on_done),
+            best_point, grid, settings, spec.seed)
+        summary["optimise"] = optimum
+    else:
+        summary, records = on_surrogate()
+    loaded = statistics.summarise(found.records, inputs, grid)
+    summary.update(samples=loaded["samples"], ok=loaded["ok"], failed=loaded["failed"],
+                   failures=loaded["failures"], surrogate_draws=len(records),
+                   surrogate=surrogate.summary(found, settings, figures))
+    if d >= 2:
+        summary["sobol"] = surrogate.sobol_on(found, inputs, spec.seed, best_point)
+    return found.records, summary
 
 
 def has_pictures(case) -> bool:

@@ -124,10 +124,11 @@ def designs(spec: Optimise, where: str = "optimise") -> Callable[[np.ndarray], d
 
 def optimise(spec: Optimise, evaluate: Callable[[dict, Path], tuple[dict, list[dict]]],
              out: Path, where: str = "optimise") -> dict:
-    """Solve the optimisation: `evaluate(design, folder)` runs the sweep with the design's
-    fields set (field -> text with unit) into `folder` and returns its statistics and
-    records. Returns the history (every design tried, its objective and constraints) and
-    the best feasible design (else the least infeasible)."""
+    """Solve the optimisation: `evaluate(design, folder, point)` runs the sweep with the
+    design's fields set (field -> text with unit; `point` the design scaled to the unit
+    cube) into `folder` and returns its statistics and records. Returns the history (every
+    design tried, its objective and constraints) and the best feasible design (else the
+    least infeasible)."""
     from scipy.optimize import NonlinearConstraint, minimize
 
     design_of = designs(spec, where)
@@ -139,7 +140,7 @@ def optimise(spec: Optimise, evaluate: Callable[[dict, Path], tuple[dict, list[d
         if key not in seen:
             design = design_of(x)
             folder = out / design_key(design)
-            stats, rows = evaluate(design, folder)
+            stats, rows = evaluate(design, folder, np.clip(x, 0, 1))
             entry = {"evaluation": len(history), "design": design, "folder": folder.name,
                      "ok": stats["ok"], "failed": stats["failed"],
                      "objective": statistic(spec.objective, stats, rows,

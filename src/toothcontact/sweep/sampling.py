@@ -37,17 +37,20 @@ class Sample:
 
 
 def plan(spec: SweepSpec, base: dict, folder: Path | None = None, source: str = "sweep",
-         design: dict | None = None) -> list[Sample]:
+         design: dict | None = None, unit_cube: np.ndarray | None = None,
+         first: int = 0) -> list[Sample]:
     """The sweep's samples, each validated as a case (a CaseError names the sample, the
     field and the value). `base`: the base case's table as read; `folder`: where the files
     it names are found (the base case's folder); `design`: fields set in every sample
-    (field -> text; an optimiser's design variables)."""
+    (field -> text; an optimiser's design variables); `unit_cube`: the toleranced inputs'
+    CDF values to draw at (m, inputs; a surrogate's design) instead of the sweep's own;
+    `first`: the first sample's number."""
     from .. import units
 
     ureg = units.registry()
     fixed = _with(base, spec.set)
     axes = [_grid(axis, ureg, f"{source}: vary[{i}]") for i, axis in enumerate(spec.axes)]
-    draws = _draws(spec, ureg, source)
+    draws = _draws(spec, ureg, source, unit_cube)
     shares = dict(zip(map(repr, spec.spectrum.levels), spec.spectrum.shares)) \
         if spec.spectrum else None
     out = []
@@ -58,7 +61,7 @@ def plan(spec: SweepSpec, base: dict, folder: Path | None = None, source: str = 
             inputs.update({field: value for axis, value in zip(spec.axes, point)
                            for field in (axis.field, *axis.also)})
             inputs.update(draw)
-            number = len(out)
+            number = first + len(out)
             raw = _with(fixed, inputs)
             try:
                 case = parse_case(raw, source=f"{source}: sample {number}", base=folder)
@@ -192,15 +195,23 @@ def _as_difference(value, ureg):
     return value
 
 
-def _draws(spec: SweepSpec, ureg, source: str) -> list[dict]:
-    """`samples` draws of the toleranced inputs (field -> text), or one empty draw."""
+def _draws(spec: SweepSpec, ureg, source: str, unit_cube: np.ndarray | None = None
+           ) -> list[dict]:
+    """`samples` draws of the toleranced inputs (field -> text), or those at the points
+    `unit_cube` of their CDFs where given, or one empty draw."""
     if not spec.tolerance:
         return [{} for _ in range(spec.samples)] if spec.axes else [{}]
-    unit_cube = _unit_cube(spec.sampling, spec.samples, len(spec.tolerance), spec.seed)
+    if unit_cube is None:
+        unit_cube = unit_draws(spec)
     columns = [_inverse(t, unit_cube[:, j], ureg, f"{source}: tolerance[{j}]")
                for j, t in enumerate(spec.tolerance)]
     return [{t.field: column[i] for t, column in zip(spec.tolerance, columns)}
             for i in range(len(unit_cube))]
+
+
+def unit_draws(spec: SweepSpec) -> np.ndarray:
+    """The sweep's draws as points of its toleranced inputs' CDFs (samples, inputs)."""
+    return _unit_cube(spec.sampling, spec.samples, len(spec.tolerance), spec.seed)
 
 
 def _unit_cube(sampling: str, n: int, d: int, seed: int) -> np.ndarray:

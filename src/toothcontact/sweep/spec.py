@@ -3,7 +3,9 @@ sweep file) and what varies: `[[vary]]` grids (a dotted field path and values, o
 in `steps`) and `[[tolerance]]` distributions (normal by `mean` and `std` or a ±3σ `band`,
 uniform or triangular by `low`, `high` and `mode`), drawn `samples` times per grid point
 with `seed` by `sampling` (random, Latin hypercube or scrambled Sobol, scipy.stats.qmc; or
-Saltelli's design for Sobol indices, SALib); a `[spectrum]` of load levels with time
+Saltelli's design for Sobol indices, SALib), each draw a loaded analysis (`method =
+"monte_carlo"`) or taken on a surrogate fitted to a few dozen (`"surrogate"`, with a
+`[surrogate]` table); a `[spectrum]` of load levels with time
 shares; `set` fields fixed in every sample; an `[optimise]` table of design variables
 sized over the tolerance samples. Every quantity is text with a unit, as in a case.
 Validation errors are CaseErrors naming the field."""
@@ -165,6 +167,29 @@ class Optimise(Model):
     _known = field_validator("objective")(_statistic)
 
 
+class Surrogate(Model):
+    """How a surrogate study (`method = "surrogate"`, sweep.surrogate) samples and when it
+    stops: `initial` loaded samples (a Latin hypercube), `batch` more a round where the
+    leave-one-out error is largest, until each figure's error is within `tolerance` (a
+    fraction of its range) or `max_samples` are analysed (per grid point)."""
+
+    figures: list[str] = Field([], description="the summary figures studied (default: "
+                                               "bem_max_p_max_MPa and max_end_load_ratio)")
+    initial: int = Field(20, ge=4, le=2000, description="loaded samples of the first design")
+    batch: int = Field(8, ge=1, le=500, description="loaded samples added a round")
+    max_samples: int = Field(120, ge=4, le=5000, description="the most loaded samples")
+    tolerance: float = Field(0.03, gt=0.0, lt=1.0,
+                             description="each figure's leave-one-out RMS error allowed, as a "
+                                         "fraction of its range over the samples")
+
+    @model_validator(mode="after")
+    def _budget(self):
+        if self.max_samples < self.initial:
+            raise ValueError(f"max_samples ({self.max_samples}) must be at least initial "
+                             f"({self.initial})")
+        return self
+
+
 class SweepSpec(Model):
     """A sweep file (see the module)."""
 
@@ -174,6 +199,11 @@ class SweepSpec(Model):
     samples: int = Field(1, ge=1, le=100000, description="tolerance samples per grid point")
     seed: int = Field(0, ge=0)
     sampling: Literal["random", "latin_hypercube", "sobol", "saltelli"] = "latin_hypercube"
+    method: Literal["monte_carlo", "surrogate"] = Field(
+        "monte_carlo", description="monte_carlo: every draw a loaded analysis; surrogate: "
+                                   "the draws taken on a surrogate fitted to a few dozen "
+                                   "loaded samples (sweep.surrogate)")
+    surrogate: Surrogate | None = None
     set: dict[str, str | bool | int | float] = Field(
         {}, description="fields set in the base case for every sample (dotted path: value)")
     vary: list[Vary] = []
@@ -198,6 +228,12 @@ class SweepSpec(Model):
             raise ValueError(f"{twice[0]}: varied or toleranced twice; give each field once")
         if not self.axes and not self.tolerance:
             raise ValueError("nothing varies: give [[vary]], [[tolerance]] or [spectrum] tables")
+        if self.surrogate is not None and self.method != "surrogate":
+            raise ValueError("[surrogate] is read only with method = 'surrogate'")
+        if self.method == "surrogate":
+            if not self.tolerance:
+                raise ValueError("method: 'surrogate' fits the [[tolerance]] inputs: give "
+                                 "one or more")
         if self.sampling == "saltelli" and len(self.tolerance) < 2:
             raise ValueError("sampling: 'saltelli' (Sobol indices) needs two or more "
                              "[[tolerance]] inputs")
