@@ -251,6 +251,7 @@ high = "20000 mm"
     assert set(saved["sobol"]["indices"]) == {"misalignment.slope", "pinion.crown.center"}
     html = (tmp_path / "out" / "report.html").read_text()
     assert "surrogate error (±)" in html and "the surrogate and its error" in html
+    assert "1000 draws taken on a surrogate of the loaded samples" in html
     assert stats["surrogate"]["converged"] is False
     opt = saved["optimise"]
     assert 1 <= opt["evaluations"] <= 8 and opt["best"]["design"]["pinion.crown.radius"]

@@ -642,7 +642,10 @@ def sweep_view(stats: dict, version: str) -> SweepView:
             note=f"{opt['method']}: {opt['message']}"))
     return SweepView(
         title=stats.get("title") or stats["sweep"], sweep=stats["sweep"], base=stats["base"],
-        sampling=stats["sampling"], seed=stats["seed"], samples=stats["samples"],
+        sampling=stats["sampling"] + (f", {stats['surrogate_draws']} draws taken on a "
+                                      "surrogate of the loaded samples"
+                                      if stats.get("surrogate") else ""),
+        seed=stats["seed"], samples=stats["samples"],
         ok=stats["ok"], failed=stats["failed"], version=version,
         key_results=_sweep_key_results(stats), tables=tables,
         failures=[(str(n), e) for n, e in stats.get("failures", {}).items()])
