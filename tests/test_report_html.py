@@ -2,7 +2,7 @@
 embedded, nothing fetched), key results first, then the design checks (failed ones flagged)
 apart from the source-data notes, human labels and rounded numbers, the positions collapsed,
 the inputs as given; the page loads in a headless Chromium when one is installed (CI
-installs Debian's)."""
+installs Debian's), and its result tables sort by a clicked column."""
 
 import base64
 import re
@@ -59,9 +59,11 @@ def images(tmp_path):
 def test_html_is_self_contained_key_results_and_failed_checks_first(images):
     page = report.html(document(), images)
     assert page.startswith("<!DOCTYPE html>")
-    # nothing is fetched: no external address, stylesheet link or script
+    # nothing is fetched: no external address, stylesheet link or script file; the one
+    # script is inline (the tables' sorting)
     assert not re.search(r"""(src|href)\s*=\s*["']?(https?:|//|file:)""", page)
-    assert "<link" not in page and "<script" not in page and "@import" not in page
+    assert "<link" not in page and "@import" not in page
+    assert re.findall(r"<script[^>]*>", page) == ["<script>"]
     # every picture embedded, as data
     assert page.count('src="data:image/png;base64,') == len(images)
     assert base64.b64encode(PNG).decode() in page
@@ -218,3 +220,37 @@ document.body.append(p); });</script></body>"""), encoding="utf-8")
     scroll, client, overflowing = map(int, re.search(r'<p id="probe">([^<]*)</p>',
                                                      done.stdout).group(1).split(":"))
     assert scroll <= client and overflowing == 0
+
+
+@pytest.mark.skipif(chromium() is None, reason="no Chromium installed")
+def test_a_result_table_sorts_by_the_column_clicked(tmp_path):
+    """In a headless Chromium, the positions table (roll -9° and 0°) clicked on its roll
+    header sorts ascending, then descending, the header marked (the page's own inline
+    script; no console error)."""
+    text = report.html(document(), [])
+    probe = tmp_path / "probe.html"
+    probe.write_text(text.replace("</body>", """<script>
+addEventListener("load", () => {
+  const table = [...document.querySelectorAll("table.sortable")].find(t =>
+    [...t.rows[0].cells].some(c => c.textContent.includes("roll")));
+  const th = [...table.rows[0].cells].find(c => c.textContent.includes("roll"));
+  const column = [...table.rows[0].cells].indexOf(th);
+  const read = () => [...table.rows].slice(1).map(r => r.cells[column].textContent).join("|");
+  th.click(); const up = read() + "/" + th.getAttribute("aria-sort");
+  th.click(); const down = read() + "/" + th.getAttribute("aria-sort");
+  const p = document.createElement("p"); p.id = "probe"; p.textContent = up + ";" + down;
+  document.body.append(p); });</script></body>"""), encoding="utf-8")
+    flags = ["--headless", "--no-sandbox", "--disable-gpu", "--no-first-run",
+             "--disable-background-networking", "--disable-component-update", "--disable-sync",
+             f"--user-data-dir={tmp_path / 'profile'}", "--enable-logging=stderr", "--v=0",
+             "--virtual-time-budget=5000"]
+    done = subprocess.run([chromium(), *flags, "--dump-dom", probe.as_uri()],
+                          capture_output=True, text=True, timeout=120, check=False)
+    assert done.returncode == 0, done.stderr[-2000:]
+    found = re.search(r'<p id="probe">([^<]*)</p>', done.stdout).group(1)
+    up, down = found.split(";")
+    assert up.endswith("/ascending") and down.endswith("/descending")
+    values = [float(v.replace("\u2212", "-")) for v in up.split("/")[0].split("|")]
+    assert values == sorted(values) and len(values) == 2
+    assert down.split("/")[0].split("|") == up.split("/")[0].split("|")[::-1]
+    assert "Uncaught" not in done.stderr

@@ -126,7 +126,8 @@ def markdown(document: dict, images=()) -> str:
 
 def html(document: dict, images=()) -> str:
     """The report as one self-contained HTML page (templates/report.html.j2: inline style,
-    no script, the PNGs `images` embedded as base64)."""
+    an inline script that sorts the result tables by a clicked column, the PNGs `images`
+    embedded as base64; nothing fetched)."""
     pictures = [{"caption": caption(p), "name": Path(p).name,
                  "data": base64.b64encode(Path(p).read_bytes()).decode("ascii")}
                 for p in images]
