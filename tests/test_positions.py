@@ -52,7 +52,7 @@ def test_the_positions_check_refines_where_the_figures_can_hide():
     assert checked["bem_max_p_max_MPa"] == plain["bem_max_p_max_MPa"]
     levels = check["refinement_levels"]
     assert levels >= 1 and check["finest_step_fraction"] == 0.5 ** levels
-    # measured: 10 positions, 17 added in two levels (the finer analysis has 30 more); the
+    # measured: 10 positions, 10 added in two levels (the finer analysis has 30 more); the
     # pressure 4307 -> 5191 MPa (a tip's corner contact between), the TE 9.97 -> 10.05 µm
     assert 0 < check["refined_positions"] < 10 * (2 ** levels - 1)
     fine = analyse(parse_case(spur(10 * 2 ** levels, False))).sections["summary"]
