@@ -8,6 +8,7 @@ benchmarks/surrogate_study.py's."""
 from __future__ import annotations
 
 import json
+import re
 
 import numpy as np
 import pyarrow.parquet as pq
@@ -252,6 +253,7 @@ high = "20000 mm"
     html = (tmp_path / "out" / "report.html").read_text()
     assert "surrogate error (±)" in html and "the surrogate and its error" in html
     assert "1000 draws taken on a surrogate of the loaded samples" in html
+    assert not re.search(r"\d\.\d{7,} mm", html)      # a design's radius as set, rounded
     assert stats["surrogate"]["converged"] is False
     opt = saved["optimise"]
     assert 1 <= opt["evaluations"] <= 8 and opt["best"]["design"]["pinion.crown.radius"]

@@ -634,7 +634,7 @@ def sweep_view(stats: dict, version: str) -> SweepView:
                                                            in zip(constraints,
                                                                   opt["constraints"])]
             + ["feasible"],
-            [[str(h["evaluation"])] + [str(h["design"][n]) for n in names]
+            [[str(h["evaluation"])] + [_as_set(h["design"][n]) for n in names]
              + [number(h["objective"])] + [number(g) for g in h["constraints"]]
              + [number(h["feasible"])] for h in opt["history"]],
             [True] + [False] * len(names) + [True] * (1 + len(constraints)) + [False],
@@ -649,6 +649,16 @@ def sweep_view(stats: dict, version: str) -> SweepView:
         ok=stats["ok"], failed=stats["failed"], version=version,
         key_results=_sweep_key_results(stats), tables=tables,
         failures=[(str(n), e) for n, e in stats.get("failures", {}).items()])
+
+
+def _as_set(text) -> str:
+    """A design variable's value as a sweep set it ("5496.008337120669 mm") to four
+    significant digits with its unit ("5496 mm"); anything else as it is."""
+    head, _, unit = str(text).partition(" ")
+    try:
+        return f"{number(float(head))} {unit}".strip()
+    except ValueError:
+        return str(text)
 
 
 def _percentile_table(title: str, percentiles: dict, errors: dict | None = None) -> Table:
@@ -702,7 +712,7 @@ def _sweep_key_results(stats: dict) -> list[KeyResult]:
     if opt:
         best, recheck = opt["best"], opt.get("recheck")
         out.append(KeyResult(f"optimum: {opt['objective']}", number(best["objective"]),
-                             ", ".join(f"{k} = {v}" for k, v in best["design"].items())
+                             ", ".join(f"{k} = {_as_set(v)}" for k, v in best["design"].items())
                              + ("" if best["feasible"] else " (no feasible design found)"),
                              bad=not best["feasible"]))
         if recheck:
