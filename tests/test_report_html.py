@@ -14,7 +14,6 @@ import pytest
 from toothcontact.views import report
 
 
-
 def png() -> bytes:
     """A small real PNG (red square)."""
     from io import BytesIO
@@ -151,6 +150,27 @@ def chromium() -> str | None:
     return None
 
 
+def browser_flags(tmp_path, *extra: str) -> list[str]:
+    """Headless Chromium's flags for a test page: no network, a fresh profile in
+    `tmp_path`, the page's console on stderr, 5 s of virtual time for its scripts."""
+    return ["--headless", "--no-sandbox", "--disable-gpu", "--disable-quic", "--no-first-run",
+            "--disable-background-networking", "--disable-component-update", "--disable-sync",
+            f"--user-data-dir={tmp_path / 'profile'}", "--enable-logging=stderr", "--v=0",
+            "--virtual-time-budget=5000", *extra]
+
+
+def dump_dom(text: str, script: str, tmp_path, *extra: str) -> subprocess.CompletedProcess:
+    """The page `text` as Chromium leaves it after load, `script` added before </body>
+    (a probe that writes what it finds into the DOM): the finished process, its DOM on
+    stdout."""
+    probe = tmp_path / "probe.html"
+    probe.write_text(text.replace("</body>", f"<script>{script}</script></body>"),
+                     encoding="utf-8")
+    return subprocess.run([chromium(), *browser_flags(tmp_path, *extra), "--dump-dom",
+                           probe.as_uri()], capture_output=True, text=True, timeout=120,
+                          check=False)
+
+
 @pytest.mark.skipif(chromium() is None, reason="no Chromium installed")
 def test_the_page_loads_in_headless_chromium(images, tmp_path):
     """The page as a browser shows it: its DOM after load (a probe script added to a test
@@ -161,17 +181,10 @@ def test_the_page_loads_in_headless_chromium(images, tmp_path):
     page = tmp_path / "report.html"
     text = report.html(document(), images)
     page.write_text(text, encoding="utf-8")
-    probe = tmp_path / "probe.html"
-    probe.write_text(text.replace("</body>", """<script>
+    done = dump_dom(text, """
 addEventListener("load", () => { const p = document.createElement("p"); p.id = "probe";
 p.textContent = [...document.images].map(i => i.complete + ":" + i.naturalWidth).join(",");
-document.body.append(p); });</script></body>"""), encoding="utf-8")
-    flags = ["--headless", "--no-sandbox", "--disable-gpu", "--disable-quic", "--no-first-run",
-             "--disable-background-networking", "--disable-component-update", "--disable-sync",
-             f"--user-data-dir={tmp_path / 'profile'}", "--enable-logging=stderr", "--v=0",
-             "--virtual-time-budget=5000"]
-    done = subprocess.run([chromium(), *flags, "--dump-dom", probe.as_uri()],
-                          capture_output=True, text=True, timeout=120, check=False)
+document.body.append(p); });""", tmp_path)
     assert done.returncode == 0, done.stderr[-2000:]
     dom = done.stdout
     assert "1 of 2 design checks failed" in dom and dom.count("<img") == len(images)
@@ -181,7 +194,8 @@ document.body.append(p); });</script></body>"""), encoding="utf-8")
     # D-Bus and the like are not the page's)
     assert "Uncaught" not in done.stderr and "CONSOLE(" not in done.stderr
     shot = tmp_path / "shot.png"
-    subprocess.run([chromium(), *flags, f"--screenshot={shot}", "--window-size=1200,1600",
+    subprocess.run([chromium(), *browser_flags(tmp_path), f"--screenshot={shot}",
+                    "--window-size=1200,1600",
                     page.as_uri()], capture_output=True, text=True, timeout=120, check=True)
     image = Image.open(shot).convert("RGB")
     assert image.size == (1200, 1600)
@@ -202,20 +216,13 @@ def test_no_text_overflows_the_page_in_a_browser(tmp_path):
     document = runner.analyse_file(runner.bundled_cases_dir() / "spur_relieved_20_60.toml")
     text = report.html(document, [])
     assert "line loads along the pinion" in text
-    probe = tmp_path / "probe.html"
-    probe.write_text(text.replace("</body>", """<script>
+    done = dump_dom(text, """
 addEventListener("load", () => { const root = document.documentElement;
 const wide = [...document.querySelectorAll("div.wide")].filter(d =>
   d.querySelector("tr").children.length <= 2 && d.scrollWidth > d.clientWidth + 1);
 const p = document.createElement("p"); p.id = "probe";
 p.textContent = root.scrollWidth + ":" + root.clientWidth + ":" + wide.length;
-document.body.append(p); });</script></body>"""), encoding="utf-8")
-    flags = ["--headless", "--no-sandbox", "--disable-gpu", "--no-first-run",
-             "--disable-background-networking", "--disable-component-update", "--disable-sync",
-             f"--user-data-dir={tmp_path / 'profile'}", "--virtual-time-budget=5000",
-             "--window-size=1000,1400"]
-    done = subprocess.run([chromium(), *flags, "--dump-dom", probe.as_uri()],
-                          capture_output=True, text=True, timeout=120, check=False)
+document.body.append(p); });""", tmp_path, "--window-size=1000,1400")
     assert done.returncode == 0, done.stderr[-2000:]
     scroll, client, overflowing = map(int, re.search(r'<p id="probe">([^<]*)</p>',
                                                      done.stdout).group(1).split(":"))
@@ -228,8 +235,7 @@ def test_a_result_table_sorts_by_the_column_clicked(tmp_path):
     header sorts ascending, then descending, the header marked (the page's own inline
     script; no console error)."""
     text = report.html(document(), [])
-    probe = tmp_path / "probe.html"
-    probe.write_text(text.replace("</body>", """<script>
+    done = dump_dom(text, """
 addEventListener("load", () => {
   const table = [...document.querySelectorAll("table.sortable")].find(t =>
     [...t.rows[0].cells].some(c => c.textContent.includes("roll")));
@@ -239,13 +245,7 @@ addEventListener("load", () => {
   th.click(); const up = read() + "/" + th.getAttribute("aria-sort");
   th.click(); const down = read() + "/" + th.getAttribute("aria-sort");
   const p = document.createElement("p"); p.id = "probe"; p.textContent = up + ";" + down;
-  document.body.append(p); });</script></body>"""), encoding="utf-8")
-    flags = ["--headless", "--no-sandbox", "--disable-gpu", "--no-first-run",
-             "--disable-background-networking", "--disable-component-update", "--disable-sync",
-             f"--user-data-dir={tmp_path / 'profile'}", "--enable-logging=stderr", "--v=0",
-             "--virtual-time-budget=5000"]
-    done = subprocess.run([chromium(), *flags, "--dump-dom", probe.as_uri()],
-                          capture_output=True, text=True, timeout=120, check=False)
+  document.body.append(p); });""", tmp_path)
     assert done.returncode == 0, done.stderr[-2000:]
     found = re.search(r'<p id="probe">([^<]*)</p>', done.stdout).group(1)
     up, down = found.split(";")
