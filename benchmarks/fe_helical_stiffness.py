@@ -225,6 +225,65 @@ def model_results() -> dict:
                 roll_deg=section["roll_deg"], stiffness=section["mesh_stiffness_N_per_mm_um"])
 
 
+def body_coupling_check(pair, level: str, members: dict) -> dict:
+    """The gear bodies' coupling of different teeth, FE against the model's
+    (analytic.gear_body.chord_green, as contact.compliance.PairCompliance.body_coupling
+    applies it): per member and tooth offset, the mean compliance (µm/kN) between two
+    lines on different teeth (the mean normal displacement over one line under a unit
+    load spread evenly over the other, both clipped to the zone), the FE's and the
+    model's at the lines' mean rolls; and the pair's mesh stiffness with the FE's own
+    compliance of each line but the model's between lines (smeared evenly along the
+    face, as the model's is), beside the FE's coupled and uncoupled ones."""
+    from toothcontact.analytic.gear_body import chord_green
+    from toothcontact.contact.compliance import ToothCompliance
+
+    geo = geometry(pair, level)
+    segments = geo.segments
+    line = np.array([s.line for s in segments])
+    width = np.array([s.width for s in segments])
+    out: dict = {"offsets": {}}
+    swapped = {}
+    for name, gear in (("pinion", pair.pinion), ("gear", pair.gear)):
+        teeth = ToothCompliance(gear, 206000.0, 0.3)
+        flank, rolls, _ = geo.member(name)
+        m = members[name]
+        A = m.matrix.copy()
+        share = math.cos(gear.base_helix_angle) ** 2 / geo.face
+        fe_by, model_by = {}, {}
+        for i in sorted(set(line)):
+            for j in sorted(set(line)):
+                if i == j or (i - j) % geo.positions:
+                    continue
+                I, J = np.flatnonzero(line == i), np.flatnonzero(line == j)
+                roll_i = float(width[I] @ m.roll[I] / width[I].sum())
+                roll_j = float(width[J] @ m.roll[J] / width[J].sum())
+                offset = abs(flank.tooth_of(float(rolls(j, 0.0) - rolls(i, 0.0))))
+                place = int(teeth.roll_sense * np.sign(roll_j - roll_i)) * offset
+                g_i, g_j = (teeth.root_loads([math.hypot(gear.base_radius, r)])[0]
+                            for r in (roll_i, roll_j))
+                model = float(g_i @ chord_green(teeth.bore_radius, teeth.root_radius,
+                                                teeth.root_half_angle, gear.teeth, -place,
+                                                teeth.E, teeth.nu) @ g_j) * share
+                fe = float(width[I] @ A[np.ix_(I, J)] @ width[J]) / (width[I].sum()
+                                                                    * width[J].sum())
+                fe_by.setdefault(offset, []).append(fe)
+                model_by.setdefault(offset, []).append(model)
+                A[np.ix_(I, J)] = model
+        out["offsets"][name] = {str(k): dict(fe_um_per_kN=1e6 * float(np.mean(fe_by[k])),
+                                             model_um_per_kN=1e6 * float(np.mean(model_by[k])),
+                                             line_pairs=len(fe_by[k]))
+                                for k in sorted(fe_by)}
+        swapped[name] = fh.MemberHelical(A, m.depth, m.roll, m.mesh, m.surface)
+    load = normal_load(pair)
+    out["fe_coupled"] = fh.HelicalPair(geo, members["pinion"], members["gear"]).stiffness(
+        load)["mesh_stiffness"]
+    out["fe_uncoupled"] = fh.HelicalPair(geo, members["pinion"], members["gear"],
+                                         coupled=False).stiffness(load)["mesh_stiffness"]
+    out["fe_own_lines_model_between"] = fh.HelicalPair(
+        geo, swapped["pinion"], swapped["gear"]).stiffness(load)["mesh_stiffness"]
+    return out
+
+
 def thread_shares(jobs: list[tuple[str, str]], threads: int) -> dict:
     """BLAS threads per job: one each, the rest of `threads` in proportion to the jobs'
     factor work (WORK)."""
@@ -319,6 +378,9 @@ def main() -> None:
     ap.add_argument("--npz", type=Path, help="also the members' compliances (npz)")
     ap.add_argument("--deadline", type=float, help="seconds: stop the jobs left after it")
     ap.add_argument("--model", action="store_true", help="the model's figures too")
+    ap.add_argument("--body-coupling", nargs="*", default=[], choices=list(LEVELS),
+                    help="the bodies' coupling of different teeth, FE against the model's, "
+                         "on these levels' cached members (body_coupling_check)")
     ap.add_argument("--plane-strain", action="store_true",
                     help="the sections' plane-strain convergence too")
     ap.add_argument("--member", choices=MEMBERS, help=argparse.SUPPRESS)
@@ -346,8 +408,9 @@ def main() -> None:
         out["fe"] = {k: v for k, v in old.get("fe", {}).items() if k not in args.levels}
         out["levels"] = {**{k: LEVELS.get(k, v) for k, v in old.get("levels", {}).items()},
                          **out["levels"]}
-        for key in ("model", "plane_strain", "machine", "seconds") if not args.levels \
-                else ("model", "plane_strain"):
+        kept = ("model", "plane_strain", "body_coupling", "body_coupling_note",
+                "transverse_levels_machine")
+        for key in kept + ("machine", "seconds") if not args.levels else kept:
             if key in old:
                 out[key] = old[key]
         if not args.levels:
@@ -387,6 +450,9 @@ def main() -> None:
         plane_strain()
     if args.model:
         out["model"] = model_results()
+    for level in args.body_coupling:
+        members = {name: load_member(args.cache, name, level) for name in MEMBERS}
+        out.setdefault("body_coupling", {})[level] = body_coupling_check(pair, level, members)
     write()
     if args.npz:
         arrays = {}

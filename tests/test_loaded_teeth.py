@@ -89,15 +89,17 @@ def test_a_slope_loads_the_face_as_isos_linear_misalignment(aligned):
     at every position the line load, fitted by a line inside the end strips and taken to
     the face ends, gives K_Hβ against ISO 6336-1's 1 + F_βy·c/(2·F_m/b) with the same
     stiffness c, the position's own from the aligned pair: one pair (c ≈ 14.3) gives 1.24,
-    two (c ≈ 22) 1.37-1.42. ISO's formula takes the slices as independent springs; the
+    two (c ≈ 18-21) 1.30-1.35. ISO's formula takes the slices as independent springs; the
     teeth, coupled along the face over 0.74 of the root chord (5.3 mm here, fitted to 3D
     FE: compliance.COUPLING_PER_ROOT_CHORD), resist the tilt by their twist, which takes
     load off end A and puts it on end B (a Pasternak line held to a linear deflection
     needs end forces ±λ²w'/c; the contact's own compliance spreads them over a few mm,
     into the fitted stretch; the coupling fades at the free ends over Reissner's layer,
     compliance.end_layer, which softens them). So the fit lies above ISO's: measured +8.5 %
-    (one pair) to +15.6 %, +5.5 % to +11.2 % fitted over the middle 7 mm only; asserted 0 to
-    +16 % (+8.0 % to +15.1 % before the end layer). (Before the FE correction, with Vlasov's
+    (one pair) to +19.2 % (two pairs); asserted 0 to +21 %. The gear bodies' coupling of
+    the two pairs' teeth (analytic.gear_body), nearly even along the face, softens a
+    two-pair position (c ≈ 22 before it) without resisting the tilt, so ISO's formula with
+    that softer c reads lower: +15.6 % before it, +8.0 % to +15.1 % before the end layer. (Before the FE correction, with Vlasov's
     2.9 mm, the fit was ISO's within 2 %.) The face ends depart from the line further: end
     A 10-26 % below it, end B 4-9 % above it (15-34 % and 6-12 % before the end layer)."""
     slope, width, line_load = 0.0005, 20.0, 300.0
@@ -113,7 +115,7 @@ def test_a_slope_loads_the_face_as_isos_linear_misalignment(aligned):
         gradient, level = np.polyfit(face[2:-2], line[2:-2], 1)
         trend = (level + gradient * 0.5 * width) / mean
         iso = face_load_factor(slope * width * 1e3, stiffness[roll], line_load)
-        assert 1.0 < trend / iso < 1.16
+        assert 1.0 < trend / iso < 1.21
         assert section["K_H_beta"][i] == pytest.approx(line.max() / mean, rel=1e-4)
         if sum(r["roll_deg"] == roll and r["bem_load_N"] > 0 for r in rows) == 1:
             assert line[0] < level + gradient * face[0]          # end A: softer

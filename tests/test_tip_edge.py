@@ -139,9 +139,11 @@ def test_a_helical_pairs_rounded_tip_corners_converge_with_the_grid():
     default 0.3 mm tip roundings: its contact lines run onto the roundings at their ends (a
     corner contact at each tip: what tip relief is for). Each line's field is laid along
     it, so that its cells across are 0.01-0.03 mm, and the splines carry the gap without
-    the roundings (field.modification_gap). The largest pressure of every contact (3.4-3.8
-    GPa, on the roundings) at the default pressure_grid 128 is the one at 384 within 3 %
-    (measured 1.9 % at most), at 256 within 6 % (measured 5.1 %); on fields along the
+    the roundings (field.modification_gap). The largest pressure of every contact (3.3-4.1
+    GPa, on the roundings) at the default pressure_grid 128 is the one at 384 within 4 %
+    (measured 3.3 % at most; 1.9 % before the gear bodies coupled the pairs' teeth and
+    moved load between the corners), at 256 within 6 % (measured 1.6 %; 5.1 % before);
+    on fields along the
     face with the gap splined whole it jumped by up to 40 % and a false notch beside a tip
     read 7 GPa."""
     def peaks(grid):
@@ -156,7 +158,7 @@ def test_a_helical_pairs_rounded_tip_corners_converge_with_the_grid():
 
     finest = peaks(384)
     assert len(finest) >= 6
-    for grid, within in ((128, 0.03), (256, 0.06)):
+    for grid, within in ((128, 0.04), (256, 0.06)):
         found = peaks(grid)
         assert len(found) == len(finest)
         for (p, at), (q, at_finest) in zip(found, finest):

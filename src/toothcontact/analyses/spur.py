@@ -289,14 +289,19 @@ def _loaded_pass(case: schema.SpurCase, pair, result: Result,
     gear_material = case.gear_material or case.material
     a = case.analysis
     teeth = PairCompliance(tooth_compliance(pair.pinion, case.material.E, case.material.nu),
-                           tooth_compliance(pair.gear, gear_material.E, gear_material.nu))
+                           tooth_compliance(pair.gear, gear_material.E, gear_material.nu),
+                           bodies=True)
     contact.loaded_sections(cycle, C_E, a.pressure_grid, teeth,
                      "tooth bending from each member's exact transverse slices (bending, shear, "
                      "axial and gear body compliance, solid blanks with a bore of half the root "
                      "diameter" + ("; the ring gear's body as an external gear's of its root "
                                    "circle" if pair.gear.internal else "") + ", corrected to 3D finite "
                      "elements of the whole gear) coupled along the face as a Pasternak line "
-                     "(contact.compliance), solved with the contact in one system", result)
+                     "(contact.compliance), solved with the contact in one system; the teeth of "
+                     "different pairs coupled through the " + ("pinion's body" if pair.gear.internal
+                                                                else "gear bodies")
+                     + " (a rim held at that bore, in plane stress over the face: "
+                     "analytic.gear_body)", result)
     return mesh, cycle
 
 

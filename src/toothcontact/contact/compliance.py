@@ -103,6 +103,7 @@ from dataclasses import dataclass
 import numpy as np
 from scipy.integrate import cumulative_trapezoid
 
+from ..analytic.gear_body import chord_green
 from ..analytic.stiffness import foundation_compliance
 
 #: the shear correction factor of a rectangular section (Chaari et al. 2009, eq (3))
@@ -266,14 +267,8 @@ class ToothCompliance:
         """Bending, shear, axial and gear body cross compliance (n × n, mm²/N per unit
         width) of unit line loads on the flank at the n radii `radius` (mm), each along the
         flank's transverse normal into the tooth, and their coupling lengths (n,) (mm)."""
-        radii, points = self._flank
         radius = np.atleast_1d(np.asarray(radius, float))
-        k = np.clip(np.searchsorted(radii, radius), 1, len(radii) - 1)
-        x, y = (np.interp(radius, radii, points[:, i]) for i in (0, 1))
-        tangent = points[k] - points[k - 1]
-        normal = np.column_stack([-tangent[:, 1], tangent[:, 0]])
-        normal /= np.hypot(*normal.T)[:, None]
-        normal[normal[:, 1] > 0] *= -1.0          # into the tooth: toward its centre line
+        x, y, normal = self._on_flank(radius)
         d_s, d_y = self._inward * normal[:, 0], normal[:, 1]
         load_s = self._inward * (x - self._root_x)
         s_profile, half_profile = self._profile
@@ -285,6 +280,53 @@ class ToothCompliance:
                                            self.root_radius / self.bore_radius,
                                            np.arctan2(np.abs(d_s), np.abs(d_y)), self.E)
         return beam.bending, beam.shear, beam.axial, foundation, beam.coupling_length
+
+    def _on_flank(self, radius: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+        """The flank points at `radius` (mm, (n,)) in the slice's plane (x along the tooth's
+        centre line, y across it, the flank at y > 0) and the flank's unit normal there into
+        the tooth ((n, 2): toward its centre line)."""
+        radii, points = self._flank
+        k = np.clip(np.searchsorted(radii, radius), 1, len(radii) - 1)
+        x, y = (np.interp(radius, radii, points[:, i]) for i in (0, 1))
+        tangent = points[k] - points[k - 1]
+        normal = np.column_stack([-tangent[:, 1], tangent[:, 0]])
+        normal /= np.hypot(*normal.T)[:, None]
+        normal[normal[:, 1] > 0] *= -1.0          # into the tooth: toward its centre line
+        return x, y, normal
+
+    def root_loads(self, radius) -> np.ndarray:
+        """(n, 3): a unit load along the flank's normal into the tooth at each of the n radii
+        (mm) as the tooth's root chord hands it to the gear body: the radial force, the
+        tangential force and the moment (mm) about the chord's middle, in the tooth's frame
+        (its centre line on +x, the loaded flank at y > 0; gear_body.chord_green's kinds).
+        An external gear's teeth only (a ring's body is held outside)."""
+        radius = np.atleast_1d(np.asarray(radius, float))
+        x, y, d = self._on_flank(radius)
+        moment = (x - self.root_radius) * d[:, 1] - y * d[:, 0]
+        return np.column_stack([d[:, 0], d[:, 1], moment])
+
+    @functools.cached_property
+    def roll_sense(self) -> float:
+        """+1 where the tooth one pitch counter-clockwise (in the tooth's frame of
+        root_loads) meets a fixed line of action further from the base circle than this
+        tooth does, else -1: which neighbour carries the contact ahead on the path."""
+        radii, points = self._flank
+        for start in (0.25, 0.75):
+            r0 = radii[0] + start * (radii[-1] - radii[0])
+            x, y, d = self._on_flank(np.array([r0]))
+            for sense in (1.0, -1.0):
+                turn = sense * 2.0 * math.pi / self.gear.teeth
+                c, s = math.cos(turn), math.sin(turn)
+                turned = points @ np.array([[c, s], [-s, c]])
+                # the turned flank's crossing of the line through (x, y) along d
+                across = (turned[:, 0] - x[0]) * d[0, 1] - (turned[:, 1] - y[0]) * d[0, 0]
+                k = np.flatnonzero(np.sign(across[:-1]) != np.sign(across[1:]))
+                if len(k):
+                    t = across[k[0]] / (across[k[0]] - across[k[0] + 1])
+                    crossing = np.hypot(*(turned[k[0]] + t * (turned[k[0] + 1] - turned[k[0]])))
+                    return sense if crossing > r0 else -sense
+        raise ValueError("no neighbouring tooth's flank meets the line of action: "
+                         "its flank spans less than a base pitch")
 
     def half_thickness(self, radius: float) -> float:
         """The tooth's half-thickness (mm) at `radius` on its flank: the depth to its centre
@@ -487,9 +529,14 @@ class MemberLoading:
     with the same weights (times sqrt(share))."""
 
     def __init__(self, z: np.ndarray, radius: np.ndarray, share: np.ndarray, extent: float,
-                 radii: np.ndarray, matrix: np.ndarray, coupling: FaceCoupling):
+                 radii: np.ndarray, matrix: np.ndarray, coupling: FaceCoupling,
+                 root: np.ndarray | None = None):
         self.z, self.radius, self.share, self.extent = z, radius, share, extent
         self.radii, self.matrix, self.coupling = radii, matrix, coupling
+        #: (cells, 3): a cell's load as its tooth's root chord hands it to the gear body
+        #: (ToothCompliance.root_loads, times sqrt(share)); None where the body's coupling
+        #: of the teeth is left out
+        self.root = None if root is None else root * np.sqrt(share)[:, None]
         across, across_share = hats(radii, radius)
         along, along_share = hats(coupling.nodes, z)
         first = int(across.min())                   # the radial nodes in use: first, first + 1...
@@ -518,7 +565,7 @@ class StructureOperator:
     the half-space's influence."""
 
     def __init__(self, members: list[MemberLoading], shape: tuple[int, int], cell: float,
-                 active: np.ndarray, reference: tuple, gather=None):
+                 active: np.ndarray, reference: tuple, gather=None, body=None):
         from scipy.sparse import csr_matrix
 
         self.members, self.shape, self.cell = members, shape, cell
@@ -542,6 +589,16 @@ class StructureOperator:
                                 shape=(len(counts) - 1, sum(sizes)))
         self._gather, self._spread = gather, gather.T
         self._split = np.cumsum(sizes)[:-1]
+        if body is None and any(m.root is not None for m in members):
+            roots = np.zeros((int(np.prod(shape)), 3 * len(members)))
+            for i, m in enumerate(members):
+                if m.root is not None:
+                    roots[self.active, 3 * i:3 * i + 3] = m.root
+            body = csr_matrix(roots)
+        #: the cells' loads as the teeth's root chords take them ((cells, 3 per member),
+        #: see MemberLoading.root): the gear bodies' coupling of different contacts
+        #: (BodyCoupling); None without it
+        self.body = body
 
     def window(self, rows: slice, cols: slice) -> StructureOperator:
         """The operator on the part [rows, cols] of the grid (for loads there alone)."""
@@ -561,13 +618,24 @@ class StructureOperator:
         active = np.zeros(self.shape[0] * self.shape[1], bool)
         active[self.active] = True
         return StructureOperator(self.members, cells.shape, cell, active[cells],
-                                 self.reference, self._gather[cells.ravel()])
+                                 self.reference, self._gather[cells.ravel()],
+                                 None if self.body is None else self.body[cells.ravel()])
 
     def __call__(self, p: np.ndarray) -> np.ndarray:
         loads = self._spread @ (np.asarray(p, float).ravel() * self.cell)
         deflections = np.concatenate([m.nodes_deflection(q) for m, q in
                                       zip(self.members, np.split(loads, self._split))])
         return (self._gather @ deflections).reshape(self.shape)
+
+    def root_resultants(self, p: np.ndarray) -> np.ndarray:
+        """(members, 3): the loads the pressure p (MPa) on the grid hands each member's
+        gear body at its tooth's root chord (N: radial, tangential; N·mm: moment)."""
+        return (self.body.T @ (np.asarray(p, float).ravel() * self.cell)).reshape(-1, 3)
+
+    def root_deflection(self, moves: np.ndarray) -> np.ndarray:
+        """The grid's deflection (mm along the contact normal) where each member's tooth
+        root chord moves by `moves` ((members, 3): mm, mm, rad) as a rigid body."""
+        return (self.body @ np.asarray(moves, float).ravel()).reshape(self.shape)
 
     def face_loads(self) -> tuple[FaceLoad, ...]:
         """Where the grid's cells sit along each member's face and at what load radius (the
@@ -636,9 +704,16 @@ class PairCompliance:
     slices independent (a Winkler bed of the same compliance: no coupling, no end
     softening)."""
 
-    def __init__(self, pinion: ToothCompliance, gear: ToothCompliance, coupled: bool = True):
+    def __init__(self, pinion: ToothCompliance, gear: ToothCompliance, coupled: bool = True,
+                 bodies: bool = False):
         self.members = {"pinion": pinion, "gear": gear}
         self.coupled = coupled
+        #: the members whose gear bodies couple the teeth of different contacts
+        #: (body_coupling): with `bodies`, an external cylindrical gear's (a ring's rim is
+        #: held from outside, which the annulus held at its bore is not; worm sets and
+        #: splines keep their teeth apart)
+        self.bodies = {name: bodies and type(teeth) is ToothCompliance
+                       and not teeth.gear.internal for name, teeth in self.members.items()}
 
     def operator(self, cycle, field) -> StructureOperator:
         """The StructureOperator of a gap field (contact.field.GapField) of a contact
@@ -664,10 +739,47 @@ class PairCompliance:
                                  MOST_NODES)))
             members.append(MemberLoading(face, radius, share, _extent(field, face),
                                          teeth.radii, teeth.matrix,
-                                         FaceCoupling(start, end, coupling_length, nodes, layer)))
+                                         FaceCoupling(start, end, coupling_length, nodes, layer),
+                                         teeth.root_loads(radius) if self.bodies[name] else None))
             reference.append((round(depth, 3), teeth.E, teeth.nu))
         dx, dy = field.spacing
         return StructureOperator(members, material.shape, dx * dy, material, tuple(reference))
+
+
+    def body_coupling(self, structures: list[StructureOperator], pairs: list[int]
+                      ) -> np.ndarray | None:
+        """The gear bodies' coupling of the contacts of one position (their grids'
+        `structures`, the tooth pair of each, as the cycle's rows number them): C[k, l, i]
+        (3 × 3) turns the root loads member i's tooth takes from contact l
+        (StructureOperator.root_resultants) into the moves of its tooth at contact k (mm,
+        rad: root_deflection), gear_body.chord_green over the face width (the rim in
+        generalized plane stress); zero for k = l (a tooth's own body is in its slice
+        compliance). None where no member couples or one contact is alone."""
+        names = [name for name, on in self.bodies.items() if on]
+        if not names or len(structures) < 2 or len(set(pairs)) < 2:
+            return None
+        K = len(structures)
+        C = np.zeros((K, K, len(self.members), 3, 3))
+        for i, (name, teeth) in enumerate(self.members.items()):
+            if not self.bodies[name]:
+                continue
+            rb = teeth.gear.base_radius
+            rolls = [float(np.mean(np.sqrt(np.maximum(s.members[i].radius ** 2 - rb ** 2,
+                                                        0.0)))) for s in structures]
+            gear = teeth.gear
+            for k in range(K):
+                for l in range(K):
+                    if pairs[k] == pairs[l]:
+                        continue
+                    # tooth k's place from tooth l (pitches, counter-clockwise in the
+                    # tooth's frame): the one whose contact lies further along the path
+                    # is the neighbour of roll_sense
+                    place = (teeth.roll_sense * math.copysign(1.0, rolls[k] - rolls[l])
+                             * abs(pairs[k] - pairs[l]))
+                    C[k, l, i] = chord_green(
+                        teeth.bore_radius, teeth.root_radius, teeth.root_half_angle,
+                        gear.teeth, int(place), teeth.E, teeth.nu) / gear.face_width
+        return C
 
 
 def _extent(field, z: np.ndarray) -> float:

@@ -506,6 +506,16 @@ def _precise_enough(grids: list[Grid], loads, E_star: float, **options
         return solve_shared(grids, loads, E_star, dtype=np.float64, **options)
 
 
+def _body_coupling(pairs: list[_Pair]) -> np.ndarray | None:
+    """The gear bodies' coupling of the pairs' teeth (PairCompliance.body_coupling), or
+    None without a tooth model."""
+    teeth = pairs[0].teeth
+    if teeth is None:
+        return None
+    return teeth.body_coupling([p.structure for p in pairs],
+                               [int(p.cycle.rows[p.k]["pair"]) for p in pairs])
+
+
 def _share(pairs: list[_Pair], load: float, E_star: float) -> list[ContactSolution | None]:
     """Solutions of the pairs of one position (see module) under `load` (N) together,
     composite modulus E_star (MPa): one shared solve (pressure.solve_shared) started from
@@ -525,16 +535,17 @@ def _share(pairs: list[_Pair], load: float, E_star: float) -> list[ContactSoluti
     for _ in range(7 * len(pairs) + 1):
         try:
             starts = None
+            body = _body_coupling(pairs)
             if pairs[0].structure is not None:
                 coarse = _precise_enough([p.grid(coarse=True) for p in pairs], loads, E_star,
-                                         tol=COARSE_TOLERANCE)
+                                         tol=COARSE_TOLERANCE, body=body)
                 sharpened = [p.sharpen(s, p.steps) for p, s in zip(pairs, coarse)]   # every one
                 if any(sharpened):
                     continue
                 starts = [p.refined(s) for p, s in zip(pairs, coarse)]
                 loads = np.array([0.0 if s is None else s.load_N for s in coarse])
             solutions = _precise_enough([p.grid() for p in pairs], loads, E_star,
-                                        starts=starts, tol=GAP_TOLERANCE)
+                                        starts=starts, tol=GAP_TOLERANCE, body=body)
         except GridEdgeError as exc:
             # every field that can widen does (one by one, a spline's 18 fields took 18
             # solves of their position); one already covering its flanks may have reached

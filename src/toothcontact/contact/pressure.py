@@ -357,8 +357,12 @@ class _System:
     `structure`; the preconditioner each grid's periodic circulant's inverse. Loads are
     p·cell, cell the area of a grid's cells (mm²)."""
 
-    def __init__(self, grids: list[_Checked], E_star: float, single: bool, ops=None):
+    def __init__(self, grids: list[_Checked], E_star: float, single: bool, ops=None,
+                 body: np.ndarray | None = None):
         self.grids, self.E_star = grids, E_star
+        #: the gear bodies' coupling of the grids' teeth (compliance.PairCompliance.
+        #: body_coupling: C[k, l] per member), or None
+        self.body = body
         self.compliance, self.single = 1.0 / E_star, single
         self.h = np.concatenate([g.h.ravel() for g in grids])
         self.m = np.concatenate([g.m.ravel() for g in grids])
@@ -414,7 +418,24 @@ class _System:
                     end.add_mirror(u, q, op, (grid.dx, grid.dy), single)
                 u = u.ravel() * self.compliance
                 out[s] = u if structure is None else u + structure(q).ravel()
+        if self.body is not None:
+            self._add_body(out, values, where)
         return out
+
+    def _add_body(self, out: np.ndarray, values: np.ndarray, where: np.ndarray | None) -> None:
+        """Add to `out` (mm, flat) each grid's teeth moving with their gear bodies under the
+        other grids' loads (the pressures `values` on `where`, as for displacement)."""
+        roots = np.zeros((len(self.grids),) + self.body.shape[2:4])
+        for k, ((_, q), structure) in enumerate(zip(self._blocks(values, where),
+                                                    self.structures)):
+            if q is not None:
+                roots[k] = structure.root_resultants(q)
+        if not roots.any():
+            return
+        moves = np.einsum("klmab,lmb->kma", self.body, roots)
+        for k, (s, structure) in enumerate(zip(self.slices, self.structures)):
+            if moves[k].any():
+                out[s] += structure.root_deflection(moves[k]).ravel()
 
     def precondition(self, values: np.ndarray, where: np.ndarray) -> np.ndarray:
         """The preconditioned residual on `where`, as loads: each grid's approximate inverse
@@ -437,11 +458,12 @@ class _System:
     def windowed(self, windows: list) -> tuple[_System, np.ndarray]:
         """The system on the windows ((rows, cols) slices per grid, None to leave a grid
         out), and the flat indices of its cells in this system's vector."""
-        grids, ops, inside = [], [], []
-        for g, op, s, shape, window in zip(self.grids, self.ops, self.slices, self.shapes,
-                                           windows):
+        grids, ops, inside, kept = [], [], [], []
+        for k, (g, op, s, shape, window) in enumerate(zip(self.grids, self.ops, self.slices,
+                                                          self.shapes, windows)):
             if window is None:
                 continue
+            kept.append(k)
             rows, cols = window
             grids.append(_Checked(g.h[rows, cols], g.dx, g.dy, g.m[rows, cols],
                                   None if g.structure is None else g.structure.window(rows, cols),
@@ -449,7 +471,8 @@ class _System:
                                   tuple(end.shifted(rows, cols) for end in g.free_ends)))
             ops.append(op.part(grids[-1].h.shape))
             inside.append(np.arange(s.start, s.stop).reshape(shape)[rows, cols].ravel())
-        return _System(grids, self.E_star, self.single, ops), np.concatenate(inside)
+        body = None if self.body is None else self.body[np.ix_(kept, kept)]
+        return _System(grids, self.E_star, self.single, ops, body), np.concatenate(inside)
 
 
 #: a shared solve iterates on a window of each grid: the box about its cells in contact and
@@ -590,7 +613,8 @@ def _ccg(system: _System, p, u, load, tol, max_iter):
 
 def solve_shared(grids: list[Grid], loads_N, E_star_MPa: float, *, tol: float = 1e-8,
                  max_iter: int = 500, warm_start: bool = True, starts=None,
-                 dtype=np.float64) -> list[ContactSolution | None]:
+                 dtype=np.float64, body: np.ndarray | None = None
+                 ) -> list[ContactSolution | None]:
     """Pressure on several gap fields that close by one rigid approach and together carry
     one load: the contacts of one mesh position, each on its own grid (their gaps measured
     from one datum: a pair's gap holds its separation). One constrained conjugate-gradient
@@ -604,6 +628,10 @@ def solve_shared(grids: list[Grid], loads_N, E_star_MPa: float, *, tol: float = 
     starts: per grid, a pressure (MPa) to start from (scaled to the grid's start load), or
         None for the warm start (see :func:`solve_contact`).
     tol, max_iter, warm_start, dtype: as for :func:`solve_contact`.
+    body: the gear bodies' coupling of the grids' teeth, C[k, l] (members, 3, 3) turning
+        the root loads of grid l's structure into the root moves of grid k's
+        (compliance.PairCompliance.body_coupling), or None: the grids' teeth then deflect
+        apart.
 
     Returns one ContactSolution per grid (each with its own load, and the common approach,
     iterations and relative gap error), None for a grid that carries no load. Raises
@@ -625,7 +653,7 @@ def solve_shared(grids: list[Grid], loads_N, E_star_MPa: float, *, tol: float = 
     if np.dtype(dtype) not in (np.dtype(np.float64), np.dtype(np.float32)):
         raise ValueError(f"dtype: {dtype!r} must be numpy.float64 or numpy.float32")
     single = np.dtype(dtype) == np.dtype(np.float32)
-    system = _System(checked, E_star, single)
+    system = _System(checked, E_star, single, body=body)
     starts = [None] * len(grids) if starts is None else list(starts)
     p = np.concatenate([_start(g.h, g.dx, g.dy, g.m, w, E_star, start, warm_start).ravel()
                         for g, w, start in zip(checked, loads, starts)])     # carries W
