@@ -84,3 +84,11 @@ def test_demo_runs_every_bundled_case_from_an_empty_folder(installed, tmp_path):
             text = (tmp_path / "out" / case / name).read_text(encoding="utf-8")
             text = re.sub(r"data:image/png;base64,[^\"]+", "", text)
             assert not noise.findall(text), (case, name, noise.findall(text)[:5])
+    # a design review's document (issue 55): FZG's report.md under 20 kB (19.5 kB; 33.4 kB
+    # before its summary table, glossary texts and inputs stayed in report.html), its
+    # positions and its duty cycle's levels in CSV files beside it
+    fzg = tmp_path / "out" / "fzg_c_type"
+    assert (fzg / "report.md").stat().st_size < 20_000
+    for table in ("positions.csv", "duty_cycle_levels.csv"):
+        assert table in (fzg / "report.md").read_text(encoding="utf-8")
+        assert (fzg / table).stat().st_size > 0

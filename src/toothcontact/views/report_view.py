@@ -41,8 +41,11 @@ class KeyResult:
 @dataclass(frozen=True)
 class Table:
     """A results table: `rows` of cells (text), `numeric` per column; a table of many rows
-    is shown collapsed, and written beside the reports as the CSV file `csv` (report.md
-    links it instead of repeating it; report.html keeps it, sortable)."""
+    is shown collapsed, and one of many rows or columns is written beside the reports as
+    the CSV file `csv` (report.md links it instead of repeating it; report.html keeps it,
+    sortable). `brief`: report.md
+    names it and points to report.html instead of repeating it (the summary's every
+    figure, which the key results already pick from)."""
 
     title: str
     headers: list[str]
@@ -51,6 +54,7 @@ class Table:
     collapsed: bool = False
     note: str = ""
     csv: str = ""
+    brief: bool = False
 
 
 @dataclass(frozen=True)
@@ -93,6 +97,10 @@ class ReportView:
 
 #: a table of more rows than this is shown collapsed
 COLLAPSE_ROWS = 12
+#: a table of more columns than this (or more rows than COLLAPSE_ROWS) is written as a CSV
+#: file beside the reports, which report.md links instead of repeating (a duty cycle's
+#: levels: 20 columns, 1.3 kB of FZG's report.md)
+WIDE_COLUMNS = 12
 #: a table's note longer than this (characters) is a definition: it goes to the glossary
 GLOSSARY_NOTE = 300
 
@@ -116,6 +124,9 @@ def view(document: dict) -> ReportView:
     glossary = list(dict.fromkeys(entries))            # each text once, in order
     seen = {text for _, text in glossary}
     tables = [t if t.note not in seen else dataclasses.replace(t, note="see the glossary")
+              for t in tables]
+    # the summary's own table: every figure, the key results' source (report.html has it)
+    tables = [dataclasses.replace(t, brief=True) if t.title == "summary" and summary else t
               for t in tables]
     stages = [(name, stage.get("reason", "")) for name, stage in
               (document.get("stages") or {}).items() if stage.get("status") == "failed"]
@@ -210,8 +221,10 @@ def _tables(key: str, value, kind: str) -> list[Table]:
         numeric = [all(isinstance(r.get(k), (int, float)) and not isinstance(r.get(k), bool)
                        for r in value if r.get(k) is not None) for k in keys]
         long = len(value) > COLLAPSE_ROWS
+        wide = len(keys) > WIDE_COLUMNS
         return [Table(title, [label(k, kind, key) for k in keys], rows, numeric,
-                      collapsed=long, csv=f"{key}.csv" if long else "")]
+                      collapsed=long,
+                      csv=f"{key.replace(' ', '_')}.csv" if long or wide else "")]
     return []
 
 
