@@ -112,6 +112,9 @@ SHEAR_FACTOR = 1.2
 SLICE_POINTS = 400
 #: load radii at which a member's slice compliance is tabulated, form circle to tip
 TABLE_RADII = 64
+#: ... and its root loads (ToothCompliance.root_loads), which the gear bodies' coupling
+#: reads at every cell of a contact's field
+ROOT_TABLE_RADII = 256
 #: the finite-element correction of a gear tooth (see the module): the slice compliance's
 #: factor and the coupling length per root chord
 SLICE_FACTOR, COUPLING_PER_ROOT_CHORD = 0.815, 0.739
@@ -299,11 +302,21 @@ class ToothCompliance:
         (mm) as the tooth's root chord hands it to the gear body: the radial force, the
         tangential force and the moment (mm) about the chord's middle, in the tooth's frame
         (its centre line on +x, the loaded flank at y > 0; gear_body.chord_green's kinds).
-        An external gear's teeth only (a ring's body is held outside)."""
+        An external gear's teeth only (a ring's body is held outside). Interpolated in a
+        table over the flank (ROOT_TABLE_RADII radii: a field's thousands of cells read
+        it, the flank's polyline once)."""
+        radii, table = self._root_table
         radius = np.atleast_1d(np.asarray(radius, float))
-        x, y, d = self._on_flank(radius)
+        return np.column_stack([np.interp(radius, radii, table[:, i]) for i in range(3)])
+
+    @functools.cached_property
+    def _root_table(self) -> tuple[np.ndarray, np.ndarray]:
+        """root_loads at ROOT_TABLE_RADII radii over the flank: (radii (mm), (n, 3))."""
+        flank_radii, _ = self._flank
+        radii = np.linspace(flank_radii[0], flank_radii[-1], ROOT_TABLE_RADII)
+        x, y, d = self._on_flank(radii)
         moment = (x - self.root_radius) * d[:, 1] - y * d[:, 0]
-        return np.column_stack([d[:, 0], d[:, 1], moment])
+        return radii, np.column_stack([d[:, 0], d[:, 1], moment])
 
     @functools.cached_property
     def roll_sense(self) -> float:
@@ -590,14 +603,13 @@ class StructureOperator:
         self._gather, self._spread = gather, gather.T
         self._split = np.cumsum(sizes)[:-1]
         if body is None and any(m.root is not None for m in members):
-            roots = np.zeros((int(np.prod(shape)), 3 * len(members)))
+            body = np.zeros((int(np.prod(shape)), 3 * len(members)))
             for i, m in enumerate(members):
                 if m.root is not None:
-                    roots[self.active, 3 * i:3 * i + 3] = m.root
-            body = csr_matrix(roots)
+                    body[self.active, 3 * i:3 * i + 3] = m.root
         #: the cells' loads as the teeth's root chords take them ((cells, 3 per member),
-        #: see MemberLoading.root): the gear bodies' coupling of different contacts
-        #: (BodyCoupling); None without it
+        #: dense: see MemberLoading.root): the gear bodies' coupling of different
+        #: contacts (PairCompliance.body_coupling); None without it
         self.body = body
 
     def window(self, rows: slice, cols: slice) -> StructureOperator:
@@ -630,7 +642,7 @@ class StructureOperator:
     def root_resultants(self, p: np.ndarray) -> np.ndarray:
         """(members, 3): the loads the pressure p (MPa) on the grid hands each member's
         gear body at its tooth's root chord (N: radial, tangential; N·mm: moment)."""
-        return (self.body.T @ (np.asarray(p, float).ravel() * self.cell)).reshape(-1, 3)
+        return (np.asarray(p, float).ravel() @ self.body * self.cell).reshape(-1, 3)
 
     def root_deflection(self, moves: np.ndarray) -> np.ndarray:
         """The grid's deflection (mm along the contact normal) where each member's tooth

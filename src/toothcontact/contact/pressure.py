@@ -410,28 +410,25 @@ class _System:
         system's)."""
         single = self.single if single is None else single
         out = np.zeros(self.h.size)
-        for (s, q), op, structure, grid in zip(self._blocks(values, where), self.ops,
-                                               self.structures, self.grids):
+        roots = None if self.body is None else np.zeros((len(self.grids),) + self.body.shape[2:4])
+        for k, ((s, q), op, structure, grid) in enumerate(zip(
+                self._blocks(values, where), self.ops, self.structures, self.grids)):
             if q is not None:
                 u = op(q, single)
                 for end in grid.free_ends:
                     end.add_mirror(u, q, op, (grid.dx, grid.dy), single)
                 u = u.ravel() * self.compliance
                 out[s] = u if structure is None else u + structure(q).ravel()
-        if self.body is not None:
-            self._add_body(out, values, where)
+                if roots is not None:
+                    roots[k] = structure.root_resultants(q)
+        if roots is not None and roots.any():
+            self._add_body(out, roots)
         return out
 
-    def _add_body(self, out: np.ndarray, values: np.ndarray, where: np.ndarray | None) -> None:
+    def _add_body(self, out: np.ndarray, roots: np.ndarray) -> None:
         """Add to `out` (mm, flat) each grid's teeth moving with their gear bodies under the
-        other grids' loads (the pressures `values` on `where`, as for displacement)."""
-        roots = np.zeros((len(self.grids),) + self.body.shape[2:4])
-        for k, ((_, q), structure) in enumerate(zip(self._blocks(values, where),
-                                                    self.structures)):
-            if q is not None:
-                roots[k] = structure.root_resultants(q)
-        if not roots.any():
-            return
+        other grids' root loads (`roots`, (grids, members, 3): StructureOperator.
+        root_resultants of each grid's pressure)."""
         moves = np.einsum("klmab,lmb->kma", self.body, roots)
         for k, (s, structure) in enumerate(zip(self.slices, self.structures)):
             if moves[k].any():
