@@ -203,6 +203,32 @@ def test_pressure_map_from_the_loaded_contact(aligned):
     assert (hue_distance(h[..., 0], top_hue) < 0.06).mean() > 0.5
 
 
+def test_the_pressure_maps_scale_is_the_flanks(aligned):
+    """The colour scale tops out at the flank's largest pressure (flank_p_max_MPa), so the
+    flank's own pattern spans it: where an edge or corner contact's design pressure
+    (bem_p_max_MPa) lies above it (here the peak row's, 1/0.6 of the flank's largest), its
+    cells are the warning red; within 5 % of it the scale is the design peak's and nothing
+    is red (the aligned pair has no edge contact)."""
+    case, result = aligned
+    top = max(r["p_max_MPa"] for r in result.cycle.rows)
+    k = int(np.argmax([r["p_max_MPa"] for r in result.cycle.rows]))
+    for flank_share, red in ((0.6, True), (0.98, False)):
+        rows = [dict(r, bem_p_max_MPa=r["p_max_MPa"], flank_p_max_MPa=flank_share * top)
+                for r in result.cycle.rows]
+        cycle = replace(result.cycle, rows=rows)
+        loaded = SimpleNamespace(cycle=cycle, loaded=synthetic_loaded(cycle))
+        patch = scene_geometry.flank_patch(cycle)
+        plotter = pictures.pressure_scene(loaded, case, "test", patch)
+        image = scene.screenshot(plotter)
+        local = cycle.pinion_frames[np.array([k])].to_local(cycle.planes.point[[k]])
+        at_peak = window(image, scene.project(plotter, local)[0], 2)
+        plotter.close()
+        if red:
+            assert is_warning_colour(at_peak).mean() > 0.5
+        else:
+            assert is_warning_colour(image).sum() == 0
+
+
 def test_pictures_of_a_contact_case_are_written_whole(aligned, tmp_path):
     case, result = aligned
     result = SimpleNamespace(cycle=result.cycle, loaded=synthetic_loaded(result.cycle),

@@ -429,8 +429,11 @@ def pressure_scene(result, case=None, name: str = "", patch: Patch | None = None
                    roll: float | None = None):
     """The loaded contact painted on the pattern's flank, head-on: the largest pressure at
     each point over the cycle, or (`roll`, deg) the pressure of every pair at that one
-    position; the colour scale tops out at the largest design pressure of the rows shown
-    (bem_p_max_MPa, which leaves out the singular cells at a sharp edge)."""
+    position. The colour scale is the flank's: it tops out at the largest active-flank
+    pressure of the rows shown (flank_p_max_MPa), so that the flank's own pattern spans
+    it; what an edge or corner contact presses above it is painted in the warning red
+    and named with its value (bem_p_max_MPa, which leaves out the singular cells at a
+    sharp edge). Rows without a flank figure take the design pressure's scale."""
     pv = load_pyvista()
     cycle = result.cycle
     patch = patch or flank_patch(cycle)
@@ -446,8 +449,13 @@ def pressure_scene(result, case=None, name: str = "", patch: Patch | None = None
     lift = 2e-3 * span
     design = [cycle.rows[k]["bem_p_max_MPa"] for k in shown_rows
               if cycle.rows[k].get("bem_p_max_MPa")]
-    top = max(design) if design else float(np.percentile(pressure[pressure > 0], 99)) \
+    peak_design = max(design) if design else float(np.percentile(pressure[pressure > 0], 99)) \
         if (pressure > 0).any() else 1.0
+    on_flank = [cycle.rows[k]["flank_p_max_MPa"] for k in shown_rows
+                if cycle.rows[k].get("flank_p_max_MPa")]
+    top = min(max(on_flank), peak_design) if on_flank else peak_design
+    above = peak_design > FLANK_SCALE_MARGIN * top
+    top = top if above else peak_design
     shown = np.where(pressure > 0, pressure, np.nan)
     surface = grid_surface(pv, warp(points), {"pressure (MPa)": shown})
     plotter._bar_title = ("largest contact pressure over the mesh cycle (MPa)" if roll is None
@@ -455,10 +463,10 @@ def pressure_scene(result, case=None, name: str = "", patch: Patch | None = None
     bar = dict(title=" ", n_labels=5,
                fmt="%.0f", color=INK, position_x=0.17, position_y=0.035, width=0.62,
                height=0.055, title_font_size=15, label_font_size=14, vertical=False,
-               above_label="above")
+               above_label="edge, corner" if above else "above")
     plotter.add_mesh(surface, scalars="pressure (MPa)", cmap=PRESSURE_CMAP, clim=(0.0, top),
-                     nan_color=NO_PAINT, above_color="#fde725", scalar_bar_args=bar,
-                     **surface_props())
+                     nan_color=NO_PAINT, above_color=WARNING if above else "#fde725",
+                     scalar_bar_args=bar, **surface_props())
     crossed = edge_contacts([cycle.rows[k] for k in shown_rows], row_name(case, patch.member))
     edges = patch_boundary(patch)
     for line in edges.values():
@@ -472,12 +480,15 @@ def pressure_scene(result, case=None, name: str = "", patch: Patch | None = None
     solved = sum(item is not None for item in loaded)
     peak = max((cycle.rows[k].get("bem_raw_peak_MPa") or 0.0 for k in shown_rows), default=0.0)
     legend = [f"the largest pressure at each point over the {solved} loaded contacts of the "
-              f"cycle; design peak {top:.0f} MPa" if roll is None else
+              f"cycle; design peak {peak_design:.0f} MPa" if roll is None else
               f"the {solved} loaded contact{'s' if solved != 1 else ''} at roll {roll:.2f} "
-              f"deg, the position of the cycle's largest pressure: peak {top:.0f} MPa"]
+              f"deg, the position of the cycle's largest pressure: peak {peak_design:.0f} MPa"]
+    if above:
+        legend.append(f"the scale is the flank's (its largest {top:.0f} MPa); red: an edge or "
+                      "corner contact above it")
     if stretch > 1.05:
         legend.append(f"NOTE: the profile direction is drawn {stretch:.1f} times its scale")
-    if peak > top * 1.001:
+    if peak > peak_design * 1.001:
         legend.append(f"(cells at a sharp edge reach {peak:.0f} MPa: singular, "
                       "not a design value)")
     edges_loaded = loaded_edges(cycle, shown_rows)
@@ -501,6 +512,11 @@ def pressure_scene(result, case=None, name: str = "", patch: Patch | None = None
            legend, warnings)
     head_on_layout(plotter, warp(patch.points.reshape(-1, 3)), centre, normal, up, stretch)
     return plotter
+
+
+#: a pressure map's scale is the flank's where the design peak (an edge or corner contact)
+#: lies more than this factor above the flank's largest pressure; nearer, the design peak's
+FLANK_SCALE_MARGIN = 1.05
 
 
 # ---------------------------------------------------------------------------------------
