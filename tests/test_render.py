@@ -229,6 +229,26 @@ def test_the_pressure_maps_scale_is_the_flanks(aligned):
             assert is_warning_colour(image).sum() == 0
 
 
+def test_a_flank_map_carries_its_face_positions_and_diameters():
+    """add_flank_ticks labels the form edge with round face positions (mm from mid-face) and
+    end B with round diameters, the last with its unit, none where the edge's own name
+    stands (its middle 30 %), each off the edge away from the flank's centre."""
+    labels = []
+    plotter = SimpleNamespace(add_point_labels=lambda point, text, **_: labels.append(
+        (point[0], text[0])))
+    t = np.linspace(0.0, 1.0, 61)
+    form = np.column_stack([np.full_like(t, 34.0), np.zeros_like(t), -7.0 + 14.0 * t])
+    end_b = np.column_stack([34.0 + 7.0 * t, np.zeros_like(t), np.full_like(t, 7.0)])
+    centre = np.array([37.5, 0.0, 0.0])
+    scene.add_flank_ticks(plotter, {"form": form, "end_B": end_b, "tip": form + [7, 0, 0]},
+                          centre, 1.0)
+    texts = [text for _, text in labels]
+    assert texts == ["-6", "-3", "3", "6 mm", "d 69", "d 72", "d 78", "d 81 mm"]
+    # off their edges, away from the centre: below the form edge (radius 34), beyond end B
+    assert all(point[0] < 34.0 for point, text in labels if not text.startswith("d "))
+    assert all(point[2] > 7.0 for point, text in labels if text.startswith("d "))
+
+
 def test_pictures_of_a_contact_case_are_written_whole(aligned, tmp_path):
     case, result = aligned
     result = SimpleNamespace(cycle=result.cycle, loaded=synthetic_loaded(result.cycle),

@@ -29,6 +29,7 @@ from .scene import (
     FLANK_BOX,
     MAX_OUTLINES,
     add_edge_labels,
+    add_flank_ticks,
     add_texts,
     finish,
     fit_view,
@@ -141,6 +142,8 @@ def pattern_scene(result, case=None, name: str = "", view: str = "head-on",
         if mesh is not None:
             plotter.add_mesh(mesh, color=WARNING, line_width=7, lighting=False)
     add_edge_labels(plotter, edges, centre, 0.035 * span, set(crossed), warp)
+    if view == "head-on":
+        add_flank_ticks(plotter, edges, centre, 0.02 * span, warp)
 
     # the ellipses: every flagged contact's (the loaded contact's edge-loaded ones where it
     # was solved, else the rigid pattern's edge contacts), and of the others every n-th (at
@@ -475,6 +478,7 @@ def pressure_scene(result, case=None, name: str = "", patch: Patch | None = None
         plotter.add_mesh(pv.lines_from_points(warp(lift_off_flank(flank, line, lift))), color=INK,
                          line_width=2, lighting=False)
     add_edge_labels(plotter, edges, centre, 0.035 * span, set(), warp)
+    add_flank_ticks(plotter, edges, centre, 0.02 * span, warp)
     names = MEMBER_NAMES.get(getattr(case, "kind", ""), ("pinion", "gear"))
     owner = names[0] if patch.member == "pinion" else names[1]
     solved = sum(item is not None for item in loaded)
@@ -498,9 +502,15 @@ def pressure_scene(result, case=None, name: str = "", patch: Patch | None = None
         rounded = ({f"{m}_tip" for m, s in sections.items() if s.get("tip_edge_radius_mm")}
                    | {f"{m}_end_{end}" for m, s in sections.items() if s.get("end_chamfer_mm")
                       for end in "AB"})
+        said = dict(zip(("pinion", "gear"), names))         # a spline's hub and sleeve
+
+        def edge_words(edge: str) -> str:
+            member, _, rest = edge.partition("_")
+            return f"{said.get(member, member)} {rest.replace('_', ' ')}".strip()
+
         warnings.append("EDGE LOAD: " + ", ".join(
-            f"{e.replace('_', ' ')} {p:.0f} MPa" + (" on its rounded edge" if e in rounded
-                                                    else "")
+            f"{edge_words(e)} {p:.0f} MPa" + (" on its rounded edge" if e in rounded
+                                              else "")
             for e, p in edges_loaded.items())
             + (" (sharp edges averaged over the edge strip)"
                if set(edges_loaded) - rounded else ""))

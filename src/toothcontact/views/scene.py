@@ -293,6 +293,45 @@ def add_edge_labels(plotter, edges: dict[str, np.ndarray], centre: np.ndarray, o
                                  show_points=False, always_visible=True)
 
 
+#: a flank map's ticks: at most this many per axis, none within this share of an edge's
+#: length of its middle (where the edge's own name stands)
+FLANK_TICKS, TICK_CLEAR = 5, 0.15
+
+
+def add_flank_ticks(plotter, edges: dict[str, np.ndarray], centre: np.ndarray,
+                    offset: float, warp=lambda p: p) -> None:
+    """Coordinates on a head-on flank map: the face position (mm along the member's axis,
+    0 at mid-face) under its form (or root) edge and the diameter (mm) beside its end B,
+    at round values (matplotlib's MaxNLocator; the last with its unit), each label
+    `offset` mm off the edge away from `centre`, none where the edge's own name stands.
+    `edges`: the flank's edges in its member's frame (patch_boundary)."""
+    from matplotlib.ticker import MaxNLocator
+
+    bottom = next((edges[n] for n in ("form", "root") if len(edges.get(n, ())) > 1), None)
+    axes = [(bottom, lambda p: p[:, 2], "{:g}"),
+            (edges.get("end_B"), lambda p: 2.0 * np.hypot(p[:, 0], p[:, 1]), "d {:g}")]
+    for line, coordinate, text in axes:
+        if line is None or len(line) < 2:
+            continue
+        values = coordinate(line)
+        if np.ptp(values) <= 1e-9:
+            continue
+        order = np.argsort(values)
+        place = np.arange(len(line), dtype=float) / (len(line) - 1)   # along the edge
+        ticks = [t for t in MaxNLocator(FLANK_TICKS).tick_values(values.min(), values.max())
+                 if values.min() <= t <= values.max()
+                 and abs(np.interp(t, values[order], place[order]) - 0.5) > TICK_CLEAR]
+        for i, tick in enumerate(ticks):
+            point = warp(np.array([np.interp(tick, values[order], line[order, j])
+                                   for j in range(3)]))
+            away = point - centre
+            norm = np.linalg.norm(away)
+            point = point + away / norm * offset if norm > 0 else point
+            label = text.format(round(float(tick), 6)) + (" mm" if i == len(ticks) - 1 else "")
+            plotter.add_point_labels(point[None], [label], font_size=12, text_color=INK,
+                                     shape=None, show_points=False, always_visible=True)
+
+
 #: a head-on view stretches a flank longer than this many times its depth
 MAX_ASPECT = 4.0
 
