@@ -284,6 +284,101 @@ def body_coupling_check(pair, level: str, members: dict) -> dict:
     return out
 
 
+def model_flexure(pair, level: str) -> dict:
+    """The model's out-of-plane body compliance between the FE's segments (mm/N, along the
+    flank's 3D normal: ToothCompliance.flexure_loads and analytic.gear_body.flexure_green as
+    contact.compliance.PairCompliance.body_coupling applies them), per member: "full" with
+    the load's axial part, "transverse" with it dropped and the read along the normal's
+    transverse part (the FE's axial=False counterpart). Each segment at its middle (its
+    roll is linear along the face); a segment on a neighbouring tooth turned by the FE's
+    own tooth_of."""
+    from toothcontact.analytic.gear_body import flexure_green
+    from toothcontact.contact.compliance import ToothCompliance
+
+    geo = geometry(pair, level)
+    segments = geo.segments
+    line = np.array([s.line for s in segments])
+    z = np.array([0.5 * (s.z0 + s.z1) for s in segments])
+    out = {}
+    for name, gear in (("pinion", pair.pinion), ("gear", pair.gear)):
+        teeth = ToothCompliance(gear, 206000.0, 0.3)
+        flank, rolls, _ = geo.member(name)
+        rho = np.array([float(rolls(s.line, zi)) for s, zi in zip(segments, z)])
+        points, _, n3, _, _ = flank.at(rho)
+        tangential = (points[:, 0] * n3[:, 1] - points[:, 1] * n3[:, 0]) / np.hypot(*points.T)
+        mirror = -1.0 if np.median(tangential) > 0.0 else 1.0   # as PairCompliance._root_loads
+        radius = np.hypot(flank.base, rho)
+        nodes = teeth.flexure_nodes
+        parts = teeth.flexure_loads(radius, z, n3[:, 2]).reshape(len(z), len(nodes), 2, 3)
+        loads = {"full": parts.sum(axis=2).reshape(len(z), -1),
+                 "transverse": parts[:, :, 0].reshape(len(z), -1)}
+        plate = (teeth.bore_radius, teeth.root_radius, teeth.root_half_angle, gear.teeth,
+                 gear.face_width)
+        offsets = {}
+        for r in range(len(segments)):
+            for j in range(len(segments)):
+                if (line[r] - line[j]) % geo.positions == 0:
+                    offsets[r, j] = flank.tooth_of(float(rolls(line[r], 0.0)
+                                                         - rolls(line[j], 0.0)))
+        # the flexure between every node of tooth m and every node of tooth 0
+        greens = {m: np.block([[flexure_green(*plate, mirror * (m * flank.pitch
+                                                               + flank.twist * (a - b)),
+                                              206000.0, 0.3) for b in nodes] for a in nodes])
+                  for m in set(offsets.values())}
+        matrices = {k: np.zeros((len(segments), len(segments))) for k in loads}
+        for (r, j), m in offsets.items():
+            for k, L in loads.items():
+                matrices[k][r, j] = L[r] @ greens[m] @ L[j]
+        out[name] = matrices
+    return out
+
+
+def offset_means(geo, name: str, A: np.ndarray) -> dict:
+    """The mean compliance (µm/kN) between two lines on teeth `offset` pitches apart (the
+    mean normal displacement over one line under a unit load spread evenly over the other,
+    both clipped to the zone), over the line pairs of each offset (0: a line on itself)."""
+    flank, rolls, _ = geo.member(name)
+    line = np.array([s.line for s in geo.segments])
+    width = np.array([s.width for s in geo.segments])
+    by: dict = {}
+    for i in sorted(set(line)):
+        for j in sorted(set(line)):
+            if (i - j) % geo.positions:
+                continue
+            I, J = np.flatnonzero(line == i), np.flatnonzero(line == j)
+            offset = abs(flank.tooth_of(float(rolls(j, 0.0) - rolls(i, 0.0))))
+            by.setdefault(offset, []).append(
+                float(width[I] @ A[np.ix_(I, J)] @ width[J]) / (width[I].sum() * width[J].sum()))
+    return {str(k): 1e6 * float(np.mean(v)) for k, v in sorted(by.items())}
+
+
+def flexure_check(pair, level: str, full: dict, transverse: dict) -> dict:
+    """The load's axial path, FE against the model's: per member and tooth offset, what the
+    load's axial part adds to the compliance between lines (the FE's `level` less its
+    `level`_transverse; the model's body flexure with and without it, model_flexure), and
+    the pair's mesh stiffness with the FE's transverse compliances plus the model's axial
+    increment, beside the FE's with and without the axial part."""
+    geo = geometry(pair, level)
+    model = model_flexure(pair, level)
+    out: dict = {"offsets": {}}
+    swapped = {}
+    for name in MEMBERS:
+        fe = offset_means(geo, name, full[name].matrix - transverse[name].matrix)
+        ours = offset_means(geo, name, model[name]["full"] - model[name]["transverse"])
+        out["offsets"][name] = {k: dict(fe_um_per_kN=fe[k], model_um_per_kN=ours[k])
+                                for k in fe}
+        t = transverse[name]
+        swapped[name] = fh.MemberHelical(
+            t.matrix + model[name]["full"] - model[name]["transverse"], t.depth, t.roll,
+            t.mesh, t.surface)
+    load = normal_load(pair)
+    stiffness = lambda p, g: fh.HelicalPair(geo, p, g).stiffness(load)["mesh_stiffness"]  # noqa: E731
+    out["fe_full"] = stiffness(full["pinion"], full["gear"])
+    out["fe_transverse"] = stiffness(transverse["pinion"], transverse["gear"])
+    out["fe_transverse_model_axial"] = stiffness(swapped["pinion"], swapped["gear"])
+    return out
+
+
 def thread_shares(jobs: list[tuple[str, str]], threads: int) -> dict:
     """BLAS threads per job: one each, the rest of `threads` in proportion to the jobs'
     factor work (WORK)."""
@@ -358,6 +453,14 @@ def table(out: dict) -> None:
               + " ".join(f"{v:5.2f}" for v in model["stiffness"] if v is not None))
         print(f"{'ISO 6336-1 (Method B)':27} {model['iso_mesh_stiffness']:6.2f} "
               f"{model['iso_single_stiffness']:7.2f}")
+    for level, check in out.get("flexure", {}).items():
+        print(f"the load's axial path ({level}): mesh stiffness FE {check['fe_full']:.2f}, "
+              f"FE transverse {check['fe_transverse']:.2f}, FE transverse + the model's "
+              f"axial increment {check['fe_transverse_model_axial']:.2f}; per tooth offset, "
+              "µm/kN (FE, model): " + "; ".join(
+                  f"{name} " + ", ".join(f"{k}: {v['fe_um_per_kN']:.3f} {v['model_um_per_kN']:.3f}"
+                                         for k, v in offsets.items())
+                  for name, offsets in check["offsets"].items()))
     ps = out.get("plane_strain")
     if ps:
         for name, v in ps.items():
@@ -381,6 +484,10 @@ def main() -> None:
     ap.add_argument("--body-coupling", nargs="*", default=[], choices=list(LEVELS),
                     help="the bodies' coupling of different teeth, FE against the model's, "
                          "on these levels' cached members (body_coupling_check)")
+    ap.add_argument("--flexure", nargs="*", default=[], choices=list(LEVELS),
+                    help="the load's axial path, FE against the model's body flexure, on "
+                         "these levels' cached members and their _transverse variants "
+                         "(flexure_check)")
     ap.add_argument("--plane-strain", action="store_true",
                     help="the sections' plane-strain convergence too")
     ap.add_argument("--member", choices=MEMBERS, help=argparse.SUPPRESS)
@@ -408,7 +515,7 @@ def main() -> None:
         out["fe"] = {k: v for k, v in old.get("fe", {}).items() if k not in args.levels}
         out["levels"] = {**{k: LEVELS.get(k, v) for k, v in old.get("levels", {}).items()},
                          **out["levels"]}
-        kept = ("model", "plane_strain", "body_coupling", "body_coupling_note",
+        kept = ("model", "plane_strain", "body_coupling", "body_coupling_note", "flexure",
                 "transverse_levels_machine")
         for key in kept + ("machine", "seconds") if not args.levels else kept:
             if key in old:
@@ -453,6 +560,10 @@ def main() -> None:
     for level in args.body_coupling:
         members = {name: load_member(args.cache, name, level) for name in MEMBERS}
         out.setdefault("body_coupling", {})[level] = body_coupling_check(pair, level, members)
+    for level in args.flexure:
+        full, transverse = ({name: load_member(args.cache, name, lv) for name in MEMBERS}
+                            for lv in (level, f"{level}_transverse"))
+        out.setdefault("flexure", {})[level] = flexure_check(pair, level, full, transverse)
     write()
     if args.npz:
         arrays = {}

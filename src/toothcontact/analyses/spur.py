@@ -300,7 +300,9 @@ def _loaded_pass(case: schema.SpurCase, pair, result: Result,
                      "(contact.compliance), solved with the contact in one system; the teeth of "
                      "different pairs coupled through the " + ("pinion's body" if pair.gear.internal
                                                                 else "gear bodies")
-                     + " (a rim held at that bore, in plane stress over the face: "
+                     + " (a rim held at that bore, as thick as the face: in plane stress, "
+                     "and bending out of its plane as a Mindlin plate under the loads' axial "
+                     "part and their face positions, the tooth's own chord too: "
                      "analytic.gear_body)", result)
     return mesh, cycle
 

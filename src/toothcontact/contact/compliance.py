@@ -103,7 +103,7 @@ from dataclasses import dataclass
 import numpy as np
 from scipy.integrate import cumulative_trapezoid
 
-from ..analytic.gear_body import chord_green
+from ..analytic.gear_body import chord_green, flexure_green
 from ..analytic.stiffness import foundation_compliance
 
 #: the shear correction factor of a rectangular section (Chaari et al. 2009, eq (3))
@@ -317,6 +317,49 @@ class ToothCompliance:
         x, y, d = self._on_flank(radii)
         moment = (x - self.root_radius) * d[:, 1] - y * d[:, 0]
         return radii, np.column_stack([d[:, 0], d[:, 1], moment])
+
+    @functools.cached_property
+    def flexure_nodes(self) -> np.ndarray:
+        """The face positions (mm from mid-face) of the nodes at which a tooth's root hands
+        its load to the body's flexure (gear_body.flexure_green), a cell's load shared
+        between its two nodes by hat functions (so that the body's move is continuous along
+        the face): a helical tooth's root chord turns along the face, so the nodes are as
+        far apart as it turns by half the chord's half angle, both face ends among them (a
+        spur tooth: one node at mid-face)."""
+        face = self.gear.face_width
+        spans = math.ceil(abs(self.gear.twist_per_length) * face / (0.5 * self.root_half_angle))
+        return np.zeros(1) if spans == 0 else np.linspace(-0.5 * face, 0.5 * face, spans + 1)
+
+    def flexure_loads(self, radius, z, axial) -> np.ndarray:
+        """(n, 6 per flexure node): a unit load along the flank's 3D normal into the tooth at
+        each of the n radii (mm) and face positions z (mm from mid-face), of axial part
+        `axial` (along the gear's axis), as the tooth's root chord hands it to the body's
+        flexure: the axial force, the moment about the rim's tangent z·F_r - (x - r_f)·F_z
+        and about its radius z·F_t - y·F_z (N·mm; (x, y) the load point in the tooth's
+        frame of root_loads, r_f the root radius), shared between the columns of the cell's
+        two flexure nodes (hat functions along the face), at each node first the transverse
+        part's (F_z = 0), then the axial part's (PairCompliance.body_coupling leaves the
+        transverse part out on the tooth's own chord, where the slices' finite-element
+        correction already holds the body's flexure under it)."""
+        radius = np.atleast_1d(np.asarray(radius, float))
+        z = np.broadcast_to(np.asarray(z, float), radius.shape)
+        axial = np.broadcast_to(np.asarray(axial, float), radius.shape)
+        x, y, d = self._on_flank(radius)
+        transverse = np.sqrt(np.maximum(1.0 - axial ** 2, 0.0))
+        zero = np.zeros_like(axial)
+        loads = np.column_stack([zero, z * d[:, 0] * transverse, z * d[:, 1] * transverse,
+                                 axial, -(x - self.root_radius) * axial, -y * axial])
+        nodes = self.flexure_nodes
+        out = np.zeros((len(radius), 6 * len(nodes)))
+        if len(nodes) == 1:
+            out[:] = loads
+            return out
+        rows = np.arange(len(radius))
+        left, share = hats(nodes, z)
+        for k in range(6):
+            out[rows, 6 * left + k] = (1.0 - share) * loads[:, k]
+            out[rows, 6 * left + 6 + k] = share * loads[:, k]
+        return out
 
     @functools.cached_property
     def roll_sense(self) -> float:
@@ -543,13 +586,16 @@ class MemberLoading:
 
     def __init__(self, z: np.ndarray, radius: np.ndarray, share: np.ndarray, extent: float,
                  radii: np.ndarray, matrix: np.ndarray, coupling: FaceCoupling,
-                 root: np.ndarray | None = None):
+                 root: np.ndarray | None = None, turn: float = 0.0):
         self.z, self.radius, self.share, self.extent = z, radius, share, extent
         self.radii, self.matrix, self.coupling = radii, matrix, coupling
-        #: (cells, 3): a cell's load as its tooth's root chord hands it to the gear body
-        #: (ToothCompliance.root_loads, times sqrt(share)); None where the body's coupling
-        #: of the teeth is left out
-        self.root = None if root is None else root * np.sqrt(share)[:, None]
+        #: (cells, 3 + 6 per flexure node): a unit normal load at each cell as its tooth's
+        #: root chord hands it to the gear body, in plane (ToothCompliance.root_loads) and
+        #: out of it (flexure_loads); None where the body's coupling of the teeth is left out
+        self.root = root
+        #: the turn of the tooth's root chord along the face (rad/mm, counter-clockwise in
+        #: the tooth's frame of root_loads): where each flexure node meets the rim
+        self.turn = turn
         across, across_share = hats(radii, radius)
         along, along_share = hats(coupling.nodes, z)
         first = int(across.min())                   # the radial nodes in use: first, first + 1...
@@ -603,13 +649,14 @@ class StructureOperator:
         self._gather, self._spread = gather, gather.T
         self._split = np.cumsum(sizes)[:-1]
         if body is None and any(m.root is not None for m in members):
-            body = np.zeros((int(np.prod(shape)), 3 * len(members)))
+            width = max(m.root.shape[1] for m in members if m.root is not None)
+            body = np.zeros((int(np.prod(shape)), width * len(members)))
             for i, m in enumerate(members):
                 if m.root is not None:
-                    body[self.active, 3 * i:3 * i + 3] = m.root
-        #: the cells' loads as the teeth's root chords take them ((cells, 3 per member),
-        #: dense: see MemberLoading.root): the gear bodies' coupling of different
-        #: contacts (PairCompliance.body_coupling); None without it
+                    body[self.active, width * i:width * i + m.root.shape[1]] = m.root
+        #: the cells' loads as the teeth's root chords take them ((cells, R per member),
+        #: dense: see MemberLoading.root): the gear bodies' coupling of the contacts
+        #: (PairCompliance.body_coupling); None without it
         self.body = body
 
     def window(self, rows: slice, cols: slice) -> StructureOperator:
@@ -640,13 +687,16 @@ class StructureOperator:
         return (self._gather @ deflections).reshape(self.shape)
 
     def root_resultants(self, p: np.ndarray) -> np.ndarray:
-        """(members, 3): the loads the pressure p (MPa) on the grid hands each member's
-        gear body at its tooth's root chord (N: radial, tangential; N·mm: moment)."""
-        return (np.asarray(p, float).ravel() @ self.body * self.cell).reshape(-1, 3)
+        """(members, R): the loads the pressure p (MPa) on the grid hands each member's
+        gear body at its tooth's root chord (N: radial, tangential; N·mm: moment; then per
+        flexure node and part N: axial, N·mm: the moments; see MemberLoading.root)."""
+        return (np.asarray(p, float).ravel() @ self.body * self.cell).reshape(
+            len(self.members), -1)
 
     def root_deflection(self, moves: np.ndarray) -> np.ndarray:
         """The grid's deflection (mm along the contact normal) where each member's tooth
-        root chord moves by `moves` ((members, 3): mm, mm, rad) as a rigid body."""
+        root chord moves by `moves` ((members, R): mm, mm, rad in plane; mm, rad, rad per
+        flexure node and part) as a rigid body."""
         return (self.body @ np.asarray(moves, float).ravel()).reshape(self.shape)
 
     def face_loads(self) -> tuple[FaceLoad, ...]:
@@ -749,29 +799,53 @@ class PairCompliance:
             nodes = (MOST_NODES if coupling_length == 0.0 else
                      int(np.clip(math.ceil((end - start) / spacing) + 1, FEWEST_NODES,
                                  MOST_NODES)))
+            root, turn = self._root_loads(teeth, flank, u, v, radius, face, share) \
+                if self.bodies[name] else (None, 0.0)
             members.append(MemberLoading(face, radius, share, _extent(field, face),
                                          teeth.radii, teeth.matrix,
                                          FaceCoupling(start, end, coupling_length, nodes, layer),
-                                         teeth.root_loads(radius) if self.bodies[name] else None))
+                                         root, turn))
             reference.append((round(depth, 3), teeth.E, teeth.nu))
         dx, dy = field.spacing
         return StructureOperator(members, material.shape, dx * dy, material, tuple(reference))
 
 
+    @staticmethod
+    def _root_loads(teeth: ToothCompliance, flank, u, v, radius, face, share
+                    ) -> tuple[np.ndarray, float]:
+        """The cells' unit normal loads as their tooth's root chord hands them to the gear
+        body (MemberLoading.root: in plane, then out of plane) and the chord's turn along
+        the face (rad/mm) in the tooth's frame of root_loads, from the flank's own normals
+        (the load into the tooth: its axial part, and the side of the tooth it is on: that
+        frame has the loaded flank counter-clockwise of the centre line, a mirror image of
+        the gear where the flank is clockwise of it)."""
+        sample = flank.evaluate(u, v, order=1)
+        load = -sample.normals                                  # into the tooth
+        x, y = sample.points[:, 0], sample.points[:, 1]
+        tangential = (x * load[:, 1] - y * load[:, 0]) / np.hypot(x, y)
+        mirror = -1.0 if np.median(tangential) > 0.0 else 1.0
+        root = np.hstack([teeth.root_loads(radius) * np.sqrt(share)[:, None],
+                          teeth.flexure_loads(radius, face, load[:, 2])])
+        return root, mirror * teeth.gear.twist_per_length
+
     def body_coupling(self, structures: list[StructureOperator], pairs: list[int]
                       ) -> np.ndarray | None:
         """The gear bodies' coupling of the contacts of one position (their grids'
         `structures`, the tooth pair of each, as the cycle's rows number them): C[k, l, i]
-        (3 × 3) turns the root loads member i's tooth takes from contact l
+        (R × R) turns the root loads member i's tooth takes from contact l
         (StructureOperator.root_resultants) into the moves of its tooth at contact k (mm,
-        rad: root_deflection), gear_body.chord_green over the face width (the rim in
-        generalized plane stress); zero for k = l (a tooth's own body is in its slice
-        compliance). None where no member couples or one contact is alone."""
+        rad: root_deflection). In plane gear_body.chord_green over the face width (the rim
+        in generalized plane stress), zero for k = l (a tooth's own body is in its slice
+        compliance); out of plane gear_body.flexure_green between the teeth's flexure
+        nodes, on its own tooth under the load's axial part only (the slices' finite-
+        element correction, fitted on whole gears under loads along the face, holds the
+        body's flexure under the transverse part). None where no member couples."""
         names = [name for name, on in self.bodies.items() if on]
-        if not names or len(structures) < 2 or len(set(pairs)) < 2:
+        if not names:
             return None
         K = len(structures)
-        C = np.zeros((K, K, len(self.members), 3, 3))
+        width = structures[0].body.shape[1] // len(self.members)
+        C = np.zeros((K, K, len(self.members), width, width))
         for i, (name, teeth) in enumerate(self.members.items()):
             if not self.bodies[name]:
                 continue
@@ -779,18 +853,29 @@ class PairCompliance:
             rolls = [float(np.mean(np.sqrt(np.maximum(s.members[i].radius ** 2 - rb ** 2,
                                                         0.0)))) for s in structures]
             gear = teeth.gear
+            nodes = teeth.flexure_nodes
+            turn = structures[0].members[i].turn
+            plate = (teeth.bore_radius, teeth.root_radius, teeth.root_half_angle, gear.teeth,
+                     gear.face_width)
             for k in range(K):
                 for l in range(K):
-                    if pairs[k] == pairs[l]:
-                        continue
                     # tooth k's place from tooth l (pitches, counter-clockwise in the
                     # tooth's frame): the one whose contact lies further along the path
                     # is the neighbour of roll_sense
                     place = (teeth.roll_sense * math.copysign(1.0, rolls[k] - rolls[l])
                              * abs(pairs[k] - pairs[l]))
-                    C[k, l, i] = chord_green(
-                        teeth.bore_radius, teeth.root_radius, teeth.root_half_angle,
-                        gear.teeth, int(place), teeth.E, teeth.nu) / gear.face_width
+                    if pairs[k] != pairs[l]:
+                        C[k, l, i, :3, :3] = chord_green(
+                            teeth.bore_radius, teeth.root_radius, teeth.root_half_angle,
+                            gear.teeth, int(place), teeth.E, teeth.nu) / gear.face_width
+                    for a, z_a in enumerate(nodes):
+                        for b, z_b in enumerate(nodes):
+                            angle = 2.0 * math.pi * place / gear.teeth + turn * (z_a - z_b)
+                            G = flexure_green(*plate, angle, teeth.E, teeth.nu)
+                            # each slice's transverse part, then its axial part
+                            block = np.block([[0.0 * G if pairs[k] == pairs[l] else G, G],
+                                              [G, G]])
+                            C[k, l, i, 3 + 6 * a:9 + 6 * a, 3 + 6 * b:9 + 6 * b] = block
         return C
 
 
