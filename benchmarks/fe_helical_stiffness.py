@@ -309,9 +309,11 @@ def model_flexure(pair, level: str) -> dict:
         mirror = -1.0 if np.median(tangential) > 0.0 else 1.0   # as PairCompliance._root_loads
         radius = np.hypot(flank.base, rho)
         nodes = teeth.flexure_nodes
-        parts = teeth.flexure_loads(radius, z, n3[:, 2]).reshape(len(z), len(nodes), 2, 3)
-        loads = {"full": parts.sum(axis=2).reshape(len(z), -1),
-                 "transverse": parts[:, :, 0].reshape(len(z), -1)}
+        parts = teeth.flexure_loads(radius, z, n3[:, 2]).reshape(len(z), len(nodes), -1)
+        # per node the loads on (w, ψ_r, ψ_θ): the transverse part's moments, the axial part's
+        transverse = np.concatenate([np.zeros(parts.shape[:2] + (1,)), parts[..., :2]], axis=-1)
+        loads = {"full": (transverse + parts[..., 2:]).reshape(len(z), -1),
+                 "transverse": transverse.reshape(len(z), -1)}
         plate = (teeth.bore_radius, teeth.root_radius, teeth.root_half_angle, gear.teeth,
                  gear.face_width)
         offsets = {}
@@ -321,9 +323,10 @@ def model_flexure(pair, level: str) -> dict:
                     offsets[r, j] = flank.tooth_of(float(rolls(line[r], 0.0)
                                                          - rolls(line[j], 0.0)))
         # the flexure between every node of tooth m and every node of tooth 0
-        greens = {m: np.block([[flexure_green(*plate, mirror * (m * flank.pitch
-                                                               + flank.twist * (a - b)),
-                                              206000.0, 0.3) for b in nodes] for a in nodes])
+        size = 3 * len(nodes)
+        greens = {m: flexure_green(*plate, mirror * (m * flank.pitch + flank.twist
+                                                     * (nodes[:, None] - nodes[None, :])),
+                                   206000.0, 0.3).transpose(0, 2, 1, 3).reshape(size, size)
                   for m in set(offsets.values())}
         matrices = {k: np.zeros((len(segments), len(segments))) for k in loads}
         for (r, j), m in offsets.items():

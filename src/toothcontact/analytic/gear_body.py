@@ -35,8 +35,8 @@ and its radius over each root chord; the harmonics by Chebyshev collocation of t
 three equations, checked against the thin (Kirchhoff) plate and the closed-form shear of
 its n = 0 mode. Against the 3D FE of tests/fe_pair_helical.py the load's axial part moves
 the lines on the teeth one and two pitches away 0.073/0.098 µm/kN (pinion; FE 0.064, 0.099)
-and 0.418/0.494 (gear; FE 0.386, 0.477) (tests/test_gear_body.py); the tooth's own
-out-of-plane deformation under it is not in the plate (a line on itself: 0.093 and 0.434
+and 0.418/0.493 (gear; FE 0.386, 0.477) (tests/test_gear_body.py); the tooth's own
+out-of-plane deformation under it is not in the plate (a line on itself: 0.092 and 0.433
 against the FE's 0.218 and 0.528).
 
 Units: mm, N, MPa; compliance per unit thickness (mm per N/mm) in plane, mm/N (and rad per
@@ -231,24 +231,26 @@ def _flexure_series(bore: float, rim: float, half_angle: float, teeth: int,
 
 
 def flexure_green(bore: float, rim: float, half_angle: float, teeth: int, thickness: float,
-                  angle: float, E: float, nu: float) -> np.ndarray:
-    """The body's out-of-plane compliance between two root chords (3 × 3): [i, j] the
-    chord's mean motion of kind i (w: axial displacement, mm; ψ_r: rotation about the rim's
-    tangent, rad, the radial displacement z·ψ_r at face position z; ψ_θ: rotation about the
-    radius, rad, the tangential displacement z·ψ_θ) of a chord `angle` rad counter-clockwise
-    of a chord loaded by a unit resultant of kind j (the axial force, N; the moments, N·mm,
-    work-conjugate to ψ_r and ψ_θ), each spread evenly over its chord. The annulus between
-    `bore` (held) and `rim` (mm) as a Mindlin plate `thickness` mm thick (the face width);
-    half_angle: the half angle a root chord subtends (rad); a gear of `teeth` teeth for the
-    series' length; E (MPa), nu. flexure_green(-angle) is flexure_green(angle) transposed.
+                  angle, E: float, nu: float) -> np.ndarray:
+    """The body's out-of-plane compliance between two root chords ((..., 3, 3) for an
+    array of angles): [i, j] the chord's mean motion of kind i (w: axial displacement, mm;
+    ψ_r: rotation about the rim's tangent, rad, the radial displacement z·ψ_r at face
+    position z; ψ_θ: rotation about the radius, rad, the tangential displacement z·ψ_θ) of a
+    chord `angle` rad counter-clockwise of a chord loaded by a unit resultant of kind j (the
+    axial force, N; the moments, N·mm, work-conjugate to ψ_r and ψ_θ), each spread evenly
+    over its chord. The annulus between `bore` (held) and `rim` (mm) as a Mindlin plate
+    `thickness` mm thick (the face width); half_angle: the half angle a root chord subtends
+    (rad); a gear of `teeth` teeth for the series' length; E (MPa), nu.
+    flexure_green(-angle) is flexure_green(angle) transposed.
 
     A load family Q, M_r = cos nθ gives w, ψ_r ∝ cos nθ and ψ_θ ∝ sin nθ; the twisting
     moment's cos nθ the same turned a quarter period: w, ψ_r ∝ -sin nθ, ψ_θ ∝ cos nθ."""
     n, H = _flexure_series(bore, rim, half_angle, teeth, thickness, E, nu)
-    c, s = np.cos(n * angle), np.sin(n * angle)
-    out = np.empty((3, 3))
-    out[:2, :2] = np.einsum("nij,n->ij", H[:, :2, :2], c)
-    out[2, :2] = s @ H[:, 2, :2]
-    out[:2, 2] = -(s @ H[:, :2, 2])
-    out[2, 2] = c @ H[:, 2, 2]
+    angle = np.asarray(angle, float)
+    c, s = np.cos(angle[..., None] * n), np.sin(angle[..., None] * n)
+    out = np.empty(angle.shape + (3, 3))
+    out[..., :2, :2] = np.einsum("nij,...n->...ij", H[:, :2, :2], c)
+    out[..., 2, :2] = s @ H[:, 2, :2]
+    out[..., :2, 2] = -(s @ H[:, :2, 2])
+    out[..., 2, 2] = c @ H[:, 2, 2]
     return out
