@@ -347,8 +347,10 @@ def _edge_verdicts(cycle, rows: list[dict], summary: dict, result: Result) -> No
            + ("on the rounded edge" if worst_corner["corner_at"] in rounded
               else f"averaged over {EDGE_STRIP} mm")
            + f" ({worst_corner['corner_at']}) carrying {worst_corner['corner_load_N']:.0f} N "
-           f"at roll {worst_corner['roll_deg']:.2f} deg pair {worst_corner['pair']}, the "
-           f"flank's peak there {worst_corner['flank_p_max_MPa']:.0f} MPa; "
+           f"at roll {worst_corner['roll_deg']:.2f} deg pair {worst_corner['pair']}, "
+           + (f"the flank's peak there {worst_corner['flank_p_max_MPa']:.0f} MPa; "
+              if worst_corner["flank_p_max_MPa"] > 0.0 else
+              "a contact wholly on the edge (none of it on the flank); ")
            + ("a larger rounding or a chamfer of the tip edge, or a hob oversize that keeps "
               "the pattern off it, relieves it" if breaks.curved else
               "tip relief removes it (summary recommended_tip_relief where the kind gives "
