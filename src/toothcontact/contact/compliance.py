@@ -631,7 +631,7 @@ class StructureOperator:
     the half-space's influence."""
 
     def __init__(self, members: list[MemberLoading], shape: tuple[int, int], cell: float,
-                 active: np.ndarray, reference: tuple, gather=None, body=None):
+                 active: np.ndarray, reference: tuple, gather=None, roots=None):
         from scipy.sparse import csr_matrix
 
         self.members, self.shape, self.cell = members, shape, cell
@@ -655,18 +655,16 @@ class StructureOperator:
                                 shape=(len(counts) - 1, sum(sizes)))
         self._gather, self._spread = gather, gather.T
         self._split = np.cumsum(sizes)[:-1]
-        if body is None and any(m.root is not None for m in members):
+        if roots is None and any(m.root is not None for m in members):
             width = max(m.root.shape[1] for m in members if m.root is not None)
             roots = np.zeros((len(self.active), width * len(members)))
             for i, m in enumerate(members):
                 if m.root is not None:
                     roots[:, width * i:width * i + m.root.shape[1]] = m.root
-            body = np.zeros((int(np.prod(shape)), width * len(members)))
-            body[self.active] = roots
-        #: the cells' loads as the teeth's root chords take them ((cells, R per member),
-        #: dense: see MemberLoading.root): the gear bodies' coupling of the contacts
-        #: (PairCompliance.body_coupling); None without it
-        self.body = body
+        #: the material cells' loads as the teeth's root chords take them ((active cells,
+        #: R per member), dense: see MemberLoading.root): the gear bodies' coupling of the
+        #: contacts (PairCompliance.body_coupling); None without it
+        self.roots = roots
 
     def window(self, rows: slice, cols: slice) -> StructureOperator:
         """The operator on the part [rows, cols] of the grid (for loads there alone)."""
@@ -683,11 +681,12 @@ class StructureOperator:
         """The operator on the grid's cells [index], of area `cell` (mm²): the grid's own
         node weights there."""
         cells = np.arange(self.shape[0] * self.shape[1]).reshape(self.shape)[index]
-        active = np.zeros(self.shape[0] * self.shape[1], bool)
-        active[self.active] = True
-        return StructureOperator(self.members, cells.shape, cell, active[cells],
+        row = np.full(self.shape[0] * self.shape[1], -1)       # each material cell's root row
+        row[self.active] = np.arange(len(self.active))
+        rows = row[cells.ravel()]
+        return StructureOperator(self.members, cells.shape, cell, (rows >= 0).reshape(cells.shape),
                                  self.reference, self._gather[cells.ravel()],
-                                 None if self.body is None else self.body[cells.ravel()])
+                                 None if self.roots is None else self.roots[rows[rows >= 0]])
 
     def __call__(self, p: np.ndarray) -> np.ndarray:
         loads = self._spread @ (np.asarray(p, float).ravel() * self.cell)
@@ -699,14 +698,16 @@ class StructureOperator:
         """(members, R): the loads the pressure p (MPa) on the grid hands each member's
         gear body at its tooth's root chord (N: radial, tangential; N·mm: moment; then per
         flexure node and part N: axial, N·mm: the moments; see MemberLoading.root)."""
-        return (np.asarray(p, float).ravel() @ self.body * self.cell).reshape(
+        return (np.asarray(p, float).ravel()[self.active] @ self.roots * self.cell).reshape(
             len(self.members), -1)
 
     def root_deflection(self, moves: np.ndarray) -> np.ndarray:
         """The grid's deflection (mm along the contact normal) where each member's tooth
         root chord moves by `moves` ((members, R): mm, mm, rad in plane; mm, rad, rad per
         flexure node and part) as a rigid body."""
-        return (self.body @ np.asarray(moves, float).ravel()).reshape(self.shape)
+        out = np.zeros(self.shape[0] * self.shape[1])
+        out[self.active] = self.roots @ np.asarray(moves, float).ravel()
+        return out.reshape(self.shape)
 
     def face_loads(self) -> tuple[FaceLoad, ...]:
         """Where the grid's cells sit along each member's face and at what load radius (the
@@ -856,7 +857,7 @@ class PairCompliance:
         if not names:
             return None
         K = len(structures)
-        width = structures[0].body.shape[1] // len(self.members)
+        width = structures[0].roots.shape[1] // len(self.members)
         C = np.zeros((K, K, len(self.members), width, width))
         for i, (name, teeth) in enumerate(self.members.items()):
             if not self.bodies[name]:
