@@ -596,9 +596,10 @@ class MemberLoading:
                  root: np.ndarray | None = None, turn: float = 0.0):
         self.z, self.radius, self.share, self.extent = z, radius, share, extent
         self.radii, self.matrix, self.coupling = radii, matrix, coupling
-        #: (cells, 3 + FLEXURE_PER_NODE per flexure node): a unit normal load at each cell as its tooth's
-        #: root chord hands it to the gear body, in plane (ToothCompliance.root_loads) and
-        #: out of it (flexure_loads); None where the body's coupling of the teeth is left out
+        #: (cells, 3 + FLEXURE_PER_NODE per flexure node): a unit normal load at each
+        #: cell as its tooth's root chord hands it to the gear body, in plane
+        #: (ToothCompliance.root_loads) and out of it (flexure_loads); None where the
+        #: body's coupling of the teeth is left out
         self.root = root
         #: the turn of the tooth's root chord along the face (rad/mm, counter-clockwise in
         #: the tooth's frame of root_loads): where each flexure node meets the rim
@@ -684,8 +685,9 @@ class StructureOperator:
         row = np.full(self.shape[0] * self.shape[1], -1)       # each material cell's root row
         row[self.active] = np.arange(len(self.active))
         rows = row[cells.ravel()]
-        return StructureOperator(self.members, cells.shape, cell, (rows >= 0).reshape(cells.shape),
-                                 self.reference, self._gather[cells.ravel()],
+        return StructureOperator(self.members, cells.shape, cell,
+                                 (rows >= 0).reshape(cells.shape), self.reference,
+                                 self._gather[cells.ravel()],
                                  None if self.roots is None else self.roots[rows[rows >= 0]])
 
     def __call__(self, p: np.ndarray) -> np.ndarray:
@@ -818,7 +820,6 @@ class PairCompliance:
             reference.append((round(depth, 3), teeth.E, teeth.nu))
         dx, dy = field.spacing
         return StructureOperator(members, material.shape, dx * dy, material, tuple(reference))
-
 
     @staticmethod
     def _root_loads(teeth: ToothCompliance, flank, u, v, radius, face, share
