@@ -238,41 +238,28 @@ def body_coupling_check(pair, level: str, members: dict) -> dict:
     from toothcontact.contact.compliance import ToothCompliance
 
     geo = geometry(pair, level)
-    segments = geo.segments
-    line = np.array([s.line for s in segments])
-    width = np.array([s.width for s in segments])
+    width = np.array([s.width for s in geo.segments])
     out: dict = {"offsets": {}}
     swapped = {}
     for name, gear in (("pinion", pair.pinion), ("gear", pair.gear)):
         teeth = ToothCompliance(gear, 206000.0, 0.3)
-        flank, rolls, _ = geo.member(name)
         m = members[name]
         A = m.matrix.copy()
         share = math.cos(gear.base_helix_angle) ** 2 / geo.face
-        fe_by, model_by = {}, {}
-        for i in sorted(set(line)):
-            for j in sorted(set(line)):
-                if i == j or (i - j) % geo.positions:
-                    continue
-                I, J = np.flatnonzero(line == i), np.flatnonzero(line == j)
-                roll_i = float(width[I] @ m.roll[I] / width[I].sum())
-                roll_j = float(width[J] @ m.roll[J] / width[J].sum())
-                offset = abs(flank.tooth_of(float(rolls(j, 0.0) - rolls(i, 0.0))))
-                place = int(teeth.roll_sense * np.sign(roll_j - roll_i)) * offset
-                g_i, g_j = (teeth.root_loads([math.hypot(gear.base_radius, r)])[0]
-                            for r in (roll_i, roll_j))
-                model = float(g_i @ chord_green(teeth.bore_radius, teeth.root_radius,
-                                                teeth.root_half_angle, gear.teeth, -place,
-                                                teeth.E, teeth.nu) @ g_j) * share
-                fe = float(width[I] @ A[np.ix_(I, J)] @ width[J]) / (width[I].sum()
-                                                                    * width[J].sum())
-                fe_by.setdefault(offset, []).append(fe)
-                model_by.setdefault(offset, []).append(model)
-                A[np.ix_(I, J)] = model
-        out["offsets"][name] = {str(k): dict(fe_um_per_kN=1e6 * float(np.mean(fe_by[k])),
-                                             model_um_per_kN=1e6 * float(np.mean(model_by[k])),
-                                             line_pairs=len(fe_by[k]))
-                                for k in sorted(fe_by)}
+        pairs = [(I, J, offset) for I, J, offset in line_pairs(geo, name) if offset]
+        for I, J, offset in pairs:
+            roll_i = float(width[I] @ m.roll[I] / width[I].sum())
+            roll_j = float(width[J] @ m.roll[J] / width[J].sum())
+            place = int(teeth.roll_sense * np.sign(roll_j - roll_i)) * offset
+            g_i, g_j = (teeth.root_loads([math.hypot(gear.base_radius, r)])[0]
+                        for r in (roll_i, roll_j))
+            A[np.ix_(I, J)] = float(g_i @ chord_green(
+                teeth.bore_radius, teeth.root_radius, teeth.root_half_angle, gear.teeth,
+                -place, teeth.E, teeth.nu) @ g_j) * share
+        fe, model = offset_means(geo, name, m.matrix), offset_means(geo, name, A)
+        count = {str(k): sum(o == k for _, _, o in pairs) for k in {o for _, _, o in pairs}}
+        out["offsets"][name] = {k: dict(fe_um_per_kN=fe[k], model_um_per_kN=model[k],
+                                        line_pairs=count[k]) for k in sorted(count)}
         swapped[name] = fh.MemberHelical(A, m.depth, m.roll, m.mesh, m.surface)
     load = normal_load(pair)
     out["fe_coupled"] = fh.HelicalPair(geo, members["pinion"], members["gear"]).stiffness(
@@ -336,22 +323,28 @@ def model_flexure(pair, level: str) -> dict:
     return out
 
 
+def line_pairs(geo, name: str):
+    """The pairs of contact lines that carry load together (the same position), as the
+    segments of each (I, J: index arrays) and how many pitches apart their teeth are on
+    member `name` (0: a line with itself)."""
+    flank, rolls, _ = geo.member(name)
+    line = np.array([s.line for s in geo.segments])
+    for i in sorted(set(line)):
+        for j in sorted(set(line)):
+            if (i - j) % geo.positions == 0:
+                yield (np.flatnonzero(line == i), np.flatnonzero(line == j),
+                       abs(flank.tooth_of(float(rolls(j, 0.0) - rolls(i, 0.0)))))
+
+
 def offset_means(geo, name: str, A: np.ndarray) -> dict:
     """The mean compliance (µm/kN) between two lines on teeth `offset` pitches apart (the
     mean normal displacement over one line under a unit load spread evenly over the other,
     both clipped to the zone), over the line pairs of each offset (0: a line on itself)."""
-    flank, rolls, _ = geo.member(name)
-    line = np.array([s.line for s in geo.segments])
     width = np.array([s.width for s in geo.segments])
     by: dict = {}
-    for i in sorted(set(line)):
-        for j in sorted(set(line)):
-            if (i - j) % geo.positions:
-                continue
-            I, J = np.flatnonzero(line == i), np.flatnonzero(line == j)
-            offset = abs(flank.tooth_of(float(rolls(j, 0.0) - rolls(i, 0.0))))
-            by.setdefault(offset, []).append(
-                float(width[I] @ A[np.ix_(I, J)] @ width[J]) / (width[I].sum() * width[J].sum()))
+    for I, J, offset in line_pairs(geo, name):
+        by.setdefault(offset, []).append(
+            float(width[I] @ A[np.ix_(I, J)] @ width[J]) / (width[I].sum() * width[J].sum()))
     return {str(k): 1e6 * float(np.mean(v)) for k, v in sorted(by.items())}
 
 
