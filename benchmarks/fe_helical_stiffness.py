@@ -272,13 +272,15 @@ def body_coupling_check(pair, level: str, members: dict) -> dict:
 
 
 def model_flexure(pair, level: str) -> dict:
-    """The model's out-of-plane body compliance between the FE's segments (mm/N, along the
-    flank's 3D normal: ToothCompliance.flexure_loads and analytic.gear_body.flexure_green as
-    contact.compliance.PairCompliance.body_coupling applies them), per member: "full" with
-    the load's axial part, "transverse" with it dropped and the read along the normal's
-    transverse part (the FE's axial=False counterpart). Each segment at its middle (its
-    roll is linear along the face); a segment on a neighbouring tooth turned by the FE's
-    own tooth_of."""
+    """The model's out-of-plane compliance between the FE's segments (mm/N, along the
+    flank's 3D normal), per member: the body's flexure (ToothCompliance.flexure_loads and
+    analytic.gear_body.flexure_green as contact.compliance.PairCompliance.body_coupling
+    applies them) and, between segments on one tooth, the tooth's wall under the load's
+    axial part (ToothCompliance.wall, as contact.compliance.MemberLoading applies it):
+    "full" with the load's axial part, "transverse" with it dropped and the read along the
+    normal's transverse part (the FE's axial=False counterpart). Each segment at its
+    middle (its roll is linear along the face); a segment on a neighbouring tooth turned
+    by the FE's own tooth_of."""
     from toothcontact.analytic.gear_body import flexure_green
     from toothcontact.contact.compliance import ToothCompliance
 
@@ -315,10 +317,18 @@ def model_flexure(pair, level: str) -> dict:
                                                      * (nodes[:, None] - nodes[None, :])),
                                    206000.0, 0.3).transpose(0, 2, 1, 3).reshape(size, size)
                   for m in set(offsets.values())}
+        # the wall's: each segment's axial part spread to its nodes
+        wall = teeth.wall
+        nodes_w, weights_w = wall.spread(teeth.wall_heights(radius), z)
+        spread = np.zeros((len(z), len(wall.matrix)))
+        np.add.at(spread, (np.arange(len(z))[:, None], nodes_w), weights_w * n3[:, 2:3])
+        own = spread @ wall.matrix @ spread.T
         matrices = {k: np.zeros((len(segments), len(segments))) for k in loads}
         for (r, j), m in offsets.items():
             for k, L in loads.items():
                 matrices[k][r, j] = L[r] @ greens[m] @ L[j]
+            if m == 0:
+                matrices["full"][r, j] += own[r, j]
         out[name] = matrices
     return out
 

@@ -303,7 +303,12 @@ def _loaded_pass(case: schema.SpurCase, pair, result: Result,
                      + " (a rim held at that bore, as thick as the face: in plane stress, "
                      "and bending out of its plane as a Mindlin plate under the loads' axial "
                      "part and their face positions, the tooth's own chord too: "
-                     "analytic.gear_body)", result)
+                     "analytic.gear_body)" + ("; each helical tooth shearing along its face as "
+                                              "a wall under its loads' axial part (plane "
+                                              "stress, held at the root circle: "
+                                              "analytic.tooth_wall)"
+                                              if pair.pinion.twist_per_length else ""),
+                     result)
     return mesh, cycle
 
 

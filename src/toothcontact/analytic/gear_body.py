@@ -36,8 +36,8 @@ three equations, checked against the thin (Kirchhoff) plate and the closed-form 
 its n = 0 mode. Against the 3D FE of tests/fe_pair_helical.py the load's axial part moves
 the lines on the teeth one and two pitches away 0.073/0.098 µm/kN (pinion; FE 0.064, 0.099)
 and 0.418/0.493 (gear; FE 0.386, 0.477) (tests/test_gear_body.py); the tooth's own
-out-of-plane deformation under it is not in the plate (a line on itself: 0.092 and 0.433
-against the FE's 0.218 and 0.528).
+give under it is not the plate's but its wall's (analytic.tooth_wall: a line on itself
+0.136 and 0.476 with it, 0.092 and 0.433 without, against the FE's 0.218 and 0.528).
 
 Units: mm, N, MPa; compliance per unit thickness (mm per N/mm) in plane, mm/N (and rad per
 N·mm) out of plane.

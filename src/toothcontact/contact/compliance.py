@@ -104,7 +104,9 @@ import numpy as np
 from scipy.integrate import cumulative_trapezoid
 
 from ..analytic.gear_body import chord_green, flexure_green
+from ..analytic.hats import grid_hats, hats
 from ..analytic.stiffness import foundation_compliance
+from ..analytic.tooth_wall import ToothWall
 
 #: the shear correction factor of a rectangular section (Chaari et al. 2009, eq (3))
 SHEAR_FACTOR = 1.2
@@ -391,6 +393,20 @@ class ToothCompliance:
         raise ValueError("no neighbouring tooth's flank meets the line of action: "
                          "its flank spans less than a base pitch")
 
+    @functools.cached_property
+    def wall(self) -> ToothWall | None:
+        """The tooth's own give under the axial part of its loads (analytic.tooth_wall): a
+        helical tooth's; None on a spur tooth, whose loads have no axial part."""
+        if not self.gear.twist_per_length:
+            return None
+        height, half = self._profile
+        return ToothWall(height, half, self.gear.face_width, self.E, self.nu)
+
+    def wall_heights(self, radius) -> np.ndarray:
+        """The heights (mm) along the tooth's centre line from the root circle of the flank
+        points at the radii (mm): where their loads meet the wall."""
+        return self._inward * (self._from_root_table(radius, (3,))[:, 0] - self._root_x)
+
     def half_thickness(self, radius: float) -> float:
         """The tooth's half-thickness (mm) at `radius` on its flank: the depth to its centre
         line, to which its contact compression is measured (Weber's contact flattening)."""
@@ -424,9 +440,11 @@ class WheelToothCompliance(ToothCompliance):
     radius r and axial position z loads the slice at a - sqrt((a - r)² + z²); along the
     face the slices couple along z over the face width. The body term is an external
     gear's of the throat root circle (Sainsot), the bore half the root radius unless given.
-    Not corrected to finite elements (see the module)."""
+    Not corrected to finite elements (see the module); the load's part out of the slice's
+    plane is left out (no wall: analytic.tooth_wall is a cylindrical gear's tooth)."""
 
     corrected = False
+    wall = None
 
     def __init__(self, wheel, E: float, nu: float, bore_radius: float | None = None):
         self.wheel = wheel
@@ -476,9 +494,11 @@ class ThreadCompliance(ToothCompliance):
     it being the arc of the thread at the reference radius, r1·θ/cos γ. The body term is
     Sainsot's for a gear of the root radius whose root chord is the thread's axial root
     thickness (the worm's core as the body), the bore half the root radius (a solid
-    worm) unless given. Not corrected to finite elements (see the module)."""
+    worm) unless given. Not corrected to finite elements (see the module); no wall (as the
+    wheel's)."""
 
     corrected = False
+    wall = None
 
     def __init__(self, worm, E: float, nu: float, bore_radius: float | None = None):
         self.worm = worm
@@ -556,17 +576,6 @@ def end_layer_share(nodes: np.ndarray, layer: float) -> np.ndarray:
             + math.exp(-(end - start) / layer))
 
 
-def hats(nodes: np.ndarray, values: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-    """The hat functions on the increasing, equally spaced `nodes` at `values`: each value's
-    left node (int) and the share (0..1) its right neighbour takes; the left one takes the
-    rest. Values beyond the nodes go to the end nodes."""
-    n = len(nodes)
-    t = np.clip((np.asarray(values, float) - nodes[0]) / (nodes[-1] - nodes[0]) * (n - 1),
-                0.0, n - 1)
-    left = np.minimum(np.floor(t).astype(int), n - 2)
-    return left, t - left
-
-
 #: nodes per coupling length along the face, and their fewest and most
 NODES_PER_LENGTH, FEWEST_NODES, MOST_NODES = 4.0, 21, 241
 #: nodes per end layer (FaceCoupling): a 1 mm patch at a 40 mm face's end deflects within
@@ -589,11 +598,15 @@ class MemberLoading:
     (mm²/N per unit width) of its ToothCompliance) and its face coupling. A cell's load
     (times sqrt(share)) goes to the (radius × face) nodes by hat weights; the nodes deflect
     by matrix·Q·G (profile compliance across, face coupling along), read back at the cells
-    with the same weights (times sqrt(share))."""
+    with the same weights (times sqrt(share)). With a `wall` (the tooth's ToothWall and the
+    cells' heights on it, mm: ToothCompliance.wall_heights) the load's axial part (times
+    sqrt(1 - share)) goes likewise to the wall's (height × face) nodes, which deflect by
+    its matrix."""
 
     def __init__(self, z: np.ndarray, radius: np.ndarray, share: np.ndarray, extent: float,
                  radii: np.ndarray, matrix: np.ndarray, coupling: FaceCoupling,
-                 root: np.ndarray | None = None, turn: float = 0.0):
+                 root: np.ndarray | None = None, turn: float = 0.0,
+                 wall: tuple[ToothWall, np.ndarray] | None = None):
         self.z, self.radius, self.share, self.extent = z, radius, share, extent
         self.radii, self.matrix, self.coupling = radii, matrix, coupling
         #: (cells, 3 + FLEXURE_PER_NODE per flexure node): a unit normal load at each
@@ -604,25 +617,38 @@ class MemberLoading:
         #: the turn of the tooth's root chord along the face (rad/mm, counter-clockwise in
         #: the tooth's frame of root_loads): where each flexure node meets the rim
         self.turn = turn
-        across, across_share = hats(radii, radius)
-        along, along_share = hats(coupling.nodes, z)
-        first = int(across.min())                   # the radial nodes in use: first, first + 1...
-        self.profile = matrix[first:int(across.max()) + 2, first:int(across.max()) + 2]
+        nodes, weights = grid_hats(radii, coupling.nodes, radius, z)
+        # the radial nodes in use: first, first + 1, ... last
+        first, last = (int(n) // len(coupling.nodes) for n in (nodes.min(), nodes.max()))
+        self.profile = matrix[first:last + 1, first:last + 1]
         self.shape = (len(self.profile), len(coupling.nodes))
-        across -= first
-        #: each cell's four nodes (row-major in the shape, cells × 4) and its weights on
-        #: them: the nodes' deflections read at the cells; their transpose spreads the cells'
-        #: loads to the nodes
-        self.nodes = np.stack([a * self.shape[1] + k for a in (across, across + 1)
-                               for k in (along, along + 1)], axis=-1)
-        root = np.sqrt(share)
-        self.weights = np.stack([wa * wk * root for wa in (1.0 - across_share, across_share)
-                                 for wk in (1.0 - along_share, along_share)], axis=-1)
+        #: each cell's four slice nodes (row-major in the shape; with a wall, then its four
+        #: wall nodes: cells × 4 or 8) and its weights on them: the nodes' deflections read
+        #: at the cells; their transpose spreads the cells' loads to the nodes
+        self.nodes = nodes - first * self.shape[1]
+        self.weights = weights * np.sqrt(share)[:, None]
+        #: the wall's compliance between the wall nodes the cells load (mm/N), or None
+        self.wall = None
+        #: the nodes: the slices' (row-major in the shape), then the wall's
+        self.size = self.shape[0] * self.shape[1]
+        if wall is not None:
+            teeth_wall, height = wall
+            wall_nodes, wall_weights = teeth_wall.spread(height, z)
+            used, index = np.unique(wall_nodes, return_inverse=True)
+            self.wall = teeth_wall.matrix[np.ix_(used, used)]
+            self.nodes = np.concatenate([self.nodes, self.size + index.reshape(wall_nodes.shape)],
+                                        axis=1)
+            lean = np.sqrt(np.maximum(1.0 - share, 0.0))      # the load's axial part
+            self.weights = np.concatenate([self.weights, wall_weights * lean[:, None]], axis=1)
+            self.size += len(used)
 
     def nodes_deflection(self, node_loads: np.ndarray) -> np.ndarray:
-        """The nodes' deflections (mm, flat) under their loads (N, flat): profile
-        compliance across, face coupling along."""
-        return (self.profile @ node_loads.reshape(self.shape) @ self.coupling.flexibility).ravel()
+        """The nodes' deflections (mm, flat) under their loads (N, flat): the slices' by
+        profile compliance across and face coupling along, then the wall's."""
+        slices = self.shape[0] * self.shape[1]
+        bent = (self.profile @ node_loads[:slices].reshape(self.shape)
+                @ self.coupling.flexibility).ravel()
+        return bent if self.wall is None else np.concatenate([bent, self.wall @ node_loads[slices:]])
 
 
 class StructureOperator:
@@ -645,7 +671,7 @@ class StructureOperator:
         # where a larger grid's are given): one product each way per application (the
         # spread its transpose, a CSC view made once: as fast as a stored CSR transpose,
         # 0.20 against 0.23 ms on 37,000 cells)
-        sizes = [m.shape[0] * m.shape[1] for m in members]
+        sizes = [m.size for m in members]
         if gather is None:
             offsets = np.cumsum([0] + sizes[:-1])
             nodes = np.concatenate([m.nodes + o for m, o in zip(members, offsets)], axis=1)
@@ -813,10 +839,11 @@ class PairCompliance:
                                  MOST_NODES)))
             root, turn = self._root_loads(teeth, flank, u, v, radius, face, share) \
                 if self.bodies[name] else (None, 0.0)
+            wall = None if teeth.wall is None else (teeth.wall, teeth.wall_heights(radius))
             members.append(MemberLoading(face, radius, share, _extent(field, face),
                                          teeth.radii, teeth.matrix,
                                          FaceCoupling(start, end, coupling_length, nodes, layer),
-                                         root, turn))
+                                         root, turn, wall))
             reference.append((round(depth, 3), teeth.E, teeth.nu))
         dx, dy = field.spacing
         return StructureOperator(members, material.shape, dx * dy, material, tuple(reference))
