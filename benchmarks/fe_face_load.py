@@ -34,7 +34,7 @@ the cut faces held) instead of the whole gears, and the plane-strain FE of the w
 in contact (tests/fe_mesh_stiffness.py, refine 1 and 2) for the single-pair stiffness.
 
 Model: toothcontact.analyses.analyse of the case at each slope, as it stands, and as it
-stood before the free-end layer (compliance.end_layer returning 0: the Pasternak line's
+stood before the free-end layer (structure.end_layer returning 0: the Pasternak line's
 free ends w' = 0) and uncoupled (a Winkler bed), for the cause of the end rise.
 
 Not here: the same reference for a helical pair (issue 50 item 6's 20° pair, whose mesh

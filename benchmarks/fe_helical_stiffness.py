@@ -276,7 +276,7 @@ def model_flexure(pair, level: str) -> dict:
     flank's 3D normal), per member: the body's flexure (ToothCompliance.flexure_loads and
     analytic.gear_body.flexure_green as contact.compliance.PairCompliance.body_coupling
     applies them) and, between segments on one tooth, the tooth's wall under the load's
-    axial part (ToothCompliance.wall, as contact.compliance.MemberLoading applies it):
+    axial part (ToothCompliance.wall, as contact.structure.MemberLoading applies it):
     "full" with the load's axial part, "transverse" with it dropped and the read along the
     normal's transverse part (the FE's axial=False counterpart). Each segment at its
     middle (its roll is linear along the face); a segment on a neighbouring tooth turned

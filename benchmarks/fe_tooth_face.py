@@ -1,7 +1,7 @@
 """Independent 3D finite-element check of the tooth compliance model along the face (issue 27,
 item 5c), beside the model (contact.compliance: slice compliance c and Vlasov coupling
 length λ from ToothCompliance(gear, E, nu).at(r), the free-ended Pasternak line
-FaceCoupling).
+contact.structure.FaceCoupling).
 
 FE (tests/fe_tooth.py): the whole gear's exact section (ToothOutline, every tooth, the bore
 at half the root radius held), plane strain (quadratic triangles) and extruded over the face
@@ -31,7 +31,7 @@ and, in plane strain on a fine section mesh, the slice compliance split into the
 The model compared is the corrected one (compliance.SLICE_FACTOR = 0.815 and
 COUPLING_PER_ROOT_CHORD = 0.739, fitted by this benchmark on the beam's slices: FE/c was
 0.80-0.83 and λ_match 0.72-0.76 S_f), its coupling fading at the free ends over
-Reissner's layer (compliance.end_layer, from benchmarks/fe_face_load.py; the model's
+Reissner's layer (structure.end_layer, from benchmarks/fe_face_load.py; the model's
 ratio, 1.87 before it). "model as is" gives its errors; the correction block fits what a
 further correction would still take on the line without the end layer (fitted on the
 pinion at r = 30 mm, medium mesh; validated on the other radii and the two other teeth,

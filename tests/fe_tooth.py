@@ -480,8 +480,20 @@ def plane_strain(S: Section, E: float = E_STEEL, nu: float = NU_STEEL,
     crosses the centre line, `centre` (mm per N/mm = mm²/N); the dofs. stiff_below (mm):
     the triangles whose centroid lies inside that radius 10⁴ times stiffer (a rigid body
     under the teeth: the teeth alone, held at that circle)."""
-    from skfem import (BilinearForm, Basis, ElementTriP0, ElementTriP2, ElementVector,
-                       FacetBasis, Functional, LinearForm, MeshTri, asm, condense, solve)
+    from skfem import (
+        Basis,
+        BilinearForm,
+        ElementTriP0,
+        ElementTriP2,
+        ElementVector,
+        FacetBasis,
+        Functional,
+        LinearForm,
+        MeshTri,
+        asm,
+        condense,
+        solve,
+    )
     from skfem.helpers import ddot, sym_grad, trace
     from skfem.models.elasticity import lame_parameters, linear_elasticity
 
@@ -933,7 +945,8 @@ def model_line(c: float, length: float, start: float, end: float, patches, nodes
     f(z) = 1 + (β - 1)·(exp(-2(z - start)/λ) + exp(-2(end - z)/λ)) (symmetric, as the
     contact solver needs; over half a coupling length from each end, so that mid-face
     keeps G)."""
-    from toothcontact.contact.compliance import FaceCoupling, hats
+    from toothcontact.analytic.hats import hats
+    from toothcontact.contact.structure import FaceCoupling
 
     line = FaceCoupling(start, end, length, nodes, end_layer)
     G = line.flexibility
@@ -1027,8 +1040,9 @@ def face_study(gear, radii=(30.0,), h_patch=0.3, h_tooth=1.2, h_far=6.0, growth=
     benchmarks/fe_tooth_face.py for the reported quantities."""
     import time
 
-    from toothcontact.contact.compliance import ToothCompliance, end_layer
+    from toothcontact.contact.compliance import ToothCompliance
     from toothcontact.contact.influence import free_end_factor
+    from toothcontact.contact.structure import end_layer
 
     t0 = time.perf_counter()
     width, length = patch

@@ -114,7 +114,7 @@ def test_the_loaded_end_strip_is_the_fes_within_3_percent(model):
     FE's at 0.9 mrad with the Pasternak line's free ends (w' = 0: a line held to a tilt
     needs the end forces λ²w'/c; uncoupled slices give no rise at all, the half-space's
     free-end mirror takes 2 %); with the coupling fading over Reissner's free-edge layer
-    (compliance.end_layer) +1.0 %, and -1.2 % at 0.22 mrad. Against its own mid-face trend
+    (structure.end_layer) +1.0 %, and -1.2 % at 0.22 mrad. Against its own mid-face trend
     (a line fitted over z = 0-12 mm) FE's end strip rises +7.7 % and +14.2 %, the model's
     +7.9 % and +20.0 % (+9.1 % and +23.3 % before): the rest of the model's rise at 0.9
     mrad is its shallower mid-face slope (14.5 against 15.5 N/mm per mm), the previous

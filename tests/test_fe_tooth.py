@@ -10,7 +10,7 @@ compliance was 20-25 % above FE, a point load in mid-face deflected the model's 
 coupling length; the model is corrected to it (compliance.SLICE_FACTOR,
 COUPLING_PER_ROOT_CHORD), and the tests below check the corrected model to 10 %: c, the
 mid-face point load, the coupling length, how c grows with the load's height, and (since
-the coupling fades at the free ends over Reissner's layer, compliance.end_layer) the
+the coupling fades at the free ends over Reissner's layer, structure.end_layer) the
 face end: FE's end-over-mid ratio 2.3-2.4 against the line's 2.19 (1.87 before)."""
 
 from __future__ import annotations
@@ -196,7 +196,7 @@ def test_a_patch_at_the_face_end_deflects_the_model_as_fe_within_10_percent(stud
     """(2): a patch touching the face end deflects 2.3-2.4x the mid-face one in FE (centre
     line; benchmark; 2.35 here). The model's line with free ends w' = 0 gave 1.87 (a
     Pasternak line cannot exceed 2), 0.81 of FE's deflection at the end; with its coupling
-    fading over Reissner's free-edge layer (compliance.end_layer, 1.47 mm here) it gives
+    fading over Reissner's free-edge layer (structure.end_layer, 1.47 mm here) it gives
     2.19, 0.95 of FE's (measured), within 10 % (the bands: FE in [2.1, 2.7], the model's
     ratio in [2.0, 2.4]). The layer leaves a uniform load's deflection uniform (the next
     test)."""

@@ -237,7 +237,7 @@ def test_flush_face_ends_load_like_the_middle_not_like_a_half_space(loaded):
     mid-face in an independent 3D finite-element computation of two such bodies (issue 27:
     R = 8.4 mm, 422 N/mm, converged between 0.05 and 0.025 mm elements), against 2.48 on
     half-spaces that run on past the ends; here within 10 % of 0.74 (0.76-0.77, measured;
-    0.75-0.76 before the teeth's coupling faded at the free ends, compliance.end_layer). The
+    0.75-0.76 before the teeth's coupling faded at the free ends, structure.end_layer). The
     ends' load per mm of face is under the mean (0.72; 0.71 before): not end-loaded, and
     K_Hβ is 1."""
     total = loaded["summary"]["normal_load_N"]

@@ -41,7 +41,7 @@ def test_the_mesh_stiffness_of_standard_pairs_is_isos(teeth, module, face, helix
     +5.5 % (the 2D FE of the 20/60 pair itself, 13.84, lies +5.2 % above ISO's c' 13.15:
     tests/test_fe_mesh_stiffness.py; the 3D FE of a 25/75 pair's single-pair stiffness
     13.81 against the model's 14.21: tests/test_face_load_fe.py). The helical pair within
-    23 %: measured +21.1 % (the coupling faded at the free ends, compliance.end_layer,
+    23 %: measured +21.1 % (the coupling faded at the free ends, structure.end_layer,
     changed it by 0.1 %). Its contact lines cross the face obliquely, so each loads a short
     stretch of many slices, which the FE-fitted coupling (0.74 of the root chord) spreads
     along the face further than Vlasov's did (+8 % before the correction); ISO's helical
@@ -95,7 +95,7 @@ def test_a_slope_loads_the_face_as_isos_linear_misalignment(aligned):
     load off end A and puts it on end B (a Pasternak line held to a linear deflection
     needs end forces ±λ²w'/c; the contact's own compliance spreads them over a few mm,
     into the fitted stretch; the coupling fades at the free ends over Reissner's layer,
-    compliance.end_layer, which softens them). So the fit lies above ISO's: measured +8.5 %
+    structure.end_layer, which softens them). So the fit lies above ISO's: measured +8.5 %
     (one pair) to +19.2 % (two pairs); asserted 0 to +21 %. The gear bodies' coupling of
     the two pairs' teeth (analytic.gear_body), nearly even along the face, softens a
     two-pair position (c ≈ 22 before it) without resisting the tilt, so ISO's formula with

@@ -9,9 +9,10 @@ import math
 import numpy as np
 import pytest
 
+from toothcontact.analytic.hats import hats
 from toothcontact.analytic.stiffness import foundation_compliance, mesh_stiffness
-from toothcontact.contact.compliance import (FaceCoupling, FaceLoad, ToothCompliance, cantilever,
-                                             end_layer, end_layer_share, hats)
+from toothcontact.contact.compliance import ToothCompliance, cantilever
+from toothcontact.contact.structure import FaceCoupling, FaceLoad, end_layer, end_layer_share
 from toothcontact.rating.load_factors import face_load_factor
 from toothcontact.surfaces.involute import CylindricalGear
 

@@ -1,6 +1,6 @@
 """A helical tooth's wall under its load's axial part (analytic.tooth_wall): the closed form
 of a long wall in shear, the finite elements' convergence, and how the contact's operator
-takes it (contact.compliance.MemberLoading). Against the 3D FE of the helical reference
+takes it (contact.structure.MemberLoading). Against the 3D FE of the helical reference
 pair: tests/test_gear_body.py (the line on itself) and tests/test_helical_stiffness_fe.py
 (the mesh stiffness)."""
 
@@ -13,12 +13,8 @@ import pytest
 
 from toothcontact.analytic.tooth_wall import ToothWall
 from toothcontact.case import parse_case
-from toothcontact.contact.compliance import (
-    FaceCoupling,
-    MemberLoading,
-    StructureOperator,
-    ToothCompliance,
-)
+from toothcontact.contact.compliance import ToothCompliance
+from toothcontact.contact.structure import FaceCoupling, MemberLoading, StructureOperator
 from toothcontact.gearset import gear_pair
 
 E, NU = 206000.0, 0.3

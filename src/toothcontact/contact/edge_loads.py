@@ -19,9 +19,9 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from .compliance import FaceLoad
 from .field import GapField, is_face_end
 from .pressure import ContactSolution, EdgeLoad
+from .structure import FaceLoad
 
 #: width (mm) of the strip at an edge over which the edge pressure is averaged
 EDGE_STRIP = 0.1

@@ -325,7 +325,7 @@ class Grid:
     """One gap field of a shared solve (see :func:`solve_shared`): the gap (mm; x along axis
     0 in steps dx_mm, y along axis 1 in steps dy_mm), the material mask (None: everywhere),
     a further linear displacement `structure` p (MPa) -> u (mm) of its bodies (the teeth's
-    bending: a contact.compliance.StructureOperator, called on the grid and on a part of it
+    bending: a contact.structure.StructureOperator, called on the grid and on a part of it
     by its `window(rows, cols)`), the depths its compression is measured to
     (`reference`, see influence.InfluenceOperator), and the free end faces of its bodies that cross
     it (`free_ends`, influence.FreeEnd: there a body is a quarter-space)."""
@@ -745,7 +745,7 @@ def solve_contact(gap_mm, dx_mm: float, dy_mm: float, load_N: float, E_star_MPa:
         from a fresh float64 displacement until the check meets tol.
     structure: a further linear displacement of the bodies under the pressure, p (MPa, the
         gap's shape) -> u (mm), symmetric and positive semi-definite (the teeth's bending,
-        contact.compliance.StructureOperator); the approach then includes it.
+        contact.structure.StructureOperator); the approach then includes it.
     reference: ((depth mm, E MPa, nu) per body, see influence.InfluenceOperator): the depth in each
         body the contact's compression is measured to (where a tooth's bending starts);
         () for half-spaces (relative to infinity).
