@@ -12,7 +12,7 @@ from PIL import Image
 from scipy import ndimage
 
 from toothcontact import analyses, case as schema, runner
-from toothcontact.views import plots, report, style
+from toothcontact.views import design_charts, plots, report, style
 
 WIDTH = 1020  # 8.5 in at 120 dpi
 
@@ -216,14 +216,14 @@ def _design_between_curves(path, result) -> list[tuple[float, float, float]]:
 def test_crown_chart_marks_a_passing_design_between_the_edge_and_stress_rules(tmp_path):
     result = _result("crown_spur_metric_bias", tmp_path, allowable_stress="2000 MPa")
     assert all(c["ok"] for c in result["checks"])
-    path = plots.crown_design_chart(result, tmp_path / "crown.png")
+    path = design_charts.crown_design_chart(result, tmp_path / "crown.png")
     rgb = _rgb(path, (WIDTH, 672))
     assert _distinct(rgb) > 300
     for edge, marker, stress in _design_between_curves(path, result):
         assert abs(marker - edge) < 5  # designed: on the edge rule at its end's slope
         assert stress - marker > 10  # and well above the stress rule (lower radius bound)
 
-    curves = plots.crown_design_curves(result)
+    curves = design_charts.crown_design_curves(result)
     R = result["crown"]["radius_mm"]
     for end, slope in (("A", curves["slope_A"]), ("B", curves["slope_B"])):
         assert np.interp(slope, curves["theta"], curves["edge_radius_mm"][end]) == \
@@ -234,10 +234,10 @@ def test_crown_chart_marks_a_passing_design_between_the_edge_and_stress_rules(tm
 def test_crown_chart_without_an_allowable_uses_the_designs_stress(tmp_path):
     """Example 1 has no allowable stress: the reference line runs through the design."""
     result = _result("crown_example1_planet_bias", tmp_path)
-    path = plots.crown_design_chart(result, tmp_path / "crown.png")
+    path = design_charts.crown_design_chart(result, tmp_path / "crown.png")
     for edge, marker, stress in _design_between_curves(path, result):
         assert abs(marker - edge) < 5 and abs(marker - stress) < 5
-    curves = plots.crown_design_curves(result)
+    curves = design_charts.crown_design_curves(result)
     assert curves["reference"] == "design"
     assert curves["reference_stress_MPa"] == pytest.approx(result["contact"]["stress_MPa"],
                                                            rel=1e-9)
@@ -248,18 +248,18 @@ def test_crown_chart_without_an_allowable_uses_the_designs_stress(tmp_path):
 
 def test_worm_efficiency_over_temperature(tmp_path):
     result = _result("worm_saba_flap_actuator", tmp_path)
-    rgb = _rgb(plots.worm_efficiency_vs_temperature(result, tmp_path / "t.png"), (WIDTH, 792))
+    rgb = _rgb(design_charts.worm_efficiency_vs_temperature(result, tmp_path / "t.png"), (WIDTH, 792))
     assert _distinct(rgb) > 300
     for colour in style.SERIES[:2]:  # eta_total and eta_z: lines and published points
         assert _near(rgb, colour, 20).sum() > 500
     with pytest.raises(ValueError, match="temperature"):
-        plots.worm_efficiency_vs_temperature({"efficiency": [{"temperature_C": None}]},
+        design_charts.worm_efficiency_vs_temperature({"efficiency": [{"temperature_C": None}]},
                                              tmp_path / "none.png")
 
 
 def test_worm_efficiency_over_torque_follows_the_results_rows(tmp_path):
     result = _result("worm_kim_steering_ars", tmp_path)
-    curves = plots.worm_torque_curves(result)
+    curves = design_charts.worm_torque_curves(result)
     rows = result["misalignment"]
     torque = [r["output_torque_Nm"] for r in rows]
     for key in ("misalignment_mm", "spring_force_N", "normal_load_N"):
@@ -268,7 +268,7 @@ def test_worm_efficiency_over_torque_follows_the_results_rows(tmp_path):
     zero = np.interp(0.0, curves["misalignment_mm"], curves["output_torque_Nm"])
     assert zero == pytest.approx(19.67, abs=0.01)  # seed 001: aligned at 19.67 N·m
     assert curves["eta_aligned"] == pytest.approx(result["efficiency"][0]["eta_kim"], rel=1e-12)
-    rgb = _rgb(plots.worm_efficiency_vs_torque(result, tmp_path / "q.png"), (WIDTH, 888))
+    rgb = _rgb(design_charts.worm_efficiency_vs_torque(result, tmp_path / "q.png"), (WIDTH, 888))
     assert _distinct(rgb) > 300
 
 
