@@ -188,9 +188,11 @@ class _Pair:
         # twice the position's solves of 1.3 times the cells, at equal pressures)
         self.growth = (np.array([1.6, 1.6]) if cycle.rows[k]["contact_model"] == "ellipse"
                        else np.array([1.6 if field.turn else 2.5, 2.0]))
-        #: the field's box ((2, 2) mm in the plane) once it is narrowed onto the contact
-        #: (see narrow); None while it lies about the pattern
+        #: the field's box ((2, 2) mm in its plane) once it is grown or narrowed onto the
+        #: contact (see grow, narrow); None while it lies about the pattern
         self.box: np.ndarray | None = None
+        #: whether its field was narrowed (once per pair)
+        self.narrowed = False
         # its pattern: the field's middle, 1/MARGIN of it both ways
         n0, n1 = field.gap.shape
         middle = np.zeros((n0, n1), bool)
@@ -220,18 +222,19 @@ class _Pair:
         flanks. Only along those: a worm set's curved contact line leaves a straight field
         sideways, and widening its length with its width (2.5 and 1.3 times a step) bent
         the line further out of it each time, up to fields 90 mm long on 4 mm samples."""
-        if self.box is not None:
-            middle, half = self.box.mean(axis=1), 0.5 * np.ptp(self.box, axis=1)
-            grown = np.minimum(half * np.where(axes, self.growth.max(), 1.0), self.largest)
-            if np.array_equal(grown, half):
-                raise self._outgrown()
-            self._narrowed(np.stack([middle - grown, middle + grown], axis=1))
-            return
-        grown = np.minimum(self.semi_axes * np.where(axes, self.growth, 1.0), self.largest)
-        if np.array_equal(grown, self.semi_axes):
+        # the field as laid, in its own axes: the pattern's semi-axes turned by its axis
+        # angle laid a slanted line's field as wide across as its length's slant, so that
+        # growing the semi-axis across by the growth barely widened it (a worm wheel's
+        # contact at a tip chamfer took six solves before its field grew, and ran out of
+        # the position's tries: "outgrows its gap fields")
+        f = self.field
+        box = self.box if self.box is not None else np.array([[f.x[0], f.x[-1]],
+                                                               [f.y[0], f.y[-1]]], float)
+        middle, half = box.mean(axis=1), 0.5 * np.ptp(box, axis=1)
+        grown = np.minimum(half * np.where(axes, self.growth, 1.0), self.largest)
+        if np.array_equal(grown, half):
             raise self._outgrown()
-        self.semi_axes, self.samples = grown, None
-        self._use(self._field())
+        self._narrowed(np.stack([middle - grown, middle + grown], axis=1))
 
     def _field(self) -> GapField:
         """The field over the pair's box (or its semi-axes about its pattern while it has
@@ -283,7 +286,7 @@ class _Pair:
         closes at one spot; a contact at a tip rounding's start): along that axis the box
         becomes NARROW_SPAN times the contact's extent about it; whether it was narrowed
         (once per pair: the position is then solved again)."""
-        if solution is None or self.box is not None:
+        if solution is None or self.narrowed:
             return False
         touched = solution.pressure_MPa > 0.0
         if not touched.any():
@@ -304,6 +307,7 @@ class _Pair:
             box[axis] = 0.5 * (low + high) + np.array([-half, half])
             changed = True
         if changed:
+            self.narrowed = True
             self._narrowed(box)
         return changed
 
