@@ -327,3 +327,26 @@ def test_every_line_through_a_flanks_material_meets_it():
             failed += int((through & ~hits.converged[0]).sum())
     assert covered > 3000
     assert failed <= 0.01 * covered, (failed, covered)
+
+
+def test_a_worm_sets_line_fields_lie_along_their_lines_and_resolve_their_width(
+        small_identical_hob_set):
+    """A worm set's curved contact lines get fields turned along them (field_turns: the
+    pattern's A axis at its middle, the chord's direction), as a helical pair's straight
+    ones do. Laid along the face, the FVA stage's diagonal 11.5 mm line sat in a 33 × 22 mm
+    field on cells 0.14-0.21 mm across against a Hertz half-width b of 0.17-0.32 mm (2-4
+    cells over the line's width), and its flank peaks moved 1332 / 846 / 1024 MPa at
+    pressure_grid 96 / 128 / 192; turned, 679 / 652 / 622 and its loaded TE 2.95 µm at
+    each (2.28-2.53 before). Here every line's field is turned with its line and puts at
+    least 8 cells across its Hertz width 2b."""
+    from toothcontact.contact.field import TURN_LEAST
+
+    cycle, _, _, _, _, fields = small_identical_hob_set
+    lines = [(row, field) for row, field in zip(cycle.rows, fields)
+             if row["contact_model"] == "line"]
+    assert lines
+    for (row, field), angle in zip(lines, np.asarray(cycle.axis_angle)[
+            [k for k, r in enumerate(cycle.rows) if r["contact_model"] == "line"]]):
+        angle = (angle + 0.5 * np.pi) % np.pi - 0.5 * np.pi
+        assert field.turn == pytest.approx(angle if abs(angle) > TURN_LEAST else 0.0)
+        assert 2.0 * row["b_mm"] / field.spacing[1] >= 8.0, (row["roll_deg"], row["pair"])

@@ -615,13 +615,13 @@ TURN_LEAST = np.radians(3.0)
 
 def field_turns(cycle, rows) -> np.ndarray:
     """The turn (rad, (K,)) of each row's field laid along its pattern: its A axis's angle
-    from e1 (taken within ±90 deg), or 0 where that is below TURN_LEAST, and on flanks
-    whose contact lines curve (a worm set's fields follow them along the face, see
-    _continued)."""
+    from e1 (taken within ±90 deg), or 0 where that is below TURN_LEAST. A worm set's
+    curved lines are turned too (along their tangent at the pattern's middle, the chord's
+    direction): laid along the face, a diagonal 11.5 mm line of the FVA stage sat in a
+    33 × 22 mm field on cells 0.14-0.21 mm across against a Hertz half-width of 0.17-0.32
+    mm, and its flank peaks moved 1332 / 846 / 1024 MPa at pressure_grid 96 / 128 / 192
+    (turned: 679 / 652 / 622)."""
     rows = np.atleast_1d(np.asarray(rows, int))
-    if not all(getattr(flank, "straight_contact_lines", False)
-               for flank in (cycle.pinion, cycle.gear)):
-        return np.zeros(len(rows))
     angle = np.asarray(cycle.axis_angle, float)[rows]
     angle = (angle + 0.5 * np.pi) % np.pi - 0.5 * np.pi
     return np.where(np.abs(angle) > TURN_LEAST, angle, 0.0)
